@@ -1,0 +1,358 @@
+//! The float types models compute in, and the math functions generated code calls.
+
+use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
+
+/// A float type a model can compute in: `f32` or `f64`.
+pub trait Float:
+    Copy
+    + Default
+    + PartialEq
+    + PartialOrd
+    + core::fmt::Debug
+    + core::fmt::Display
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+    + SubAssign
+    + MulAssign
+    + DivAssign
+    + 'static
+{
+    /// 0.
+    const ZERO: Self;
+    /// 1.
+    const ONE: Self;
+    /// Machine epsilon.
+    const EPSILON: Self;
+    /// Converts from `f64` (rounding for `f32`).
+    fn from_f64(x: f64) -> Self;
+    /// Converts to `f64`.
+    fn to_f64(self) -> f64;
+    /// `true` unless NaN or infinite.
+    fn is_finite(self) -> bool;
+    /// Absolute value.
+    fn abs(self) -> Self;
+    /// Square root.
+    fn sqrt(self) -> Self;
+    /// Sine.
+    fn sin(self) -> Self;
+    /// Cosine.
+    fn cos(self) -> Self;
+    /// Tangent.
+    fn tan(self) -> Self;
+    /// Arc sine.
+    fn asin(self) -> Self;
+    /// Arc cosine.
+    fn acos(self) -> Self;
+    /// Arc tangent of `self / x` with the quadrant of `(x, self)`.
+    fn atan2(self, x: Self) -> Self;
+    /// e^self.
+    fn exp(self) -> Self;
+    /// Natural logarithm.
+    fn ln(self) -> Self;
+    /// self^e for a float exponent.
+    fn powf(self, e: Self) -> Self;
+    /// self^n for an integer exponent.
+    fn powi(self, n: i32) -> Self;
+    /// The larger of two values (NaN-ignoring like `f64::max`).
+    fn max(self, other: Self) -> Self;
+    /// The smaller of two values.
+    fn min(self, other: Self) -> Self;
+}
+
+macro_rules! impl_float {
+    ($t:ident, $sfx:ident) => {
+        impl Float for $t {
+            const ZERO: Self = 0.0;
+            const ONE: Self = 1.0;
+            const EPSILON: Self = $t::EPSILON;
+            #[inline(always)]
+            fn from_f64(x: f64) -> Self {
+                x as $t
+            }
+            #[inline(always)]
+            fn to_f64(self) -> f64 {
+                self as f64
+            }
+            #[inline(always)]
+            fn is_finite(self) -> bool {
+                $t::is_finite(self)
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                $t::abs(self)
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                imp::$sfx::sqrt(self)
+            }
+            #[inline(always)]
+            fn sin(self) -> Self {
+                imp::$sfx::sin(self)
+            }
+            #[inline(always)]
+            fn cos(self) -> Self {
+                imp::$sfx::cos(self)
+            }
+            #[inline(always)]
+            fn tan(self) -> Self {
+                imp::$sfx::tan(self)
+            }
+            #[inline(always)]
+            fn asin(self) -> Self {
+                imp::$sfx::asin(self)
+            }
+            #[inline(always)]
+            fn acos(self) -> Self {
+                imp::$sfx::acos(self)
+            }
+            #[inline(always)]
+            fn atan2(self, x: Self) -> Self {
+                imp::$sfx::atan2(self, x)
+            }
+            #[inline(always)]
+            fn exp(self) -> Self {
+                imp::$sfx::exp(self)
+            }
+            #[inline(always)]
+            fn ln(self) -> Self {
+                imp::$sfx::ln(self)
+            }
+            #[inline(always)]
+            fn powf(self, e: Self) -> Self {
+                imp::$sfx::powf(self, e)
+            }
+            #[inline(always)]
+            fn powi(self, n: i32) -> Self {
+                imp::$sfx::powi(self, n)
+            }
+            #[inline(always)]
+            fn max(self, other: Self) -> Self {
+                $t::max(self, other)
+            }
+            #[inline(always)]
+            fn min(self, other: Self) -> Self {
+                $t::min(self, other)
+            }
+        }
+    };
+}
+
+impl_float!(f64, f64);
+impl_float!(f32, f32);
+
+#[cfg(feature = "std")]
+mod imp {
+    macro_rules! std_math {
+        ($t:ident) => {
+            pub mod $t {
+                #[inline(always)]
+                pub fn sqrt(x: $t) -> $t {
+                    x.sqrt()
+                }
+                #[inline(always)]
+                pub fn sin(x: $t) -> $t {
+                    x.sin()
+                }
+                #[inline(always)]
+                pub fn cos(x: $t) -> $t {
+                    x.cos()
+                }
+                #[inline(always)]
+                pub fn tan(x: $t) -> $t {
+                    x.tan()
+                }
+                #[inline(always)]
+                pub fn asin(x: $t) -> $t {
+                    x.asin()
+                }
+                #[inline(always)]
+                pub fn acos(x: $t) -> $t {
+                    x.acos()
+                }
+                #[inline(always)]
+                pub fn atan2(y: $t, x: $t) -> $t {
+                    y.atan2(x)
+                }
+                #[inline(always)]
+                pub fn exp(x: $t) -> $t {
+                    x.exp()
+                }
+                #[inline(always)]
+                pub fn ln(x: $t) -> $t {
+                    x.ln()
+                }
+                #[inline(always)]
+                pub fn powf(x: $t, e: $t) -> $t {
+                    x.powf(e)
+                }
+                #[inline(always)]
+                pub fn powi(x: $t, n: i32) -> $t {
+                    x.powi(n)
+                }
+            }
+        };
+    }
+    std_math!(f64);
+    std_math!(f32);
+}
+
+#[cfg(all(not(feature = "std"), feature = "libm"))]
+mod imp {
+    macro_rules! libm_math {
+        ($t:ident, $sqrt:ident, $sin:ident, $cos:ident, $tan:ident, $asin:ident, $acos:ident, $atan2:ident, $exp:ident, $ln:ident, $pow:ident) => {
+            pub mod $t {
+                #[inline(always)]
+                pub fn sqrt(x: $t) -> $t {
+                    libm::$sqrt(x)
+                }
+                #[inline(always)]
+                pub fn sin(x: $t) -> $t {
+                    libm::$sin(x)
+                }
+                #[inline(always)]
+                pub fn cos(x: $t) -> $t {
+                    libm::$cos(x)
+                }
+                #[inline(always)]
+                pub fn tan(x: $t) -> $t {
+                    libm::$tan(x)
+                }
+                #[inline(always)]
+                pub fn asin(x: $t) -> $t {
+                    libm::$asin(x)
+                }
+                #[inline(always)]
+                pub fn acos(x: $t) -> $t {
+                    libm::$acos(x)
+                }
+                #[inline(always)]
+                pub fn atan2(y: $t, x: $t) -> $t {
+                    libm::$atan2(y, x)
+                }
+                #[inline(always)]
+                pub fn exp(x: $t) -> $t {
+                    libm::$exp(x)
+                }
+                #[inline(always)]
+                pub fn ln(x: $t) -> $t {
+                    libm::$ln(x)
+                }
+                #[inline(always)]
+                pub fn powf(x: $t, e: $t) -> $t {
+                    libm::$pow(x, e)
+                }
+                #[inline(always)]
+                pub fn powi(x: $t, n: i32) -> $t {
+                    // Exponentiation by squaring: exact for the small integer
+                    // powers generated code uses.
+                    let mut base = if n < 0 { 1.0 / x } else { x };
+                    let mut k = n.unsigned_abs();
+                    let mut acc: $t = 1.0;
+                    while k > 0 {
+                        if k & 1 == 1 {
+                            acc *= base;
+                        }
+                        base *= base;
+                        k >>= 1;
+                    }
+                    acc
+                }
+            }
+        };
+    }
+    libm_math!(f64, sqrt, sin, cos, tan, asin, acos, atan2, exp, log, pow);
+    libm_math!(f32, sqrtf, sinf, cosf, tanf, asinf, acosf, atan2f, expf, logf, powf);
+}
+
+#[cfg(all(not(feature = "std"), not(feature = "libm")))]
+compile_error!("autosim-runtime needs either the `std` or the `libm` feature for its math functions");
+
+/// Math functions called by generated code, generic over [`Float`].
+pub mod math {
+    use super::Float;
+    /// Sine.
+    #[inline(always)]
+    pub fn sin<F: Float>(x: F) -> F {
+        x.sin()
+    }
+    /// Cosine.
+    #[inline(always)]
+    pub fn cos<F: Float>(x: F) -> F {
+        x.cos()
+    }
+    /// Tangent.
+    #[inline(always)]
+    pub fn tan<F: Float>(x: F) -> F {
+        x.tan()
+    }
+    /// Arc sine.
+    #[inline(always)]
+    pub fn asin<F: Float>(x: F) -> F {
+        x.asin()
+    }
+    /// Arc cosine.
+    #[inline(always)]
+    pub fn acos<F: Float>(x: F) -> F {
+        x.acos()
+    }
+    /// Two-argument arc tangent of `y / x`.
+    #[inline(always)]
+    pub fn atan2<F: Float>(y: F, x: F) -> F {
+        y.atan2(x)
+    }
+    /// Square root.
+    #[inline(always)]
+    pub fn sqrt<F: Float>(x: F) -> F {
+        x.sqrt()
+    }
+    /// Exponential.
+    #[inline(always)]
+    pub fn exp<F: Float>(x: F) -> F {
+        x.exp()
+    }
+    /// Natural logarithm.
+    #[inline(always)]
+    pub fn ln<F: Float>(x: F) -> F {
+        x.ln()
+    }
+    /// Absolute value.
+    #[inline(always)]
+    pub fn abs<F: Float>(x: F) -> F {
+        x.abs()
+    }
+    /// Sign: -1, 0 or 1 (0 for NaN).
+    #[inline(always)]
+    pub fn sign<F: Float>(x: F) -> F {
+        if x > F::ZERO {
+            F::ONE
+        } else if x < F::ZERO {
+            -F::ONE
+        } else {
+            F::ZERO
+        }
+    }
+    /// Minimum.
+    #[inline(always)]
+    pub fn min<F: Float>(a: F, b: F) -> F {
+        a.min(b)
+    }
+    /// Maximum.
+    #[inline(always)]
+    pub fn max<F: Float>(a: F, b: F) -> F {
+        a.max(b)
+    }
+    /// Float power.
+    #[inline(always)]
+    pub fn powf<F: Float>(x: F, e: F) -> F {
+        x.powf(e)
+    }
+    /// Integer power.
+    #[inline(always)]
+    pub fn powi<F: Float>(x: F, n: i32) -> F {
+        x.powi(n)
+    }
+}

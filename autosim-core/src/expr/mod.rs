@@ -1,0 +1,18 @@
+//! Scalar expressions: a hash-consed arena with simplifying constructors,
+//! calculus, evaluation and a text form.
+
+mod arena;
+mod build;
+mod calculus;
+mod eval;
+mod funcs;
+mod number;
+mod ops;
+mod text;
+
+pub use arena::{Arena, ExprError, ExprId, Func, Meta, Node, SymId, Symbol, SymbolKind, UserFn, UserFnId};
+pub use eval::{Bindings, NoUserFunctions, UserFunctions};
+pub use number::Number;
+
+#[cfg(test)]
+mod tests;

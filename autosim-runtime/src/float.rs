@@ -265,11 +265,15 @@ mod imp {
         };
     }
     libm_math!(f64, sqrt, sin, cos, tan, asin, acos, atan2, exp, log, pow);
-    libm_math!(f32, sqrtf, sinf, cosf, tanf, asinf, acosf, atan2f, expf, logf, powf);
+    libm_math!(
+        f32, sqrtf, sinf, cosf, tanf, asinf, acosf, atan2f, expf, logf, powf
+    );
 }
 
 #[cfg(all(not(feature = "std"), not(feature = "libm")))]
-compile_error!("autosim-runtime needs either the `std` or the `libm` feature for its math functions");
+compile_error!(
+    "autosim-runtime needs either the `std` or the `libm` feature for its math functions"
+);
 
 /// Math functions called by generated code, generic over [`Float`].
 pub mod math {

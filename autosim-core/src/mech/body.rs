@@ -1,0 +1,498 @@
+//! Adding bodies: degrees of freedom, frames, kinematical equations and the
+//! forward velocity recursion (the paper's Tables 7-11, Eqs. 8-10).
+
+use super::error::ModelError;
+use super::framevec::{Fv, Mat3};
+use super::frames::FrameId;
+use super::system::{Body, BodyId, BodySpec, Coordinate, Direction, DofKind, System};
+use super::vector::Vector;
+use crate::expr::{ExprId, SymbolKind};
+
+impl System {
+    /// Adds bodies given in any order: parents are resolved by name, and
+    /// unknown parents and parent cycles are reported together.
+    pub fn add_bodies(&mut self, specs: Vec<BodySpec>) -> Result<Vec<BodyId>, Vec<ModelError>> {
+        let mut errors = Vec::new();
+        let names: Vec<&str> = specs.iter().map(|s| s.name.as_str()).collect();
+        for s in &specs {
+            let known = s.parent == "N"
+                || self.body_named(&s.parent).is_some()
+                || names.contains(&s.parent.as_str());
+            if !known {
+                errors.push(ModelError::UnknownBody(s.parent.clone()));
+            }
+        }
+        // Order parents first; whatever cannot be placed is on a cycle.
+        let mut placed = vec![false; specs.len()];
+        let mut order = Vec::with_capacity(specs.len());
+        loop {
+            let mut progress = false;
+            for (i, s) in specs.iter().enumerate() {
+                if placed[i] {
+                    continue;
+                }
+                let parent_ready = s.parent == "N"
+                    || self.body_named(&s.parent).is_some()
+                    || specs
+                        .iter()
+                        .enumerate()
+                        .any(|(j, p)| placed[j] && p.name == s.parent);
+                if parent_ready {
+                    placed[i] = true;
+                    order.push(i);
+                    progress = true;
+                }
+            }
+            if !progress {
+                break;
+            }
+        }
+        let mut reported = vec![false; specs.len()];
+        for start in 0..specs.len() {
+            if placed[start] || reported[start] {
+                continue;
+            }
+            // Follow parents from `start` until a body repeats.
+            let mut path: Vec<usize> = Vec::new();
+            let mut cur = Some(start);
+            while let Some(i) = cur {
+                if let Some(pos) = path.iter().position(|p| *p == i) {
+                    let cycle: Vec<String> = path[pos..]
+                        .iter()
+                        .chain(std::iter::once(&i))
+                        .map(|k| specs[*k].name.clone())
+                        .collect();
+                    if !path[pos..].iter().any(|k| reported[*k]) {
+                        errors.push(ModelError::ParentCycle(cycle));
+                    }
+                    break;
+                }
+                path.push(i);
+                cur = specs.iter().position(|p| p.name == specs[i].parent);
+            }
+            for k in path {
+                reported[k] = true;
+            }
+        }
+        if !errors.is_empty() {
+            return Err(errors);
+        }
+        let mut specs: Vec<Option<BodySpec>> = specs.into_iter().map(Some).collect();
+        let mut ids = vec![BodyId::N; specs.len()];
+        for i in order {
+            if let Some(spec) = specs[i].take() {
+                match self.add_body(spec) {
+                    Ok(id) => ids[i] = id,
+                    Err(e) => errors.push(e),
+                }
+            }
+        }
+        if errors.is_empty() { Ok(ids) } else { Err(errors) }
+    }
+
+    /// Adds one body; its parent must already exist.
+    pub fn add_body(&mut self, spec: BodySpec) -> Result<BodyId, ModelError> {
+        let name = spec.name.clone();
+        if name == "N" {
+            return Err(ModelError::InertialFrame(
+                "`N` is the inertial frame and cannot be declared as a body".to_string(),
+            ));
+        }
+        if self.body_named(&name).is_some() {
+            return Err(ModelError::DuplicateName(name));
+        }
+        let parent = self
+            .body_named(&spec.parent)
+            .ok_or_else(|| ModelError::UnknownBody(spec.parent.clone()))?;
+        self.validate(&spec)?;
+
+        let parent_body = self.bodies[parent.index()].clone();
+        let zero = self.arena.zero();
+        let joint = spec.joint.unwrap_or([zero; 3]);
+        let cm = spec.cm.unwrap_or([zero; 3]);
+        for (what, c) in [("joint coordinates", &joint), ("mass center", &cm)] {
+            if c.iter().any(|x| !self.arena.is_constant(*x)) {
+                return Err(ModelError::NotConstant {
+                    what: format!("{what} of body `{name}`"),
+                });
+            }
+        }
+        let id = BodyId(self.bodies.len() as u32);
+
+        // Translation directions as unit components in the parent's axes.
+        let mut directions: Vec<[ExprId; 3]> = Vec::with_capacity(spec.translations.len());
+        for d in &spec.translations {
+            directions.push(self.direction(&name, d)?);
+        }
+
+        // Coordinates and speeds.
+        let dofs = spec.dofs();
+        let first = self.coordinates.len();
+        let mut syms = Vec::with_capacity(dofs);
+        for k in 0..dofs {
+            let global = first + k;
+            let qn = spec
+                .coordinate_names
+                .as_ref()
+                .map(|v| v[k].clone())
+                .unwrap_or_else(|| format!("q{}", global + 1));
+            let un = spec
+                .speed_names
+                .as_ref()
+                .map(|v| v[k].clone())
+                .unwrap_or_else(|| format!("u{}", global + 1));
+            let dn = format!("{un}_dot");
+            for n in [&qn, &un, &dn] {
+                if self.arena.symbol_named(n).is_some() || self.body_named(n).is_some() {
+                    return Err(ModelError::DuplicateName(n.clone()));
+                }
+            }
+            let q = self.arena.add_symbol(&qn, SymbolKind::Coordinate { index: global })?;
+            let u = self.arena.add_symbol(&un, SymbolKind::Speed { index: global })?;
+            let du = self.arena.add_symbol(&dn, SymbolKind::SpeedRate { index: global })?;
+            let translation = k < spec.translations.len();
+            let (qu, uu) = if translation { ("m", "m/s") } else { ("rad", "rad/s") };
+            self.arena.set_unit(q, Some(qu.to_string()));
+            self.arena.set_unit(u, Some(uu.to_string()));
+            self.arena.set_unit(du, Some(format!("{uu}^2").replace("/s^2", "/s^2")));
+            let small = spec.small.get(k).copied().unwrap_or(false);
+            for s in [q, u, du] {
+                self.arena.set_small(s, small);
+            }
+            let du_e = self.arena.sym(du);
+            self.arena.set_dxdt(u, du_e);
+            syms.push((q, u, du));
+        }
+
+        // Frames: one per rotation, sharing the rotation axis (Eqs. 8-10).
+        let axes: Vec<usize> = spec.rotations.iter().map(|a| (*a - 1) as usize).collect();
+        let nt = spec.translations.len();
+        let prefix = name.to_lowercase();
+        let mut frame = parent_body.frame;
+        let mut rot_frames: Vec<FrameId> = Vec::with_capacity(axes.len());
+        for (k, &axis) in axes.iter().enumerate() {
+            let q = self.arena.sym(syms[nt + k].0);
+            let primes = "'".repeat(axes.len() - 1 - k);
+            frame = self.frames.add_rotated(
+                &mut self.arena,
+                frame,
+                axis,
+                q,
+                &format!("{name}{primes}"),
+                &format!("{prefix}{primes}"),
+            );
+            rot_frames.push(frame);
+        }
+
+        // Relative angular velocity in body axes, and each speed's axis.
+        let mut w_rel = [zero; 3];
+        let mut rot_kinds: Vec<usize> = Vec::with_capacity(axes.len());
+        if axes.len() == 1 {
+            w_rel[axes[0]] = self.arena.sym(syms[nt].1);
+            rot_kinds.push(axes[0]);
+        } else if axes.len() == 3 {
+            for k in 0..3 {
+                w_rel[k] = self.arena.sym(syms[nt + k].1);
+                rot_kinds.push(k);
+            }
+        }
+
+        // Kinematical equations dq/dt = f(q, u).
+        let mut qdots: Vec<ExprId> = syms.iter().map(|s| self.arena.sym(s.1)).collect();
+        if axes.len() == 3 {
+            let rates = self.euler_rates(&name, &axes, &rot_frames, parent_body.frame, frame, &w_rel)?;
+            qdots[nt..nt + 3].copy_from_slice(&rates);
+        }
+
+        // Angular velocities of the new frames (basis-free, for dxdt).
+        let mut w_frame = self.frame_w[parent_body.frame.index()].clone();
+        for (k, &axis) in axes.iter().enumerate() {
+            let f = rot_frames[k];
+            let parent_frame = self.frames.frame(f).parent.unwrap_or(FrameId::N);
+            let e = self.frames.frame(parent_frame).triad[axis];
+            let t = Vector::term(&mut self.arena, e, qdots[nt + k]);
+            w_frame = w_frame.add(&mut self.arena, &t);
+            if k + 1 < axes.len() {
+                debug_assert_eq!(self.frame_w.len(), f.index());
+                self.frame_w.push(w_frame.clone());
+            }
+        }
+
+        // Forward velocity recursion, in body axes.
+        let pf = parent_body.frame;
+        let qs: Vec<crate::expr::SymId> = syms.iter().map(|s| s.0).collect();
+        let r = self.joint_offset(pf, &joint, &directions, &qs);
+        let mut v_rel = Fv::zero(&self.arena, pf);
+        for (k, d) in directions.iter().enumerate() {
+            let u = self.arena.sym(syms[k].1);
+            let t = Fv::new(pf, *d).scale(&mut self.arena, u);
+            v_rel = v_rel.add(&mut self.arena, &t);
+        }
+        let w_a = parent_body.w;
+        let wxr = w_a.cross(&mut self.arena, &r);
+        let v0_parent = parent_body.v0.add(&mut self.arena, &wxr).add(&mut self.arena, &v_rel);
+        let v0 = v0_parent.reexpress(&mut self.arena, &mut self.frames, frame);
+        let w_in_b = w_a.reexpress(&mut self.arena, &mut self.frames, frame);
+        let w = w_in_b.add(&mut self.arena, &Fv::new(frame, w_rel));
+        if !axes.is_empty() {
+            let wv = w.to_vector(&mut self.arena, &self.frames);
+            debug_assert_eq!(self.frame_w.len(), frame.index());
+            self.frame_w.push(wv);
+        }
+
+        // Mass properties (defaults named after the body, Table 13).
+        let mass = match spec.mass {
+            Some(m) => m,
+            None => self.parameter_or_default(&format!("M{name}"), 1.0, "kg")?,
+        };
+        let inertia: Mat3 = match spec.inertia {
+            Some(i) => i,
+            None => {
+                let mut m = [[zero; 3]; 3];
+                for j in 0..3 {
+                    for k in j..3 {
+                        let default = if j == k { 1.0 } else { 0.0 };
+                        let p = self.parameter_or_default(
+                            &format!("I{name}{}{}", j + 1, k + 1),
+                            default,
+                            "kg m^2",
+                        )?;
+                        m[j][k] = p;
+                        m[k][j] = p;
+                    }
+                }
+                m
+            }
+        };
+        if !self.arena.is_constant(mass)
+            || inertia.iter().flatten().any(|x| !self.arena.is_constant(*x))
+        {
+            return Err(ModelError::NotConstant {
+                what: format!("mass and inertia of body `{name}`"),
+            });
+        }
+
+        // Points and coordinates.
+        let origin = self.push_point(&format!("{name}.origin"), id, [zero; 3]);
+        let cm_point = self.push_point(&format!("{name}.cm"), id, cm);
+        let zero_init = zero;
+        let mut coords = Vec::with_capacity(dofs);
+        for (k, (q, u, du)) in syms.iter().enumerate() {
+            let kind = if k < nt {
+                DofKind::Translation {
+                    direction: directions[k],
+                }
+            } else {
+                DofKind::Rotation {
+                    axis: rot_kinds[k - nt],
+                }
+            };
+            let initial_q = spec
+                .initial_coordinates
+                .as_ref()
+                .and_then(|v| v.get(k).copied())
+                .unwrap_or(zero_init);
+            let initial_u = spec
+                .initial_speeds
+                .as_ref()
+                .and_then(|v| v.get(k).copied())
+                .unwrap_or(zero_init);
+            self.arena.set_dxdt(*q, qdots[k]);
+            coords.push(Coordinate {
+                q: *q,
+                u: *u,
+                du: *du,
+                body: id,
+                kind,
+                qdot: qdots[k],
+                initial_q,
+                initial_u,
+            });
+        }
+        let indices: Vec<usize> = (first..first + dofs).collect();
+        self.coordinates.extend(coords);
+        self.bodies[parent.index()].children.push(id);
+        self.bodies.push(Body {
+            name,
+            description: spec.description,
+            parent: Some(parent),
+            children: Vec::new(),
+            level: parent_body.level + 1,
+            frame,
+            joint,
+            coordinates: indices,
+            rotation_axes: axes,
+            mass,
+            inertia,
+            cm,
+            origin,
+            cm_point,
+            w,
+            v0,
+        });
+        Ok(id)
+    }
+
+    fn validate(&self, spec: &BodySpec) -> Result<(), ModelError> {
+        let name = &spec.name;
+        if !matches!(spec.rotations.len(), 0 | 1 | 3) {
+            return Err(ModelError::RotationCount {
+                body: name.clone(),
+                count: spec.rotations.len(),
+            });
+        }
+        for &a in &spec.rotations {
+            if !(1..=3).contains(&a) {
+                return Err(ModelError::AxisOutOfRange {
+                    body: name.clone(),
+                    axis: a,
+                });
+            }
+        }
+        if spec.rotations.len() == 3
+            && (spec.rotations[0] == spec.rotations[1] || spec.rotations[1] == spec.rotations[2])
+        {
+            return Err(ModelError::Invalid(format!(
+                "body `{name}`: consecutive rotations about the same axis ({:?}) do not define an orientation; use a sequence such as [1, 2, 3] or [3, 1, 3]",
+                spec.rotations
+            )));
+        }
+        if spec.translations.len() > 3 {
+            return Err(ModelError::TranslationCount {
+                body: name.clone(),
+                count: spec.translations.len(),
+            });
+        }
+        for d in &spec.translations {
+            if let Direction::Axis(a) = d {
+                if !(1..=3).contains(a) {
+                    return Err(ModelError::AxisOutOfRange {
+                        body: name.clone(),
+                        axis: *a,
+                    });
+                }
+            }
+        }
+        let dofs = spec.dofs();
+        for (what, names) in [
+            ("coordinate", &spec.coordinate_names),
+            ("speed", &spec.speed_names),
+        ] {
+            if let Some(v) = names {
+                if v.len() != dofs {
+                    return Err(ModelError::NameCount {
+                        body: name.clone(),
+                        what,
+                        expected: dofs,
+                        got: v.len(),
+                    });
+                }
+            }
+        }
+        for (what, vals) in [
+            ("initial coordinate", &spec.initial_coordinates),
+            ("initial speed", &spec.initial_speeds),
+        ] {
+            if let Some(v) = vals {
+                if v.len() != dofs {
+                    return Err(ModelError::NameCount {
+                        body: name.clone(),
+                        what,
+                        expected: dofs,
+                        got: v.len(),
+                    });
+                }
+                if v.iter().any(|x| !self.arena.is_constant(*x)) {
+                    return Err(ModelError::NotConstant {
+                        what: format!("{what} values of body `{name}`"),
+                    });
+                }
+            }
+        }
+        if !spec.small.is_empty() && spec.small.len() != dofs {
+            return Err(ModelError::Invalid(format!(
+                "body `{name}`: {} small flags for {dofs} degrees of freedom",
+                spec.small.len()
+            )));
+        }
+        Ok(())
+    }
+
+    /// A unit direction in the parent's axes.
+    fn direction(&mut self, body: &str, d: &Direction) -> Result<[ExprId; 3], ModelError> {
+        let zero = self.arena.zero();
+        let one = self.arena.one();
+        match d {
+            Direction::Axis(a) => {
+                let mut c = [zero; 3];
+                c[(*a - 1) as usize] = one;
+                Ok(c)
+            }
+            Direction::Vector(v) => {
+                if v.iter().any(|x| !self.arena.is_constant(*x)) {
+                    return Err(ModelError::NotConstant {
+                        what: format!("translation direction of body `{body}`"),
+                    });
+                }
+                if v.iter().all(|x| self.arena.is_zero(*x)) {
+                    return Err(ModelError::ZeroDirection {
+                        body: body.to_string(),
+                    });
+                }
+                let sq: Vec<ExprId> = v.iter().map(|x| self.arena.powi(*x, 2)).collect();
+                let s = self.arena.sum(&sq);
+                let len = self.arena.sqrt(s);
+                Ok(v.map(|x| self.arena.div(x, len)))
+            }
+        }
+    }
+
+    /// The vector from the parent's origin to the joint, parent axes:
+    /// joint point plus translations.
+    pub(crate) fn joint_offset(
+        &mut self,
+        parent_frame: FrameId,
+        joint: &[ExprId; 3],
+        directions: &[[ExprId; 3]],
+        qs: &[crate::expr::SymId],
+    ) -> Fv {
+        let mut c = *joint;
+        for (k, d) in directions.iter().enumerate() {
+            let q = self.arena.sym(qs[k]);
+            for i in 0..3 {
+                let t = self.arena.mul(d[i], q);
+                c[i] = self.arena.add(c[i], t);
+            }
+        }
+        Fv::new(parent_frame, c)
+    }
+
+    /// dq/dt of three body-fixed rotations from the angular velocity
+    /// components: q̇ = E⁻¹ ω with E's rows from cross products of the
+    /// rotation axes (`det = e1 · (e2 × e3)`).
+    fn euler_rates(
+        &mut self,
+        _name: &str,
+        axes: &[usize],
+        rot_frames: &[FrameId],
+        parent_frame: FrameId,
+        body_frame: FrameId,
+        w_rel: &[ExprId; 3],
+    ) -> Result<[ExprId; 3], ModelError> {
+        let e1u = self.frames.frame(parent_frame).triad[axes[0]];
+        let e2u = self.frames.frame(rot_frames[0]).triad[axes[1]];
+        let e3u = self.frames.frame(rot_frames[1]).triad[axes[2]];
+        let e = [e1u, e2u, e3u].map(|u| Vector::uv(&mut self.arena, u));
+        let w = self.frames.vector_in(&mut self.arena, body_frame, *w_rel);
+        let c23 = self.frames.cross_vec(&mut self.arena, &e[1], &e[2]);
+        let c31 = self.frames.cross_vec(&mut self.arena, &e[2], &e[0]);
+        let c12 = self.frames.cross_vec(&mut self.arena, &e[0], &e[1]);
+        let det = self.frames.dot_vec(&mut self.arena, &e[0], &c23);
+        let mut out = [self.arena.zero(); 3];
+        for (k, c) in [c23, c31, c12].iter().enumerate() {
+            let n = self.frames.dot_vec(&mut self.arena, c, &w);
+            out[k] = self.arena.div(n, det);
+        }
+        Ok(out)
+    }
+}

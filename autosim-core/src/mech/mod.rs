@@ -1,0 +1,21 @@
+//! The multibody system: frames, basis-free vectors, bodies, kinematics and
+//! Kane's equations.
+
+mod body;
+mod error;
+mod framevec;
+mod frames;
+mod kane;
+mod kinematics;
+mod system;
+mod vector;
+
+pub use error::ModelError;
+pub use framevec::{Fv, Mat3};
+pub use frames::{Frame, FrameId, Frames, Uv, UvId};
+pub use kane::Equations;
+pub use system::{
+    Body, BodyId, BodySpec, Coordinate, Direction, DofKind, ExtraState, Force, Moment, Output,
+    Point, PointId, Subroutine, System,
+};
+pub use vector::{Dyadic, Vector};

@@ -1,0 +1,230 @@
+//! Shared helpers for the reference-data tests: locating ../shared, reading
+//! the JSON files, building the reference models through the API and
+//! evaluating their equations.
+
+#![allow(dead_code)]
+
+use autosim_core::expr::{Bindings, ExprId, SymId};
+use autosim_core::mech::{BodySpec, Direction, Equations, System, Vector};
+use nalgebra::{DMatrix, DVector};
+use serde_json::Value;
+use std::path::PathBuf;
+
+/// The `shared/reference` folder: `$AUTOSIM_SHARED/reference`, or
+/// `../shared/reference` beside the repository.
+pub fn reference_dir() -> PathBuf {
+    if let Ok(dir) = std::env::var("AUTOSIM_SHARED") {
+        return PathBuf::from(dir).join("reference");
+    }
+    let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    for up in [manifest.join("../../shared"), manifest.join("../shared")] {
+        if up.join("reference").is_dir() {
+            return up.join("reference");
+        }
+    }
+    panic!("cannot find shared/reference: set AUTOSIM_SHARED");
+}
+
+pub fn load(name: &str) -> Value {
+    let path = reference_dir().join(format!("{name}.json"));
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path:?}: {e}"));
+    serde_json::from_str(&text).expect("valid JSON")
+}
+
+pub fn floats(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .expect("array")
+        .iter()
+        .map(|x| x.as_f64().expect("number"))
+        .collect()
+}
+
+/// chain-planar-n or chain-spatial-n of reference-models.md, with the
+/// parameter values of the reference file.
+pub fn chain(n: usize, spatial: bool, params: &Value) -> System {
+    let mut sys = System::new(if spatial { "ChainSpatial" } else { "ChainPlanar" });
+    let p = |name: &str| params[name].as_f64().unwrap_or_else(|| panic!("parameter {name}"));
+    let par = |sys: &mut System, name: &str| -> ExprId {
+        let s = sys.add_parameter(name, p(name), None).unwrap();
+        sys.arena.sym(s)
+    };
+    let k = par(&mut sys, "k");
+    let c = par(&mut sys, "c");
+    let g = par(&mut sys, "g");
+    let pp = if spatial { Some(par(&mut sys, "P")) } else { None };
+    let zero = sys.arena.zero();
+    let mut lengths = Vec::new();
+    for i in 1..=n {
+        let m = par(&mut sys, &format!("m{i}"));
+        let l = par(&mut sys, &format!("L{i}"));
+        let ixx = par(&mut sys, &format!("Ixx{i}"));
+        let iyy = par(&mut sys, &format!("Iyy{i}"));
+        let izz = par(&mut sys, &format!("Izz{i}"));
+        let parent = if i == 1 { "N".to_string() } else { format!("B{}", i - 1) };
+        let mut spec = BodySpec::new(&format!("B{i}"), &parent);
+        if i > 1 {
+            let prev: ExprId = lengths[i - 2];
+            spec.joint = Some([zero, zero, sys.arena.neg(prev)]);
+        }
+        let axis = if spatial { ((i - 1) % 3) as i64 + 1 } else { 1 };
+        spec.rotations = vec![axis];
+        spec.mass = Some(m);
+        let half = sys.arena.rational(-1, 2);
+        spec.cm = Some([zero, zero, sys.arena.mul(half, l)]);
+        let off = pp.unwrap_or(zero);
+        spec.inertia = Some([[ixx, off, zero], [off, iyy, zero], [zero, zero, izz]]);
+        spec.coordinate_names = Some(vec![format!("q{i}")]);
+        spec.speed_names = Some(vec![format!("u{i}")]);
+        lengths.push(l);
+        let b = sys.add_body(spec).unwrap();
+        // Spring-damper about the parent's axis a_i (shared with the body).
+        let q = sys.arena.sym(sys.coordinates()[i - 1].q);
+        let u = sys.arena.sym(sys.coordinates()[i - 1].u);
+        let kq = sys.arena.mul(k, q);
+        let cu = sys.arena.mul(c, u);
+        let s = sys.arena.add(kq, cu);
+        let mag = sys.arena.neg(s);
+        let parent_id = sys.body_named(&parent).unwrap();
+        let axis_v = sys.unit_vector(parent_id, axis as usize).unwrap();
+        let vecm = axis_v.scale(&mut sys.arena, mag);
+        let reaction = if i == 1 { Some(parent_id) } else { Some(parent_id) };
+        sys.add_moment(&format!("spring{i}"), b, reaction, vecm).unwrap();
+    }
+    let n3 = sys.unit_vector(autosim_core::mech::BodyId::N, 3).unwrap();
+    let mg = sys.arena.neg(g);
+    let gv = n3.scale(&mut sys.arena, mg);
+    sys.set_gravity(gv);
+    sys
+}
+
+/// The satellite of reference-models.md; inputs clkcmd, camcmd, thr1..thr3
+/// replace the user procedures.
+pub fn satellite(params: &Value, small: bool) -> System {
+    let mut sys = System::new("Satellite");
+    let names = [
+        "DB", "DC", "G", "IB11", "IB12", "IB13", "IB22", "IB23", "IB33", "IC", "ID11", "ID12",
+        "ID13", "ID22", "ID23", "ID33", "IF1", "IF2", "KB", "KC", "L1", "L2", "L3", "L5", "L6",
+        "L7", "L8", "LTT1", "LTT2", "LTT3", "MB", "MC", "MD", "MF",
+    ];
+    for n in names {
+        sys.add_parameter(n, params[n].as_f64().unwrap(), None).unwrap();
+    }
+    let e = |sys: &mut System, text: &str| -> ExprId { sys.arena.parse_text(text).unwrap() };
+    let zero = sys.arena.zero();
+    let mut b = BodySpec::new("B", "N");
+    b.translations = vec![Direction::Axis(1), Direction::Axis(2), Direction::Axis(3)];
+    b.rotations = vec![1, 2, 3];
+    if small {
+        b.small = vec![true; 6];
+    }
+    let mut c = BodySpec::new("C", "B");
+    c.rotations = vec![3];
+    c.mass = Some(e(&mut sys, "MC"));
+    let ic = e(&mut sys, "IC");
+    c.inertia = Some([[ic, zero, zero], [zero, ic, zero], [zero, zero, zero]]);
+    c.cm = Some([zero, zero, e(&mut sys, "-L2")]);
+    let mut d = BodySpec::new("D", "C");
+    d.joint = Some([zero, e(&mut sys, "L3"), e(&mut sys, "-L1")]);
+    d.cm = Some([zero, e(&mut sys, "-L5"), e(&mut sys, "-L6")]);
+    d.rotations = vec![1];
+    let mut be = BodySpec::new("E", "B");
+    be.joint = Some([zero, e(&mut sys, "-L7"), zero]);
+    be.rotations = vec![3];
+    be.mass = Some(zero);
+    be.inertia = Some([[zero; 3]; 3]);
+    let mut f = BodySpec::new("F", "E");
+    f.rotations = vec![1];
+    let if1 = e(&mut sys, "IF1");
+    let if2 = e(&mut sys, "IF2");
+    f.inertia = Some([[if1, zero, zero], [zero, if2, zero], [zero, zero, if1]]);
+    f.cm = Some([zero, e(&mut sys, "-L8"), zero]);
+    if small {
+        be.small = vec![true];
+        f.small = vec![true];
+    }
+    sys.add_bodies(vec![b, c, d, be, f]).unwrap();
+    for (n, u) in [("clkcmd", "rad"), ("camcmd", "rad"), ("thr1", ""), ("thr2", ""), ("thr3", "")] {
+        sys.add_input(n, 0.0, Some(u)).unwrap();
+    }
+    let body = |sys: &System, n: &str| sys.body_named(n).unwrap();
+    let moment = |sys: &mut System, name: &str, on: &str, reaction: Option<&str>, frame: &str, axis: usize, mag: &str| {
+        let m = sys.arena.parse_text(mag).unwrap();
+        let fb = body(sys, frame);
+        let d = sys.unit_vector(fb, axis).unwrap().scale(&mut sys.arena, m);
+        let on = body(sys, on);
+        let r = reaction.map(|r| body(sys, r));
+        sys.add_moment(name, on, r, d).unwrap();
+    };
+    moment(&mut sys, "boom1", "F", Some("B"), "E", 3, "-KB*q9 - DB*u9");
+    moment(&mut sys, "boom2", "F", Some("B"), "F", 1, "-KB*q10 - DB*u10");
+    moment(&mut sys, "clock", "C", Some("B"), "C", 3, "KC*(clkcmd - q7) - DC*u7");
+    moment(&mut sys, "camera", "D", Some("C"), "D", 1, "KC*(camcmd - q8) - DC*u8");
+    moment(&mut sys, "tt1", "B", None, "B", 1, "LTT1*thr1");
+    moment(&mut sys, "tt2", "B", None, "B", 2, "LTT2*thr2");
+    moment(&mut sys, "tt3", "B", None, "B", 3, "LTT3*thr3");
+    sys
+}
+
+/// Binds a sample's q, u and inputs (and the file's parameters).
+pub fn bind(sys: &System, eqs: &Equations, sample: &Value, params: &Value) -> Bindings {
+    let mut b = Bindings::with_defaults(&sys.arena);
+    for (id, s) in sys.arena.symbols() {
+        if let Some(x) = params.get(&s.name).and_then(|x| x.as_f64()) {
+            if s.is_constant() {
+                b.set(id, x);
+            }
+        }
+    }
+    let q = floats(&sample["q"]);
+    let u = floats(&sample["u"]);
+    for (i, s) in eqs.coordinates.iter().enumerate() {
+        b.set(*s, q[i]);
+    }
+    for (i, s) in eqs.speeds.iter().enumerate() {
+        b.set(*s, u[i]);
+    }
+    if let Some(obj) = sample["inputs"].as_object() {
+        for (k, v) in obj {
+            if let Some(s) = sys.arena.symbol_named(k) {
+                b.set(s, v.as_f64().unwrap());
+            }
+        }
+    }
+    b.set(sys.time(), sample["t"].as_f64().unwrap_or(0.0));
+    let _ = SymId::clone;
+    b
+}
+
+/// Evaluates dq/dt and solves M du/dt = f numerically.
+pub fn derivatives(sys: &System, eqs: &Equations, b: &Bindings) -> (Vec<f64>, Vec<f64>) {
+    let n = eqs.coordinates.len();
+    let mut roots = eqs.kinematics.clone();
+    for row in &eqs.mass_matrix {
+        roots.extend(row);
+    }
+    roots.extend(&eqs.forcing);
+    let vals = sys
+        .arena
+        .eval_many(&roots, b, &mut autosim_core::expr::NoUserFunctions);
+    let dq = vals[..n].to_vec();
+    let m = DMatrix::from_row_slice(n, n, &vals[n..n + n * n]);
+    let f = DVector::from_row_slice(&vals[n + n * n..]);
+    let du = m.clone().cholesky().map(|c| c.solve(&f)).unwrap_or_else(|| {
+        m.lu().solve(&f).expect("solvable mass matrix")
+    });
+    (dq, du.iter().copied().collect())
+}
+
+/// Normwise relative error of `got` against `want`, relative to max |want|.
+pub fn rel_err(got: &[f64], want: &[f64]) -> f64 {
+    let scale = want.iter().fold(0.0f64, |a, x| a.max(x.abs())).max(1e-300);
+    got.iter()
+        .zip(want)
+        .fold(0.0f64, |a, (g, w)| a.max((g - w).abs()))
+        / scale
+}
+
+pub fn vector_dot_n3(sys: &mut System, v: &Vector) -> ExprId {
+    let n3 = sys.unit_vector(autosim_core::mech::BodyId::N, 3).unwrap();
+    sys.frames.dot_vec(&mut sys.arena, v, &n3)
+}

@@ -1,0 +1,82 @@
+//! The reference models built through the API match the independent
+//! reference data in ../shared/reference to 1e-9.
+
+mod common;
+use common::*;
+
+fn check_chain(n: usize, spatial: bool) {
+    let name = format!("chain-{}-{n}", if spatial { "spatial" } else { "planar" });
+    let data = load(&name);
+    let params = &data["parameters"];
+    let mut sys = chain(n, spatial, params);
+    let eqs = sys.equations().unwrap();
+    // Energy: kinetic + gravity + springs.
+    let ke = sys.kinetic_energy();
+    let mut pe_terms = Vec::new();
+    for i in 1..=n {
+        let b = sys.body_named(&format!("B{i}")).unwrap();
+        let cm = sys.body(b).cm_point;
+        let r = sys.pos(cm, None);
+        let z = vector_dot_n3(&mut sys, &r);
+        let m = sys.body(b).mass;
+        let g = sys.arena.parse_text("g").unwrap();
+        pe_terms.push(sys.arena.product(&[m, g, z]));
+        let q = sys.arena.sym(sys.coordinates()[i - 1].q);
+        let k = sys.arena.parse_text("k/2").unwrap();
+        let q2 = sys.arena.powi(q, 2);
+        pe_terms.push(sys.arena.mul(k, q2));
+    }
+    let pe = sys.arena.sum(&pe_terms);
+    let energy = sys.arena.add(ke, pe);
+    let mut worst: f64 = 0.0;
+    for sample in data["samples"].as_array().unwrap() {
+        let b = bind(&sys, &eqs, sample, params);
+        let (dq, du) = derivatives(&sys, &eqs, &b);
+        let want_dq = floats(&sample["dq"]);
+        let want_du = floats(&sample["du"]);
+        let e_dq = rel_err(&dq, &want_dq);
+        let e_du = rel_err(&du, &want_du);
+        worst = worst.max(e_dq).max(e_du);
+        assert!(e_dq < 1e-9 && e_du < 1e-9, "{name}: dq err {e_dq:e}, du err {e_du:e}\n got {du:?}\nwant {want_du:?}");
+        let e = sys.arena.eval(energy, &b, &mut autosim_core::expr::NoUserFunctions);
+        let want_e = sample["energy"].as_f64().unwrap();
+        assert!((e - want_e).abs() <= 1e-9 * want_e.abs().max(1.0), "{name}: energy {e} vs {want_e}");
+    }
+    eprintln!("{name}: worst relative error {worst:.2e}");
+}
+
+#[test]
+fn chain_planar_matches_reference() {
+    for n in [1, 2, 3, 5, 10] {
+        check_chain(n, false);
+    }
+}
+
+#[test]
+fn chain_spatial_matches_reference() {
+    for n in [1, 2, 3, 5, 10] {
+        check_chain(n, true);
+    }
+}
+
+#[test]
+fn satellite_matches_reference() {
+    let data = load("satellite");
+    let params = &data["parameters"];
+    let mut sys = satellite(params, false);
+    let eqs = sys.equations().unwrap();
+    let ke = sys.kinetic_energy();
+    let mut worst: f64 = 0.0;
+    for sample in data["samples"].as_array().unwrap() {
+        let b = bind(&sys, &eqs, sample, params);
+        let (dq, du) = derivatives(&sys, &eqs, &b);
+        let e_dq = rel_err(&dq, &floats(&sample["dq"]));
+        let e_du = rel_err(&du, &floats(&sample["du"]));
+        worst = worst.max(e_dq).max(e_du);
+        assert!(e_dq < 1e-9 && e_du < 1e-9, "satellite: dq err {e_dq:e}, du err {e_du:e}");
+        let k = sys.arena.eval(ke, &b, &mut autosim_core::expr::NoUserFunctions);
+        let want = sample["kinetic_energy"].as_f64().unwrap();
+        assert!((k - want).abs() <= 1e-9 * want.abs().max(1.0), "kinetic energy {k} vs {want}");
+    }
+    eprintln!("satellite: worst relative error {worst:.2e}");
+}

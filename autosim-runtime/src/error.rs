@@ -1,0 +1,164 @@
+//! Why an integration step or a run stopped.
+
+use crate::ModelError;
+
+/// Why a step (or a run of steps) could not continue.
+///
+/// Every integrator and the [`run`](crate::run()) driver report failures with
+/// this type; times and steps are converted to `f64` so the error reads the
+/// same for `f32` and `f64` models. When a stepper returns an error it leaves
+/// the state it was given unchanged (the start-of-step value), so the caller
+/// can inspect or save it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum IntegrationError {
+    /// A state became NaN or infinite. `index` and `name` identify the first
+    /// such state (in [`Model::STATE_NAMES`](crate::Model::STATE_NAMES)
+    /// order); `t` is the time the step would have reached.
+    NonFinite {
+        /// Time at the end of the step that produced the value.
+        t: f64,
+        /// Index of the first non-finite state.
+        index: usize,
+        /// Name of that state (`"?"` if the model lists fewer names than states).
+        name: &'static str,
+    },
+    /// An adaptive integrator needed a step smaller than its minimum step to
+    /// meet its tolerances (or to get finite values): the solution is
+    /// probably singular near `t`, or the tolerances are too tight for the
+    /// float type.
+    StepSizeUnderflow {
+        /// Time of the step start.
+        t: f64,
+        /// The step that would have been needed.
+        h: f64,
+    },
+    /// The Newton iteration of an implicit method did not converge (it
+    /// diverged, produced non-finite values, or ran out of iterations).
+    /// A smaller step usually helps.
+    NewtonFailed {
+        /// Time of the step start.
+        t: f64,
+        /// The step being taken.
+        h: f64,
+        /// Newton iterations done for the stage that failed.
+        iterations: u32,
+    },
+    /// The Newton matrix `I - h·γ·J` of an implicit method is singular (to
+    /// working precision) or its Jacobian contains non-finite values.
+    SingularNewtonMatrix {
+        /// Time of the step start.
+        t: f64,
+        /// The step being taken.
+        h: f64,
+    },
+    /// The model could not evaluate its derivatives or outputs.
+    Model {
+        /// Time of the evaluation that failed.
+        t: f64,
+        /// What the model reported.
+        error: ModelError,
+    },
+    /// A run or a stepper was configured with settings that cannot work
+    /// (a non-positive step or tolerance, a stop time before the start, ...).
+    InvalidSettings {
+        /// What is wrong, naming the setting.
+        reason: &'static str,
+    },
+    /// Dense output was asked for a time outside the last accepted step
+    /// (or before any step was taken).
+    OutsideLastStep {
+        /// The requested time.
+        t: f64,
+        /// Start of the last step.
+        start: f64,
+        /// End of the last step.
+        end: f64,
+    },
+    /// The run reached its step limit before the stop time.
+    TooManySteps {
+        /// Time reached.
+        t: f64,
+        /// Steps taken.
+        steps: u64,
+    },
+}
+
+impl IntegrationError {
+    /// The time at which the failure happened, if it has one.
+    pub fn time(&self) -> Option<f64> {
+        match *self {
+            IntegrationError::NonFinite { t, .. }
+            | IntegrationError::StepSizeUnderflow { t, .. }
+            | IntegrationError::NewtonFailed { t, .. }
+            | IntegrationError::SingularNewtonMatrix { t, .. }
+            | IntegrationError::Model { t, .. }
+            | IntegrationError::OutsideLastStep { t, .. }
+            | IntegrationError::TooManySteps { t, .. } => Some(t),
+            IntegrationError::InvalidSettings { .. } => None,
+        }
+    }
+}
+
+impl core::fmt::Display for IntegrationError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            IntegrationError::NonFinite { t, index, name } => write!(
+                f,
+                "state {name} (#{index}) became non-finite at t = {t}; try a smaller step or check the model"
+            ),
+            IntegrationError::StepSizeUnderflow { t, h } => write!(
+                f,
+                "step size underflow at t = {t}: step {h:e} is below the minimum step; the solution may be singular there, or the tolerances too tight"
+            ),
+            IntegrationError::NewtonFailed { t, h, iterations } => write!(
+                f,
+                "Newton iteration failed at t = {t} with step {h:e} after {iterations} iterations; try a smaller step"
+            ),
+            IntegrationError::SingularNewtonMatrix { t, h } => write!(
+                f,
+                "Newton matrix is singular or not finite at t = {t} with step {h:e}"
+            ),
+            IntegrationError::Model { t, error } => write!(f, "at t = {t}: {error}"),
+            IntegrationError::InvalidSettings { reason } => {
+                write!(f, "invalid integration settings: {reason}")
+            }
+            IntegrationError::OutsideLastStep { t, start, end } => write!(
+                f,
+                "cannot interpolate at t = {t}: outside the last step [{start}, {end}]"
+            ),
+            IntegrationError::TooManySteps { t, steps } => write!(
+                f,
+                "stopped at t = {t} after {steps} steps (the step limit); raise the limit or loosen the tolerances"
+            ),
+        }
+    }
+}
+
+impl core::error::Error for IntegrationError {
+    fn source(&self) -> Option<&(dyn core::error::Error + 'static)> {
+        // `ModelError` implements `Error` only with `std`.
+        #[cfg(feature = "std")]
+        if let IntegrationError::Model { error, .. } = self {
+            return Some(error);
+        }
+        None
+    }
+}
+
+/// Returns the first non-finite state of `x` as an
+/// [`IntegrationError::NonFinite`] at time `t`.
+///
+/// Steppers call this on every new state; call it yourself when you change a
+/// state outside a stepper.
+pub fn check_finite<M: crate::Model>(t: M::Float, x: &M::State) -> Result<(), IntegrationError> {
+    use crate::Float;
+    match x.as_ref().iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(index) => Err(IntegrationError::NonFinite {
+            t: t.to_f64(),
+            index,
+            name: M::STATE_NAMES.get(index).copied().unwrap_or("?"),
+        }),
+    }
+}

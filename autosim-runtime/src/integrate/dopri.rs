@@ -1,0 +1,502 @@
+//! Adaptive Dormand–Prince 5(4) with error control and dense output.
+
+use core::fmt;
+
+use super::vector::{combine, eval, same, weighted_rms};
+use super::{StepInfo, Stepper};
+use crate::{Float, IntegrationError, Model, StateArray, check_finite};
+
+/// Tolerances and step-size controller of [`DormandPrince`].
+///
+/// The local error estimate of each component is scaled by
+/// `atol + rtol·max(|x_start|, |x_end|)`; a step is accepted when the
+/// root-mean-square of the scaled errors is at most 1. The new step is
+/// `h·clamp(safety·err^(−(0.2 − 0.75·beta))·err_prev^beta, min_factor, max_factor)`:
+/// `beta = 0.04` is Hairer's PI controller (smoother step sequences),
+/// `beta = 0` the standard controller.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct DopriSettings<F> {
+    /// Relative tolerance (> 0).
+    pub rtol: F,
+    /// Absolute tolerance (> 0), in the units of the states.
+    pub atol: F,
+    /// Smallest step allowed; a step below it fails with
+    /// [`IntegrationError::StepSizeUnderflow`]. Zero means "until the step no
+    /// longer changes the time".
+    pub min_step: F,
+    /// Largest step allowed (> 0; infinity for no limit).
+    pub max_step: F,
+    /// Safety factor on the predicted step (0 < safety < 1, usually 0.9).
+    pub safety: F,
+    /// Smallest factor by which a step may shrink (0 < min_factor < 1).
+    pub min_factor: F,
+    /// Largest factor by which a step may grow (> 1).
+    pub max_factor: F,
+    /// Weight of the previous error in the PI controller (0 ≤ beta ≤ 0.1).
+    pub beta: F,
+}
+
+impl<F: Float> DopriSettings<F> {
+    /// Settings with the given tolerances and Hairer's defaults for the rest:
+    /// no step limits, safety 0.9, factors 0.2 and 10, PI controller (beta 0.04).
+    pub fn new(rtol: F, atol: F) -> Self {
+        Self {
+            rtol,
+            atol,
+            min_step: F::ZERO,
+            max_step: F::from_f64(f64::INFINITY),
+            safety: F::from_f64(0.9),
+            min_factor: F::from_f64(0.2),
+            max_factor: F::from_f64(10.0),
+            beta: F::from_f64(0.04),
+        }
+    }
+
+    /// Checks every setting, naming the first wrong one.
+    pub fn validate(&self) -> Result<(), IntegrationError> {
+        let zero = F::ZERO;
+        let one = F::ONE;
+        let bad = |reason| Err(IntegrationError::InvalidSettings { reason });
+        if !(self.rtol > zero && self.rtol.is_finite()) {
+            return bad("rtol must be positive and finite");
+        }
+        if !(self.atol > zero && self.atol.is_finite()) {
+            return bad("atol must be positive and finite");
+        }
+        if !(self.min_step >= zero && self.min_step.is_finite()) {
+            return bad("min_step must be zero or positive");
+        }
+        if !(self.max_step > zero && self.max_step >= self.min_step) {
+            return bad("max_step must be positive and at least min_step");
+        }
+        if !(self.safety > zero && self.safety < one) {
+            return bad("safety must be between 0 and 1");
+        }
+        if !(self.min_factor > zero && self.min_factor < one) {
+            return bad("min_factor must be between 0 and 1");
+        }
+        if !(self.max_factor > one && self.max_factor.is_finite()) {
+            return bad("max_factor must be finite and greater than 1");
+        }
+        if !(self.beta >= zero && self.beta <= F::from_f64(0.1)) {
+            return bad("beta must be between 0 and 0.1");
+        }
+        Ok(())
+    }
+}
+
+impl<F: Float> Default for DopriSettings<F> {
+    /// `rtol = 1e-6`, `atol = 1e-9`.
+    fn default() -> Self {
+        Self::new(F::from_f64(1e-6), F::from_f64(1e-9))
+    }
+}
+
+// Dormand & Prince (1980) coefficients, as in Hairer, Nørsett & Wanner,
+// "Solving Ordinary Differential Equations I", DOPRI5.
+const C2: f64 = 1.0 / 5.0;
+const C3: f64 = 3.0 / 10.0;
+const C4: f64 = 4.0 / 5.0;
+const C5: f64 = 8.0 / 9.0;
+const A21: f64 = 1.0 / 5.0;
+const A31: f64 = 3.0 / 40.0;
+const A32: f64 = 9.0 / 40.0;
+const A41: f64 = 44.0 / 45.0;
+const A42: f64 = -56.0 / 15.0;
+const A43: f64 = 32.0 / 9.0;
+const A51: f64 = 19372.0 / 6561.0;
+const A52: f64 = -25360.0 / 2187.0;
+const A53: f64 = 64448.0 / 6561.0;
+const A54: f64 = -212.0 / 729.0;
+const A61: f64 = 9017.0 / 3168.0;
+const A62: f64 = -355.0 / 33.0;
+const A63: f64 = 46732.0 / 5247.0;
+const A64: f64 = 49.0 / 176.0;
+const A65: f64 = -5103.0 / 18656.0;
+const A71: f64 = 35.0 / 384.0;
+const A73: f64 = 500.0 / 1113.0;
+const A74: f64 = 125.0 / 192.0;
+const A75: f64 = -2187.0 / 6784.0;
+const A76: f64 = 11.0 / 84.0;
+// Error coefficients: 5th-order weights minus 4th-order weights.
+const E1: f64 = 71.0 / 57600.0;
+const E3: f64 = -71.0 / 16695.0;
+const E4: f64 = 71.0 / 1920.0;
+const E5: f64 = -17253.0 / 339200.0;
+const E6: f64 = 22.0 / 525.0;
+const E7: f64 = -1.0 / 40.0;
+// Dense output (Shampine's 4th-order continuous extension).
+const D1: f64 = -12715105075.0 / 11282082432.0;
+const D3: f64 = 87487479700.0 / 32700410799.0;
+const D4: f64 = -10690763975.0 / 1880347072.0;
+const D5: f64 = 701980252875.0 / 199316789632.0;
+const D6: f64 = -1453857185.0 / 822651844.0;
+const D7: f64 = 69997945.0 / 29380423.0;
+
+/// Adaptive Dormand–Prince 5(4) Runge–Kutta (DOPRI5): fifth-order steps
+/// with an embedded fourth-order error estimate, first-same-as-last (six
+/// evaluations per accepted step), and a fourth-order continuous extension
+/// for output between steps ([`DormandPrince::interpolate`]).
+///
+/// Use it when you want a stated accuracy rather than a stated step, for
+/// non-stiff models. `step(t, x, h)` tries `h` (capped at
+/// [`DopriSettings::max_step`]), shrinks it until the error is within
+/// tolerance, and returns the step taken and the suggested next step.
+/// Integrates forward in time only (`h > 0`).
+pub struct DormandPrince<M: Model> {
+    settings: DopriSettings<M::Float>,
+    k: [M::State; 7],
+    stage: M::State,
+    x_new: M::State,
+    err: M::State,
+    /// Coefficients of the dense-output polynomial of the last step.
+    dense: [M::State; 5],
+    t_old: M::Float,
+    t_new: M::Float,
+    has_step: bool,
+    /// `k[0]` holds f(t_new, dense state end) from the last accepted step.
+    fsal: bool,
+    err_old: M::Float,
+    evals: u64,
+    accepted: u64,
+    rejected: u64,
+}
+
+impl<M: Model> DormandPrince<M> {
+    /// A stepper with the given settings.
+    ///
+    /// # Errors
+    /// [`IntegrationError::InvalidSettings`] naming the first bad setting.
+    pub fn new(settings: DopriSettings<M::Float>) -> Result<Self, IntegrationError> {
+        settings.validate()?;
+        let z = M::State::zeros();
+        Ok(Self {
+            settings,
+            k: [z; 7],
+            stage: z,
+            x_new: z,
+            err: z,
+            dense: [z; 5],
+            t_old: M::Float::ZERO,
+            t_new: M::Float::ZERO,
+            has_step: false,
+            fsal: false,
+            err_old: M::Float::from_f64(1e-4),
+            evals: 0,
+            accepted: 0,
+            rejected: 0,
+        })
+    }
+
+    /// A stepper with default settings and the given tolerances.
+    ///
+    /// # Errors
+    /// [`IntegrationError::InvalidSettings`] if a tolerance is not positive.
+    pub fn with_tolerances(rtol: M::Float, atol: M::Float) -> Result<Self, IntegrationError> {
+        Self::new(DopriSettings::new(rtol, atol))
+    }
+
+    /// The settings in use.
+    pub fn settings(&self) -> &DopriSettings<M::Float> {
+        &self.settings
+    }
+
+    /// Accepted steps so far.
+    pub fn accepted_steps(&self) -> u64 {
+        self.accepted
+    }
+
+    /// Rejected trial steps so far.
+    pub fn rejected_steps(&self) -> u64 {
+        self.rejected
+    }
+
+    /// Start and end time of the last accepted step, if any.
+    pub fn last_step(&self) -> Option<(M::Float, M::Float)> {
+        self.has_step.then_some((self.t_old, self.t_new))
+    }
+
+    /// Writes the solution at time `t` inside the last accepted step into
+    /// `out`, from the fourth-order continuous extension (no model
+    /// evaluations). Use it for output at times the steps did not land on.
+    ///
+    /// # Errors
+    /// [`IntegrationError::OutsideLastStep`] if `t` is not within the last step.
+    pub fn interpolate(&self, t: M::Float, out: &mut M::State) -> Result<(), IntegrationError> {
+        let h = self.t_new - self.t_old;
+        let slack = M::Float::from_f64(16.0) * M::Float::EPSILON * (self.t_new.abs() + h.abs());
+        if !(self.has_step && t >= self.t_old - slack && t <= self.t_new + slack) {
+            return Err(IntegrationError::OutsideLastStep {
+                t: t.to_f64(),
+                start: self.t_old.to_f64(),
+                end: self.t_new.to_f64(),
+            });
+        }
+        let theta = (t - self.t_old) / h;
+        let theta1 = M::Float::ONE - theta;
+        let [r1, r2, r3, r4, r5] = &self.dense;
+        let values = r1
+            .as_ref()
+            .iter()
+            .zip(r2.as_ref())
+            .zip(r3.as_ref())
+            .zip(r4.as_ref())
+            .zip(r5.as_ref());
+        for (o, ((((a, b), c), d), e)) in out.as_mut().iter_mut().zip(values) {
+            *o = *a + theta * (*b + theta1 * (*c + theta * (*d + theta1 * *e)));
+        }
+        Ok(())
+    }
+
+    /// Stages 2–7 from `(t, x)` with step `h`, given `k[0] = f(t, x)`;
+    /// leaves the fifth-order result in `x_new` and the error in `err`.
+    fn stages(
+        &mut self,
+        model: &mut M,
+        t: M::Float,
+        x: &M::State,
+        h: M::Float,
+    ) -> Result<(), IntegrationError> {
+        let c = |v: f64| M::Float::from_f64(v);
+        let [k1, k2, k3, k4, k5, k6, k7] = &mut self.k;
+        let stage = &mut self.stage;
+        let evals = &mut self.evals;
+        combine(stage, x, h, &[(c(A21), &*k1)]);
+        eval(model, t + c(C2) * h, stage, k2, evals)?;
+        combine(stage, x, h, &[(c(A31), &*k1), (c(A32), &*k2)]);
+        eval(model, t + c(C3) * h, stage, k3, evals)?;
+        combine(
+            stage,
+            x,
+            h,
+            &[(c(A41), &*k1), (c(A42), &*k2), (c(A43), &*k3)],
+        );
+        eval(model, t + c(C4) * h, stage, k4, evals)?;
+        combine(
+            stage,
+            x,
+            h,
+            &[
+                (c(A51), &*k1),
+                (c(A52), &*k2),
+                (c(A53), &*k3),
+                (c(A54), &*k4),
+            ],
+        );
+        eval(model, t + c(C5) * h, stage, k5, evals)?;
+        combine(
+            stage,
+            x,
+            h,
+            &[
+                (c(A61), &*k1),
+                (c(A62), &*k2),
+                (c(A63), &*k3),
+                (c(A64), &*k4),
+                (c(A65), &*k5),
+            ],
+        );
+        eval(model, t + h, stage, k6, evals)?;
+        combine(
+            &mut self.x_new,
+            x,
+            h,
+            &[
+                (c(A71), &*k1),
+                (c(A73), &*k3),
+                (c(A74), &*k4),
+                (c(A75), &*k5),
+                (c(A76), &*k6),
+            ],
+        );
+        eval(model, t + h, &self.x_new, k7, evals)?;
+        let zero = M::State::zeros();
+        combine(
+            &mut self.err,
+            &zero,
+            h,
+            &[
+                (c(E1), &*k1),
+                (c(E3), &*k3),
+                (c(E4), &*k4),
+                (c(E5), &*k5),
+                (c(E6), &*k6),
+                (c(E7), &*k7),
+            ],
+        );
+        Ok(())
+    }
+
+    /// Records the accepted step `t → t + h` from `x_old` for dense output.
+    fn store_dense(&mut self, x_old: &M::State, t: M::Float, h: M::Float) {
+        let c = |v: f64| M::Float::from_f64(v);
+        let one = M::Float::ONE;
+        let [r1, r2, r3, r4, r5] = &mut self.dense;
+        let [k1, _, k3, k4, k5, k6, k7] = &self.k;
+        *r1 = *x_old;
+        for ((d, a), b) in r2
+            .as_mut()
+            .iter_mut()
+            .zip(x_old.as_ref())
+            .zip(self.x_new.as_ref())
+        {
+            *d = *b - *a;
+        }
+        // r3 = h·k1 − r2; r4 = r2 − h·k7 − r3.
+        combine(r3, &M::State::zeros(), h, &[(one, k1)]);
+        for (d, b) in r3.as_mut().iter_mut().zip(r2.as_ref()) {
+            *d -= *b;
+        }
+        for (((d, a), b), k) in r4
+            .as_mut()
+            .iter_mut()
+            .zip(r2.as_ref())
+            .zip(r3.as_ref())
+            .zip(k7.as_ref())
+        {
+            *d = *a - h * *k - *b;
+        }
+        combine(
+            r5,
+            &M::State::zeros(),
+            h,
+            &[
+                (c(D1), k1),
+                (c(D3), k3),
+                (c(D4), k4),
+                (c(D5), k5),
+                (c(D6), k6),
+                (c(D7), k7),
+            ],
+        );
+        self.t_old = t;
+        self.t_new = t + h;
+        self.has_step = true;
+    }
+}
+
+impl<M: Model> Clone for DormandPrince<M> {
+    fn clone(&self) -> Self {
+        Self { ..*self }
+    }
+}
+
+impl<M: Model> fmt::Debug for DormandPrince<M> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("DormandPrince")
+            .field("settings", &self.settings)
+            .field("evaluations", &self.evals)
+            .field("accepted", &self.accepted)
+            .field("rejected", &self.rejected)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<M: Model> Stepper<M> for DormandPrince<M> {
+    fn step(
+        &mut self,
+        model: &mut M,
+        t: M::Float,
+        x: &mut M::State,
+        h: M::Float,
+    ) -> Result<StepInfo<M::Float>, IntegrationError> {
+        let zero = M::Float::ZERO;
+        let one = M::Float::ONE;
+        if !(h > zero && h.is_finite()) {
+            return Err(IntegrationError::InvalidSettings {
+                reason: "the trial step of Dormand-Prince must be positive and finite",
+            });
+        }
+        let s = self.settings;
+        let evals_before = self.evals;
+        // First same as last: k7 of the last step is f at its end point.
+        let end = self.t_new;
+        let tol_t = M::Float::from_f64(16.0) * M::Float::EPSILON * t.abs().max(end.abs());
+        let reuse = self.fsal && (t - end).abs() <= tol_t && same(x, &self.x_new);
+        // Cleared first: a failed step must not leave a stale stage behind.
+        self.fsal = false;
+        if !reuse {
+            eval(model, t, x, &mut self.k[0], &mut self.evals)?;
+        }
+
+        let expo = M::Float::from_f64(0.2) - s.beta * M::Float::from_f64(0.75);
+        let mut h = h.min(s.max_step);
+        let mut rejected = 0u32;
+        let mut last_trial_t = None;
+        loop {
+            let floor = s
+                .min_step
+                .max(M::Float::from_f64(4.0) * M::Float::EPSILON * t.abs());
+            if h < floor || t + h == t {
+                if let Some(t_bad) = last_trial_t {
+                    // The step shrank because the values were not finite:
+                    // name the state, it says more than the step size.
+                    check_finite::<M>(t_bad, &self.x_new)?;
+                }
+                return Err(IntegrationError::StepSizeUnderflow {
+                    t: t.to_f64(),
+                    h: h.to_f64(),
+                });
+            }
+            self.stages(model, t, x, h)?;
+            let err = weighted_rms(&self.err, x, &self.x_new, s.rtol, s.atol);
+            let finite = err.is_finite()
+                && self.x_new.as_ref().iter().all(|v| v.is_finite())
+                && self.k[6].as_ref().iter().all(|v| v.is_finite());
+            if !finite {
+                // Overflow or a model blowing up: retry much smaller.
+                last_trial_t = Some(t + h);
+                h *= s.min_factor;
+                rejected += 1;
+                self.rejected += 1;
+                continue;
+            }
+            let fac11 = err.powf(expo);
+            if err <= one {
+                let fac = (fac11 / self.err_old.powf(s.beta) / s.safety)
+                    .max(one / s.max_factor)
+                    .min(one / s.min_factor);
+                let mut h_next = (h / fac).min(s.max_step);
+                if rejected > 0 {
+                    h_next = h_next.min(h);
+                }
+                self.err_old = err.max(M::Float::from_f64(1e-4));
+                let x_old = *x;
+                self.store_dense(&x_old, t, h);
+                *x = self.x_new;
+                self.k[0] = self.k[6];
+                self.fsal = true;
+                self.accepted += 1;
+                return Ok(StepInfo {
+                    h,
+                    h_next,
+                    rejected,
+                    evaluations: u32::try_from(self.evals - evals_before).unwrap_or(u32::MAX),
+                });
+            }
+            last_trial_t = None;
+            let shrink = (fac11 / s.safety).min(one / s.min_factor);
+            h /= shrink;
+            rejected += 1;
+            self.rejected += 1;
+        }
+    }
+    fn evaluations(&self) -> u64 {
+        self.evals
+    }
+    fn reset(&mut self) {
+        self.fsal = false;
+        self.has_step = false;
+        self.err_old = M::Float::from_f64(1e-4);
+    }
+    fn is_adaptive(&self) -> bool {
+        true
+    }
+    fn name(&self) -> &'static str {
+        "Dormand-Prince 5(4)"
+    }
+    fn order(&self) -> u32 {
+        5
+    }
+}

@@ -1,0 +1,123 @@
+//! Integrators: stepper objects that advance a [`Model`] by one step without
+//! allocating.
+//!
+//! Every integrator implements [`Stepper`]; pick one by what the model needs:
+//!
+//! | stepper | order | evaluations per step | use it for |
+//! | --- | --- | --- | --- |
+//! | [`Euler`] | 1 | 1 | teaching, cheap real-time loops with tiny steps |
+//! | [`Heun`] | 2 | 2 | cheap real-time loops where Euler drifts |
+//! | [`Rk4`] | 4 | 4 | the default fixed-step method for smooth models |
+//! | [`AdamsBashforthMoulton`] | 2 or 4 | 2 (after start-up) | AUTOSIM-style runs: smooth models, constant step, few evaluations |
+//! | [`DormandPrince`] | 5(4) | 6 (FSAL), adaptive | accuracy-controlled runs and dense output |
+//! | [`Sdirk3`] | 3 | 3 Newton solves + Jacobian | stiff models (stiff springs, fast dampers) |
+//!
+//! A stepper owns fixed-size workspaces (arrays of the model's state type),
+//! counts the model's derivative evaluations ([`Stepper::evaluations`]),
+//! checks every new state for NaN and infinity, and leaves the state
+//! unchanged when it returns an error. The [`run`](crate::run()) driver is the
+//! usual way to call one; call [`Stepper::step`] yourself when you own the
+//! loop (a controller on a microcontroller, a co-simulation).
+
+mod abm;
+mod dopri;
+mod explicit;
+mod jacobian;
+mod linalg;
+mod sdirk;
+mod vector;
+
+pub use abm::{AbmOrder, AdamsBashforthMoulton};
+pub use dopri::{DopriSettings, DormandPrince};
+pub use explicit::{Euler, Heun, Rk4};
+pub use jacobian::{Analytic, FiniteDifferences, JacobianSource};
+pub use linalg::{LuFactors, SingularMatrix};
+pub use sdirk::{Sdirk3, SdirkSettings};
+
+pub use crate::error::check_finite;
+use crate::{IntegrationError, Model};
+
+/// What one call of [`Stepper::step`] did.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct StepInfo<F> {
+    /// The step actually taken: the requested step for fixed-step methods,
+    /// at most the requested step for adaptive ones.
+    pub h: F,
+    /// The step the method suggests next (the step taken for fixed-step
+    /// methods).
+    pub h_next: F,
+    /// Trial steps rejected by error control before this step was accepted.
+    pub rejected: u32,
+    /// Derivative evaluations spent on this step (including rejected trials
+    /// and Jacobian columns).
+    pub evaluations: u32,
+}
+
+/// A one-step (or multistep) integrator for a [`Model`].
+///
+/// Implement it to plug your own method into the [`run`](crate::run())
+/// driver. Contract: `step` advances `x` from `t` to `t + info.h`, never
+/// allocates, and on error leaves `x` unchanged.
+pub trait Stepper<M: Model> {
+    /// Advances `x` from time `t` by the step `h` (adaptive methods: by at
+    /// most `h`, see [`StepInfo::h`]).
+    ///
+    /// # Errors
+    /// Any [`IntegrationError`] the method can detect; `x` is left unchanged.
+    fn step(
+        &mut self,
+        model: &mut M,
+        t: M::Float,
+        x: &mut M::State,
+        h: M::Float,
+    ) -> Result<StepInfo<M::Float>, IntegrationError>;
+
+    /// Total derivative evaluations since the stepper was created.
+    fn evaluations(&self) -> u64;
+
+    /// Forgets anything carried from step to step (derivative history,
+    /// first-same-as-last stage). Call it after changing the model's
+    /// parameters or inputs discontinuously, or the state by hand. Steppers
+    /// also notice a changed state or time on their own.
+    fn reset(&mut self);
+
+    /// `true` if the method chooses its own step size (the driver then
+    /// treats the run's step as the first trial step).
+    fn is_adaptive(&self) -> bool {
+        false
+    }
+
+    /// The method's name, for reports.
+    fn name(&self) -> &'static str;
+
+    /// The method's order of accuracy (global error ∝ hᵒʳᵈᵉʳ).
+    fn order(&self) -> u32;
+}
+
+impl<M: Model, S: Stepper<M> + ?Sized> Stepper<M> for &mut S {
+    fn step(
+        &mut self,
+        model: &mut M,
+        t: M::Float,
+        x: &mut M::State,
+        h: M::Float,
+    ) -> Result<StepInfo<M::Float>, IntegrationError> {
+        (**self).step(model, t, x, h)
+    }
+    fn evaluations(&self) -> u64 {
+        (**self).evaluations()
+    }
+    fn reset(&mut self) {
+        (**self).reset()
+    }
+    fn is_adaptive(&self) -> bool {
+        (**self).is_adaptive()
+    }
+    fn name(&self) -> &'static str {
+        (**self).name()
+    }
+    fn order(&self) -> u32 {
+        (**self).order()
+    }
+}

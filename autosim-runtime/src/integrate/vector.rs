@@ -1,0 +1,76 @@
+//! Element-wise helpers on state arrays, shared by the integrators.
+//!
+//! All of them work in place on fixed arrays and never allocate.
+
+use crate::{Float, IntegrationError, Model, StateArray};
+
+/// `out = x + h · Σ cᵢ·kᵢ`.
+#[inline]
+pub(crate) fn combine<F: Float, S: StateArray<F>>(out: &mut S, x: &S, h: F, terms: &[(F, &S)]) {
+    for (i, (o, xi)) in out.as_mut().iter_mut().zip(x.as_ref()).enumerate() {
+        let mut sum = F::ZERO;
+        for (c, k) in terms {
+            if let Some(v) = k.as_ref().get(i) {
+                sum += *c * *v;
+            }
+        }
+        *o = *xi + h * sum;
+    }
+}
+
+/// Root-mean-square of `errᵢ / (atol + rtol·max(|aᵢ|, |bᵢ|))`: the error
+/// measure of adaptive methods (≤ 1 means "within tolerance").
+#[inline]
+pub(crate) fn weighted_rms<F: Float, S: StateArray<F>>(
+    err: &S,
+    a: &S,
+    b: &S,
+    rtol: F,
+    atol: F,
+) -> F {
+    let mut sum = F::ZERO;
+    for ((e, ai), bi) in err.as_ref().iter().zip(a.as_ref()).zip(b.as_ref()) {
+        let scale = atol + rtol * ai.abs().max(bi.abs());
+        let r = *e / scale;
+        sum += r * r;
+    }
+    let n = S::LEN.max(1);
+    (sum / F::from_f64(n as f64)).sqrt()
+}
+
+/// `true` if both arrays hold the same values (NaN never matches).
+#[inline]
+pub(crate) fn same<F: Float, S: StateArray<F>>(a: &S, b: &S) -> bool {
+    a.as_ref() == b.as_ref()
+}
+
+/// Evaluates the model's derivatives, counting the call and turning a
+/// [`ModelError`](crate::ModelError) into an [`IntegrationError`].
+#[inline]
+pub(crate) fn eval<M: Model>(
+    model: &mut M,
+    t: M::Float,
+    x: &M::State,
+    dx: &mut M::State,
+    evaluations: &mut u64,
+) -> Result<(), IntegrationError> {
+    *evaluations += 1;
+    model
+        .derivatives(t, x, dx)
+        .map_err(|error| IntegrationError::Model {
+            t: t.to_f64(),
+            error,
+        })
+}
+
+/// Rejects a step that is zero, NaN or infinite.
+#[inline]
+pub(crate) fn check_step<F: Float>(h: F) -> Result<(), IntegrationError> {
+    if h.is_finite() && h != F::ZERO {
+        Ok(())
+    } else {
+        Err(IntegrationError::InvalidSettings {
+            reason: "the step must be finite and non-zero",
+        })
+    }
+}

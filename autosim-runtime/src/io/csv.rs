@@ -1,0 +1,110 @@
+//! CSV output of runs: one row per output time, flushed as it is written.
+
+use std::prelude::rust_2024::*;
+use std::{format, vec};
+
+use std::fmt::Write as _;
+use std::fs::File;
+use std::io::Write;
+use std::marker::PhantomData;
+use std::path::Path;
+
+use super::error::OutputError;
+use crate::{Model, Observer};
+
+/// An [`Observer`] that writes every output time of a run as a CSV row:
+/// time, then the states, then the outputs, under a header of
+/// `name [unit]` columns (`time [s]` first).
+///
+/// Each row is flushed when written, so a run that stops early (a
+/// non-finite state, a crash) leaves every row up to the failure on disk.
+/// Use it to hand results to a spreadsheet, pandas or gnuplot.
+pub struct CsvWriter<M, W: Write> {
+    writer: csv::Writer<W>,
+    field: String,
+    rows: u64,
+    model: PhantomData<fn(&M)>,
+}
+
+impl<M: Model> CsvWriter<M, File> {
+    /// Creates (or truncates) the file at `path` and writes the header.
+    ///
+    /// # Errors
+    /// [`OutputError::Io`] if the file cannot be created, or
+    /// [`OutputError::Csv`] if the header cannot be written.
+    pub fn create(path: impl AsRef<Path>) -> Result<Self, OutputError> {
+        let path = path.as_ref();
+        let file = File::create(path).map_err(|source| OutputError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::new(file)
+    }
+}
+
+impl<M: Model, W: Write> CsvWriter<M, W> {
+    /// Writes the header to `writer` and returns the observer.
+    ///
+    /// # Errors
+    /// [`OutputError::Csv`] if the header cannot be written.
+    pub fn new(writer: W) -> Result<Self, OutputError> {
+        let mut writer = csv::WriterBuilder::new()
+            .flexible(false)
+            .from_writer(writer);
+        let mut header = vec![String::from("time [s]")];
+        let columns = M::STATE_NAMES
+            .iter()
+            .zip(M::STATE_UNITS.iter().chain(std::iter::repeat(&"")))
+            .chain(
+                M::OUTPUT_NAMES
+                    .iter()
+                    .zip(M::OUTPUT_UNITS.iter().chain(std::iter::repeat(&""))),
+            );
+        header.extend(columns.map(|(name, unit)| format!("{name} [{unit}]")));
+        writer.write_record(&header)?;
+        writer.flush().map_err(csv::Error::from)?;
+        Ok(Self {
+            writer,
+            field: String::new(),
+            rows: 0,
+            model: PhantomData,
+        })
+    }
+
+    /// Data rows written so far.
+    pub fn rows(&self) -> u64 {
+        self.rows
+    }
+
+    /// Flushes and returns the underlying writer.
+    ///
+    /// # Errors
+    /// [`OutputError::Csv`] if the final flush fails.
+    pub fn into_inner(self) -> Result<W, OutputError> {
+        self.writer
+            .into_inner()
+            .map_err(|e| OutputError::Csv(csv::Error::from(e.into_error())))
+    }
+
+    fn write_value(&mut self, v: impl std::fmt::Debug) -> Result<(), csv::Error> {
+        self.field.clear();
+        // Writing to a String cannot fail. `Debug` is the shortest text that
+        // reads back exactly, with an exponent for very large or small values.
+        let _ = write!(self.field, "{v:?}");
+        self.writer.write_field(&self.field)
+    }
+}
+
+impl<M: Model, W: Write> Observer<M> for CsvWriter<M, W> {
+    type Error = OutputError;
+    fn observe(&mut self, t: M::Float, x: &M::State, y: &M::Outputs) -> Result<(), OutputError> {
+        self.write_value(t)?;
+        for v in x.as_ref().iter().chain(y.as_ref()) {
+            self.write_value(*v)?;
+        }
+        self.writer.write_record(None::<&[u8]>)?;
+        self.writer.flush().map_err(csv::Error::from)?;
+        self.rows += 1;
+        Ok(())
+    }
+}

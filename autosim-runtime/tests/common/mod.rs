@@ -1,0 +1,295 @@
+//! Small hand-written models with known solutions, shared by the tests.
+#![allow(dead_code)] // each test binary uses a different subset
+
+use autosim_runtime::{Model, ModelError};
+
+/// x'' = -ω²x as [x, v]; with x(0) = 1, v(0) = 0: x = cos ωt, v = -ω sin ωt.
+#[derive(Clone, Debug)]
+pub struct Oscillator {
+    pub omega: f64,
+    pub mass: f64,
+}
+
+impl Default for Oscillator {
+    fn default() -> Self {
+        Self {
+            omega: 1.0,
+            mass: 2.0,
+        }
+    }
+}
+
+impl Oscillator {
+    pub fn exact(&self, t: f64) -> [f64; 2] {
+        [(self.omega * t).cos(), -self.omega * (self.omega * t).sin()]
+    }
+}
+
+impl Model for Oscillator {
+    type Float = f64;
+    type State = [f64; 2];
+    type Outputs = [f64; 1];
+    const NAME: &'static str = "Oscillator";
+    const STATE_NAMES: &'static [&'static str] = &["x", "v"];
+    const STATE_UNITS: &'static [&'static str] = &["m", "m/s"];
+    const PARAMETER_NAMES: &'static [&'static str] = &["omega", "mass"];
+    const PARAMETER_UNITS: &'static [&'static str] = &["rad/s", "kg"];
+    const INPUT_NAMES: &'static [&'static str] = &[];
+    const INPUT_UNITS: &'static [&'static str] = &[];
+    const OUTPUT_NAMES: &'static [&'static str] = &["energy"];
+    const OUTPUT_UNITS: &'static [&'static str] = &["J"];
+
+    fn derivatives(&mut self, _t: f64, x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
+        dx[0] = x[1];
+        dx[1] = -self.omega * self.omega * x[0];
+        Ok(())
+    }
+    fn outputs(&mut self, _t: f64, x: &[f64; 2], y: &mut [f64; 1]) -> Result<(), ModelError> {
+        let k = self.mass * self.omega * self.omega;
+        y[0] = 0.5 * self.mass * x[1] * x[1] + 0.5 * k * x[0] * x[0];
+        Ok(())
+    }
+    fn parameter_values(&self, values: &mut [f64]) {
+        values[0] = self.omega;
+        values[1] = self.mass;
+    }
+    fn set_parameter_values(&mut self, values: &[f64]) {
+        self.omega = values[0];
+        self.mass = values[1];
+    }
+    fn initial_state(&self) -> [f64; 2] {
+        [1.0, 0.0]
+    }
+}
+
+/// x' = -k·x: x = e^(-kt).
+#[derive(Clone, Debug)]
+pub struct Decay {
+    pub k: f64,
+}
+
+impl Model for Decay {
+    type Float = f64;
+    type State = [f64; 1];
+    type Outputs = [f64; 0];
+    const NAME: &'static str = "Decay";
+    const STATE_NAMES: &'static [&'static str] = &["x"];
+    const STATE_UNITS: &'static [&'static str] = &["1"];
+    const PARAMETER_NAMES: &'static [&'static str] = &["k"];
+    const PARAMETER_UNITS: &'static [&'static str] = &["1/s"];
+    const INPUT_NAMES: &'static [&'static str] = &[];
+    const INPUT_UNITS: &'static [&'static str] = &[];
+    const OUTPUT_NAMES: &'static [&'static str] = &[];
+    const OUTPUT_UNITS: &'static [&'static str] = &[];
+
+    fn derivatives(&mut self, _t: f64, x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
+        dx[0] = -self.k * x[0];
+        Ok(())
+    }
+    fn outputs(&mut self, _t: f64, _x: &[f64; 1], _y: &mut [f64; 0]) -> Result<(), ModelError> {
+        Ok(())
+    }
+    fn parameter_values(&self, values: &mut [f64]) {
+        values[0] = self.k;
+    }
+    fn set_parameter_values(&mut self, values: &[f64]) {
+        self.k = values[0];
+    }
+    fn initial_state(&self) -> [f64; 1] {
+        [1.0]
+    }
+}
+
+/// A stiff linear system of Prothero–Robinson type:
+/// x' = A·(x − φ(t)) + φ'(t), with A = Q·diag(λ)·Qᵀ, Q = I − (2/3)·ones
+/// (a symmetric orthogonal reflection) and λ = (-1e4, -1e5, -1e6).
+/// With x(0) = φ(0) the exact solution is x = φ(t) = (cos t, sin t, e^(−t)).
+#[derive(Clone, Debug)]
+pub struct StiffLinear {
+    pub a: [[f64; 3]; 3],
+}
+
+impl Default for StiffLinear {
+    fn default() -> Self {
+        let lambda = [-1e4, -1e5, -1e6];
+        let q = |i: usize, j: usize| if i == j { 1.0 - 2.0 / 3.0 } else { -2.0 / 3.0 };
+        let mut a = [[0.0; 3]; 3];
+        for (i, row) in a.iter_mut().enumerate() {
+            for (j, v) in row.iter_mut().enumerate() {
+                *v = (0..3).map(|k| q(i, k) * lambda[k] * q(j, k)).sum();
+            }
+        }
+        Self { a }
+    }
+}
+
+impl StiffLinear {
+    pub fn exact(t: f64) -> [f64; 3] {
+        [t.cos(), t.sin(), (-t).exp()]
+    }
+    fn exact_rate(t: f64) -> [f64; 3] {
+        [-t.sin(), t.cos(), -(-t).exp()]
+    }
+}
+
+impl Model for StiffLinear {
+    type Float = f64;
+    type State = [f64; 3];
+    type Outputs = [f64; 0];
+    const NAME: &'static str = "StiffLinear";
+    const STATE_NAMES: &'static [&'static str] = &["y1", "y2", "y3"];
+    const STATE_UNITS: &'static [&'static str] = &["1", "1", "1"];
+    const PARAMETER_NAMES: &'static [&'static str] = &[];
+    const PARAMETER_UNITS: &'static [&'static str] = &[];
+    const INPUT_NAMES: &'static [&'static str] = &[];
+    const INPUT_UNITS: &'static [&'static str] = &[];
+    const OUTPUT_NAMES: &'static [&'static str] = &[];
+    const OUTPUT_UNITS: &'static [&'static str] = &[];
+
+    fn derivatives(&mut self, t: f64, x: &[f64; 3], dx: &mut [f64; 3]) -> Result<(), ModelError> {
+        let phi = Self::exact(t);
+        let dphi = Self::exact_rate(t);
+        for i in 0..3 {
+            dx[i] = dphi[i] + (0..3).map(|j| self.a[i][j] * (x[j] - phi[j])).sum::<f64>();
+        }
+        Ok(())
+    }
+    fn outputs(&mut self, _t: f64, _x: &[f64; 3], _y: &mut [f64; 0]) -> Result<(), ModelError> {
+        Ok(())
+    }
+    fn parameter_values(&self, _values: &mut [f64]) {}
+    fn set_parameter_values(&mut self, _values: &[f64]) {}
+    fn initial_state(&self) -> [f64; 3] {
+        Self::exact(0.0)
+    }
+}
+
+/// Van der Pol: x'' = μ(1 − x²)x' − k·x, as [x, v]; stiff for large μ.
+#[derive(Clone, Debug)]
+pub struct VanDerPol {
+    pub mu: f64,
+    pub stiffness: f64,
+}
+
+impl Model for VanDerPol {
+    type Float = f64;
+    type State = [f64; 2];
+    type Outputs = [f64; 1];
+    const NAME: &'static str = "VanDerPol";
+    const STATE_NAMES: &'static [&'static str] = &["x", "v"];
+    const STATE_UNITS: &'static [&'static str] = &["1", "1/s"];
+    const PARAMETER_NAMES: &'static [&'static str] = &["mu", "stiffness"];
+    const PARAMETER_UNITS: &'static [&'static str] = &["1", "1/s2"];
+    const INPUT_NAMES: &'static [&'static str] = &[];
+    const INPUT_UNITS: &'static [&'static str] = &[];
+    const OUTPUT_NAMES: &'static [&'static str] = &["x_squared"];
+    const OUTPUT_UNITS: &'static [&'static str] = &["1"];
+
+    fn derivatives(&mut self, _t: f64, x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
+        dx[0] = x[1];
+        dx[1] = self.mu * (1.0 - x[0] * x[0]) * x[1] - self.stiffness * x[0];
+        Ok(())
+    }
+    fn outputs(&mut self, _t: f64, x: &[f64; 2], y: &mut [f64; 1]) -> Result<(), ModelError> {
+        y[0] = x[0] * x[0];
+        Ok(())
+    }
+    fn parameter_values(&self, values: &mut [f64]) {
+        values[0] = self.mu;
+        values[1] = self.stiffness;
+    }
+    fn set_parameter_values(&mut self, values: &[f64]) {
+        self.mu = values[0];
+        self.stiffness = values[1];
+    }
+    fn initial_state(&self) -> [f64; 2] {
+        [2.0, 0.0]
+    }
+}
+
+/// x' = g(t) with a polynomial g: the solution is a polynomial, so methods
+/// of high enough order reproduce it to round-off.
+#[derive(Clone, Debug)]
+pub struct Polynomial {
+    /// Degree of the solution x(t) = t^degree.
+    pub degree: i32,
+}
+
+impl Model for Polynomial {
+    type Float = f64;
+    type State = [f64; 1];
+    type Outputs = [f64; 0];
+    const NAME: &'static str = "Polynomial";
+    const STATE_NAMES: &'static [&'static str] = &["x"];
+    const STATE_UNITS: &'static [&'static str] = &["1"];
+    const PARAMETER_NAMES: &'static [&'static str] = &[];
+    const PARAMETER_UNITS: &'static [&'static str] = &[];
+    const INPUT_NAMES: &'static [&'static str] = &[];
+    const INPUT_UNITS: &'static [&'static str] = &[];
+    const OUTPUT_NAMES: &'static [&'static str] = &[];
+    const OUTPUT_UNITS: &'static [&'static str] = &[];
+
+    fn derivatives(&mut self, t: f64, _x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
+        dx[0] = f64::from(self.degree) * t.powi(self.degree - 1);
+        Ok(())
+    }
+    fn outputs(&mut self, _t: f64, _x: &[f64; 1], _y: &mut [f64; 0]) -> Result<(), ModelError> {
+        Ok(())
+    }
+    fn parameter_values(&self, _values: &mut [f64]) {}
+    fn set_parameter_values(&mut self, _values: &[f64]) {}
+    fn initial_state(&self) -> [f64; 1] {
+        [0.0]
+    }
+}
+
+/// x' = x²: with x(0) = 1 the solution 1/(1 − t) blows up at t = 1.
+#[derive(Clone, Debug, Default)]
+pub struct BlowUp;
+
+impl Model for BlowUp {
+    type Float = f64;
+    type State = [f64; 1];
+    type Outputs = [f64; 0];
+    const NAME: &'static str = "BlowUp";
+    const STATE_NAMES: &'static [&'static str] = &["x"];
+    const STATE_UNITS: &'static [&'static str] = &["1"];
+    const PARAMETER_NAMES: &'static [&'static str] = &[];
+    const PARAMETER_UNITS: &'static [&'static str] = &[];
+    const INPUT_NAMES: &'static [&'static str] = &[];
+    const INPUT_UNITS: &'static [&'static str] = &[];
+    const OUTPUT_NAMES: &'static [&'static str] = &[];
+    const OUTPUT_UNITS: &'static [&'static str] = &[];
+
+    fn derivatives(&mut self, _t: f64, x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
+        dx[0] = x[0] * x[0];
+        Ok(())
+    }
+    fn outputs(&mut self, _t: f64, _x: &[f64; 1], _y: &mut [f64; 0]) -> Result<(), ModelError> {
+        Ok(())
+    }
+    fn parameter_values(&self, _values: &mut [f64]) {}
+    fn set_parameter_values(&mut self, _values: &[f64]) {}
+    fn initial_state(&self) -> [f64; 1] {
+        [1.0]
+    }
+}
+
+/// Least-squares slope of log(error) against log(h).
+pub fn convergence_slope(points: &[(f64, f64)]) -> f64 {
+    let n = points.len() as f64;
+    let (lx, ly): (Vec<f64>, Vec<f64>) = points.iter().map(|(h, e)| (h.ln(), e.ln())).unzip();
+    let mx = lx.iter().sum::<f64>() / n;
+    let my = ly.iter().sum::<f64>() / n;
+    let sxy: f64 = lx.iter().zip(&ly).map(|(x, y)| (x - mx) * (y - my)).sum();
+    let sxx: f64 = lx.iter().map(|x| (x - mx) * (x - mx)).sum();
+    sxy / sxx
+}
+
+/// Largest absolute difference between two vectors.
+pub fn max_diff(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}

@@ -1,0 +1,93 @@
+//! Steppers and the run driver never allocate: counted by a global
+//! allocator (per thread, so parallel tests do not interfere).
+
+mod common;
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+use autosim_runtime::integrate::{
+    AbmOrder, AdamsBashforthMoulton, DopriSettings, DormandPrince, Euler, Heun, Rk4, Sdirk3,
+    SdirkSettings,
+};
+use autosim_runtime::{Float, Model, RunSettings, Stepper, run};
+use common::{Oscillator, StiffLinear, VanDerPol};
+
+struct Counting;
+
+thread_local! {
+    static ALLOCATIONS: Cell<u64> = const { Cell::new(0) };
+}
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.with(|a| a.set(a.get() + 1));
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Allocations made by `f` on this thread.
+fn allocations(f: impl FnOnce()) -> u64 {
+    let before = ALLOCATIONS.with(Cell::get);
+    f();
+    ALLOCATIONS.with(Cell::get) - before
+}
+
+fn run_quietly<M: Model, S: Stepper<M>>(mut model: M, mut stepper: S, step: M::Float) {
+    let mut x = model.initial_state();
+    let mut sink = M::Float::ZERO;
+    let f = M::Float::from_f64;
+    let settings = RunSettings::new(f(0.0), f(200.0) * step, step, f(10.0) * step);
+    let summary = run(
+        &mut model,
+        &mut stepper,
+        &mut x,
+        &settings,
+        &mut |t, _: &M::State, _: &M::Outputs| {
+            sink = t;
+        },
+    );
+    assert!(summary.is_ok());
+}
+
+#[test]
+fn steppers_and_driver_do_not_allocate() {
+    // The counter sees allocations at all.
+    assert!(allocations(|| drop(std::hint::black_box(vec![1u8; 16]))) >= 1);
+    // Construction, stepping, the driver and the closure observer: none.
+    let n = allocations(|| {
+        run_quietly(Oscillator::default(), Euler::new(), 0.01);
+        run_quietly(Oscillator::default(), Heun::new(), 0.01);
+        run_quietly(Oscillator::default(), Rk4::new(), 0.01);
+        run_quietly(
+            Oscillator::default(),
+            AdamsBashforthMoulton::new(AbmOrder::Four),
+            0.01,
+        );
+        run_quietly(
+            Oscillator::default(),
+            DormandPrince::new(DopriSettings::new(1e-8, 1e-8)).unwrap(),
+            0.01,
+        );
+        run_quietly(
+            StiffLinear::default(),
+            Sdirk3::new(SdirkSettings::default()),
+            0.01,
+        );
+        run_quietly(
+            VanDerPol {
+                mu: 100.0,
+                stiffness: 1.0,
+            },
+            Sdirk3::new(SdirkSettings::default()),
+            0.01,
+        );
+    });
+    assert_eq!(n, 0, "allocations during stepping");
+}

@@ -37,10 +37,18 @@ fn check_chain(n: usize, spatial: bool) {
         let e_dq = rel_err(&dq, &want_dq);
         let e_du = rel_err(&du, &want_du);
         worst = worst.max(e_dq).max(e_du);
-        assert!(e_dq < 1e-9 && e_du < 1e-9, "{name}: dq err {e_dq:e}, du err {e_du:e}\n got {du:?}\nwant {want_du:?}");
-        let e = sys.arena.eval(energy, &b, &mut autosim_core::expr::NoUserFunctions);
+        assert!(
+            e_dq < 1e-9 && e_du < 1e-9,
+            "{name}: dq err {e_dq:e}, du err {e_du:e}\n got {du:?}\nwant {want_du:?}"
+        );
+        let e = sys
+            .arena
+            .eval(energy, &b, &mut autosim_core::expr::NoUserFunctions);
         let want_e = sample["energy"].as_f64().unwrap();
-        assert!((e - want_e).abs() <= 1e-9 * want_e.abs().max(1.0), "{name}: energy {e} vs {want_e}");
+        assert!(
+            (e - want_e).abs() <= 1e-9 * want_e.abs().max(1.0),
+            "{name}: energy {e} vs {want_e}"
+        );
     }
     eprintln!("{name}: worst relative error {worst:.2e}");
 }
@@ -73,10 +81,18 @@ fn satellite_matches_reference() {
         let e_dq = rel_err(&dq, &floats(&sample["dq"]));
         let e_du = rel_err(&du, &floats(&sample["du"]));
         worst = worst.max(e_dq).max(e_du);
-        assert!(e_dq < 1e-9 && e_du < 1e-9, "satellite: dq err {e_dq:e}, du err {e_du:e}");
-        let k = sys.arena.eval(ke, &b, &mut autosim_core::expr::NoUserFunctions);
+        assert!(
+            e_dq < 1e-9 && e_du < 1e-9,
+            "satellite: dq err {e_dq:e}, du err {e_du:e}"
+        );
+        let k = sys
+            .arena
+            .eval(ke, &b, &mut autosim_core::expr::NoUserFunctions);
         let want = sample["kinetic_energy"].as_f64().unwrap();
-        assert!((k - want).abs() <= 1e-9 * want.abs().max(1.0), "kinetic energy {k} vs {want}");
+        assert!(
+            (k - want).abs() <= 1e-9 * want.abs().max(1.0),
+            "kinetic energy {k} vs {want}"
+        );
     }
     eprintln!("satellite: worst relative error {worst:.2e}");
 }

@@ -313,15 +313,15 @@ impl Arena {
                     self.sort_factors(&mut partner);
                     self.find_monomial(&partner)
                 });
-                if let Some(pm) = partner_mono {
-                    if let Some(j) = terms.iter().position(|t| t.0 == pm && t.1 == c) {
-                        let rest_mono = self.monomial(&rest);
-                        let (a, b) = (i.max(j), i.min(j));
-                        terms.remove(a);
-                        terms.remove(b);
-                        terms.push((rest_mono, c));
-                        return true;
-                    }
+                if let Some(pm) = partner_mono
+                    && let Some(j) = terms.iter().position(|t| t.0 == pm && t.1 == c)
+                {
+                    let rest_mono = self.monomial(&rest);
+                    let (a, b) = (i.max(j), i.min(j));
+                    terms.remove(a);
+                    terms.remove(b);
+                    terms.push((rest_mono, c));
+                    return true;
                 }
                 // c M - c M s²  →  c M c²
                 let neg_c = c.neg();
@@ -363,12 +363,11 @@ impl Arena {
 
     /// `Some((Sin|Cos, x))` if `e` is `sin(x)^2` or `cos(x)^2`.
     fn squared_trig(&self, e: ExprId) -> Option<(Func, ExprId)> {
-        if let Node::Pow(b, x) = self.node(e) {
-            if self.as_number(*x) == Some(Number::int(2)) {
-                if let Node::Func(f @ (Func::Sin | Func::Cos), args) = self.node(*b) {
-                    return Some((*f, args[0]));
-                }
-            }
+        if let Node::Pow(b, x) = self.node(e)
+            && self.as_number(*x) == Some(Number::int(2))
+            && let Node::Func(f @ (Func::Sin | Func::Cos), args) = self.node(*b)
+        {
+            return Some((*f, args[0]));
         }
         None
     }
@@ -464,17 +463,17 @@ impl Arena {
                         if let Some(v) = b.powi(n) {
                             return self.num(v);
                         }
-                    } else if e == Number::rational(1, 2).unwrap_or(Number::ZERO) {
-                        if let Some(r) = b.exact_sqrt() {
-                            return self.num(r);
-                        }
+                    } else if e == Number::rational(1, 2).unwrap_or(Number::ZERO)
+                        && let Some(r) = b.exact_sqrt()
+                    {
+                        return self.num(r);
                     }
                     if !b.is_exact() || !e.is_exact() {
                         let v = b.to_f64().powf(e.to_f64());
-                        if v.is_finite() {
-                            if let Some(n) = Number::float(v) {
-                                return self.num(n);
-                            }
+                        if v.is_finite()
+                            && let Some(n) = Number::float(v)
+                        {
+                            return self.num(n);
                         }
                     }
                 }

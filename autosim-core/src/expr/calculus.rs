@@ -72,10 +72,10 @@ impl Arena {
         only: Option<ExprId>,
         skip_constants: bool,
     ) -> Result<ExprId, ExprError> {
-        if let Some(t) = only {
-            if e < t {
-                return Ok(self.zero());
-            }
+        if let Some(t) = only
+            && e < t
+        {
+            return Ok(self.zero());
         }
         if skip_constants && self.is_constant(e) {
             return Ok(self.zero());
@@ -102,7 +102,12 @@ impl Arena {
                         continue;
                     }
                     let mut factors: Vec<ExprId> = Vec::with_capacity(fs.len());
-                    factors.extend(fs.iter().enumerate().filter(|(j, _)| *j != i).map(|(_, f)| *f));
+                    factors.extend(
+                        fs.iter()
+                            .enumerate()
+                            .filter(|(j, _)| *j != i)
+                            .map(|(_, f)| *f),
+                    );
                     factors.push(d);
                     parts.push(self.product_with(c, &factors));
                 }
@@ -201,9 +206,7 @@ impl Arena {
             }
             Func::Sign => self.zero(),
             Func::Min | Func::Max => {
-                return Err(ExprError::NotDifferentiable(
-                    self.func_name(f).to_string(),
-                ));
+                return Err(ExprError::NotDifferentiable(self.func_name(f).to_string()));
             }
             Func::User(u) => {
                 return Err(ExprError::NotDifferentiable(self.user_fn(u).name.clone()));

@@ -10,7 +10,13 @@ use super::number::Number;
 const SIN_SERIES: &[(i64, i64, i64)] = &[(1, 1, 1), (3, -1, 6), (5, 1, 120), (7, -1, 5040)];
 const TAN_SERIES: &[(i64, i64, i64)] = &[(1, 1, 1), (3, 1, 3), (5, 2, 15), (7, 17, 315)];
 const ASIN_SERIES: &[(i64, i64, i64)] = &[(1, 1, 1), (3, 1, 6), (5, 3, 40), (7, 5, 112)];
-const COS_SERIES: &[(i64, i64, i64)] = &[(0, 1, 1), (2, -1, 2), (4, 1, 24), (6, -1, 720), (8, 1, 40320)];
+const COS_SERIES: &[(i64, i64, i64)] = &[
+    (0, 1, 1),
+    (2, -1, 2),
+    (4, 1, 24),
+    (6, -1, 720),
+    (8, 1, 40320),
+];
 const EXP_SERIES: &[(i64, i64, i64)] = &[
     (0, 1, 1),
     (1, 1, 1),
@@ -30,10 +36,10 @@ impl Arena {
             if let Some(e) = self.simplify_unary(f, args[0]) {
                 return e;
             }
-        } else if args.len() == 2 {
-            if let Some(e) = self.simplify_binary(f, args[0], args[1]) {
-                return e;
-            }
+        } else if args.len() == 2
+            && let Some(e) = self.simplify_binary(f, args[0], args[1])
+        {
+            return e;
         }
         let constant = !matches!(f, Func::User(_)) && args.iter().all(|a| self.is_constant(*a));
         let order = match f {
@@ -105,10 +111,10 @@ impl Arena {
                 Func::Sign => v.signum(),
                 _ => f64::NAN,
             };
-            if r.is_finite() {
-                if let Some(n) = Number::float(r) {
-                    return Some(self.num(n));
-                }
+            if r.is_finite()
+                && let Some(n) = Number::float(r)
+            {
+                return Some(self.num(n));
             }
         }
         if let (Func::Abs, Some(n)) = (f, self.as_number(x)) {

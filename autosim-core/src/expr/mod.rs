@@ -10,7 +10,9 @@ mod number;
 mod ops;
 mod text;
 
-pub use arena::{Arena, ExprError, ExprId, Func, Meta, Node, SymId, Symbol, SymbolKind, UserFn, UserFnId};
+pub use arena::{
+    Arena, ExprError, ExprId, Func, Meta, Node, SymId, Symbol, SymbolKind, UserFn, UserFnId,
+};
 pub use eval::{Bindings, NoUserFunctions, UserFunctions};
 pub use number::Number;
 

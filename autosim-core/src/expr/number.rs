@@ -160,6 +160,7 @@ impl Number {
     }
 
     /// Sum.
+    #[allow(clippy::should_implement_trait)]
     pub fn add(self, other: Number) -> Number {
         if let (Number::Rational { num: a, den: b }, Number::Rational { num: c, den: d }) =
             (self, other)
@@ -167,7 +168,9 @@ impl Number {
             let exact = (|| {
                 let g = gcd(b, d);
                 let lcm = (b / g).checked_mul(d)?;
-                let n = a.checked_mul(lcm / b)?.checked_add(c.checked_mul(lcm / d)?)?;
+                let n = a
+                    .checked_mul(lcm / b)?
+                    .checked_add(c.checked_mul(lcm / d)?)?;
                 Number::rational(n, lcm)
             })();
             if let Some(r) = exact {
@@ -178,6 +181,7 @@ impl Number {
     }
 
     /// Negation.
+    #[allow(clippy::should_implement_trait)]
     pub fn neg(self) -> Number {
         match self {
             Number::Rational { num, den } => match num.checked_neg() {
@@ -189,11 +193,13 @@ impl Number {
     }
 
     /// Difference.
+    #[allow(clippy::should_implement_trait)]
     pub fn sub(self, other: Number) -> Number {
         self.add(other.neg())
     }
 
     /// Product.
+    #[allow(clippy::should_implement_trait)]
     pub fn mul(self, other: Number) -> Number {
         if let (Number::Rational { num: a, den: b }, Number::Rational { num: c, den: d }) =
             (self, other)
@@ -226,6 +232,7 @@ impl Number {
     }
 
     /// Quotient; `None` when dividing by zero.
+    #[allow(clippy::should_implement_trait)]
     pub fn div(self, other: Number) -> Option<Number> {
         Some(self.mul(other.recip()?))
     }
@@ -235,12 +242,11 @@ impl Number {
         if n < 0 {
             return self.recip()?.powi(-n);
         }
-        if let Number::Rational { num, den } = self {
-            if let Ok(e) = u32::try_from(n) {
-                if let (Some(a), Some(b)) = (num.checked_pow(e), den.checked_pow(e)) {
-                    return Number::rational(a, b);
-                }
-            }
+        if let Number::Rational { num, den } = self
+            && let Ok(e) = u32::try_from(n)
+            && let (Some(a), Some(b)) = (num.checked_pow(e), den.checked_pow(e))
+        {
+            return Number::rational(a, b);
         }
         let e = i32::try_from(n).ok()?;
         Number::float(self.to_f64().powi(e))
@@ -330,7 +336,10 @@ mod tests {
         assert_eq!(Number::parse_decimal("0.0025"), Number::rational(1, 400));
         assert_eq!(Number::parse_decimal("1.5e3"), Some(Number::int(1500)));
         assert_eq!(Number::parse_decimal("2E-4"), Number::rational(1, 5000));
-        assert_eq!(Number::parse_decimal("3.1415926"), Number::rational(15707963, 5000000));
+        assert_eq!(
+            Number::parse_decimal("3.1415926"),
+            Number::rational(15707963, 5000000)
+        );
         assert_eq!(Number::parse_decimal("abc"), None);
         assert_eq!(Number::parse_decimal("."), None);
     }
@@ -343,10 +352,16 @@ mod tests {
         assert_eq!(a.mul(b), Number::rational(1, 18).unwrap());
         assert_eq!(a.div(b), Some(Number::int(2)));
         assert_eq!(Number::ZERO.recip(), None);
-        let big = Number::Rational { num: i128::MAX, den: 1 };
+        let big = Number::Rational {
+            num: i128::MAX,
+            den: 1,
+        };
         assert!(matches!(big.add(big), Number::Float(_)));
         assert!(matches!(big.mul(big), Number::Float(_)));
-        assert_eq!(Number::rational(9, 4).unwrap().exact_sqrt(), Number::rational(3, 2));
+        assert_eq!(
+            Number::rational(9, 4).unwrap().exact_sqrt(),
+            Number::rational(3, 2)
+        );
         assert_eq!(Number::int(2).exact_sqrt(), None);
         assert_eq!(Number::int(2).powi(-2), Number::rational(1, 4));
         assert_eq!(Number::ZERO.powi(-1), None);

@@ -73,8 +73,11 @@ impl Arena {
         }
         match self.node(e).clone() {
             Node::Sum(ts) => {
-                let consts: Vec<ExprId> =
-                    ts.iter().copied().filter(|t| self.is_constant(*t)).collect();
+                let consts: Vec<ExprId> = ts
+                    .iter()
+                    .copied()
+                    .filter(|t| self.is_constant(*t))
+                    .collect();
                 self.sum(&consts)
             }
             Node::Prod(c, fs) if fs.len() == 1 => {

@@ -4,7 +4,9 @@ use super::*;
 
 fn check(input: &str, expect: &str) {
     let mut a = Arena::new();
-    let e = a.parse_text(input).unwrap_or_else(|err| panic!("{input}: {err}"));
+    let e = a
+        .parse_text(input)
+        .unwrap_or_else(|err| panic!("{input}: {err}"));
     assert_eq!(a.to_text(e), expect, "input: {input}");
 }
 

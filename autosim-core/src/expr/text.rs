@@ -49,7 +49,13 @@ impl Arena {
             }
             Node::Sym(_) | Node::Func(..) => Prec::Atom,
             Node::Sum(_) => Prec::Sum,
-            Node::Prod(c, fs) if *c == Number::MINUS_ONE && fs.len() == 1 && matches!(self.node(fs[0]), Node::Sum(_)) => Prec::Sum,
+            Node::Prod(c, fs)
+                if *c == Number::MINUS_ONE
+                    && fs.len() == 1
+                    && matches!(self.node(fs[0]), Node::Sum(_)) =>
+            {
+                Prec::Sum
+            }
             Node::Prod(c, _) => {
                 if c.is_negative() {
                     Prec::Unary

@@ -2,8 +2,8 @@
 //! forward velocity recursion (the paper's Tables 7-11, Eqs. 8-10).
 
 use super::error::ModelError;
-use super::framevec::{Fv, Mat3};
 use super::frames::FrameId;
+use super::framevec::{Fv, Mat3};
 use super::system::{Body, BodyId, BodySpec, Coordinate, Direction, DofKind, System};
 use super::vector::Vector;
 use crate::expr::{ExprId, SymbolKind};
@@ -87,7 +87,11 @@ impl System {
                 }
             }
         }
-        if errors.is_empty() { Ok(ids) } else { Err(errors) }
+        if errors.is_empty() {
+            Ok(ids)
+        } else {
+            Err(errors)
+        }
     }
 
     /// Adds one body; its parent must already exist.
@@ -147,14 +151,25 @@ impl System {
                     return Err(ModelError::DuplicateName(n.clone()));
                 }
             }
-            let q = self.arena.add_symbol(&qn, SymbolKind::Coordinate { index: global })?;
-            let u = self.arena.add_symbol(&un, SymbolKind::Speed { index: global })?;
-            let du = self.arena.add_symbol(&dn, SymbolKind::SpeedRate { index: global })?;
+            let q = self
+                .arena
+                .add_symbol(&qn, SymbolKind::Coordinate { index: global })?;
+            let u = self
+                .arena
+                .add_symbol(&un, SymbolKind::Speed { index: global })?;
+            let du = self
+                .arena
+                .add_symbol(&dn, SymbolKind::SpeedRate { index: global })?;
             let translation = k < spec.translations.len();
-            let (qu, uu) = if translation { ("m", "m/s") } else { ("rad", "rad/s") };
+            let (qu, uu) = if translation {
+                ("m", "m/s")
+            } else {
+                ("rad", "rad/s")
+            };
             self.arena.set_unit(q, Some(qu.to_string()));
             self.arena.set_unit(u, Some(uu.to_string()));
-            self.arena.set_unit(du, Some(format!("{uu}^2").replace("/s^2", "/s^2")));
+            self.arena
+                .set_unit(du, Some(format!("{uu}^2").replace("/s^2", "/s^2")));
             let small = spec.small.get(k).copied().unwrap_or(false);
             for s in [q, u, du] {
                 self.arena.set_small(s, small);
@@ -200,7 +215,8 @@ impl System {
         // Kinematical equations dq/dt = f(q, u).
         let mut qdots: Vec<ExprId> = syms.iter().map(|s| self.arena.sym(s.1)).collect();
         if axes.len() == 3 {
-            let rates = self.euler_rates(&name, &axes, &rot_frames, parent_body.frame, frame, &w_rel)?;
+            let rates =
+                self.euler_rates(&name, &axes, &rot_frames, parent_body.frame, frame, &w_rel)?;
             qdots[nt..nt + 3].copy_from_slice(&rates);
         }
 
@@ -230,7 +246,10 @@ impl System {
         }
         let w_a = parent_body.w;
         let wxr = w_a.cross(&mut self.arena, &r);
-        let v0_parent = parent_body.v0.add(&mut self.arena, &wxr).add(&mut self.arena, &v_rel);
+        let v0_parent = parent_body
+            .v0
+            .add(&mut self.arena, &wxr)
+            .add(&mut self.arena, &v_rel);
         let v0 = v0_parent.reexpress(&mut self.arena, &mut self.frames, frame);
         let w_in_b = w_a.reexpress(&mut self.arena, &mut self.frames, frame);
         let w = w_in_b.add(&mut self.arena, &Fv::new(frame, w_rel));
@@ -265,7 +284,10 @@ impl System {
             }
         };
         if !self.arena.is_constant(mass)
-            || inertia.iter().flatten().any(|x| !self.arena.is_constant(*x))
+            || inertia
+                .iter()
+                .flatten()
+                .any(|x| !self.arena.is_constant(*x))
         {
             return Err(ModelError::NotConstant {
                 what: format!("mass and inertia of body `{name}`"),
@@ -364,13 +386,13 @@ impl System {
             });
         }
         for d in &spec.translations {
-            if let Direction::Axis(a) = d {
-                if !(1..=3).contains(a) {
-                    return Err(ModelError::AxisOutOfRange {
-                        body: name.clone(),
-                        axis: *a,
-                    });
-                }
+            if let Direction::Axis(a) = d
+                && !(1..=3).contains(a)
+            {
+                return Err(ModelError::AxisOutOfRange {
+                    body: name.clone(),
+                    axis: *a,
+                });
             }
         }
         let dofs = spec.dofs();
@@ -378,15 +400,15 @@ impl System {
             ("coordinate", &spec.coordinate_names),
             ("speed", &spec.speed_names),
         ] {
-            if let Some(v) = names {
-                if v.len() != dofs {
-                    return Err(ModelError::NameCount {
-                        body: name.clone(),
-                        what,
-                        expected: dofs,
-                        got: v.len(),
-                    });
-                }
+            if let Some(v) = names
+                && v.len() != dofs
+            {
+                return Err(ModelError::NameCount {
+                    body: name.clone(),
+                    what,
+                    expected: dofs,
+                    got: v.len(),
+                });
             }
         }
         for (what, vals) in [

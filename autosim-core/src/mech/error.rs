@@ -83,7 +83,10 @@ impl fmt::Display for ModelError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ModelError::UnknownBody(n) => {
-                write!(f, "unknown body `{n}`: declare it with `body {n} {{ ... }}`, or use `N` for the inertial frame")
+                write!(
+                    f,
+                    "unknown body `{n}`: declare it with `body {n} {{ ... }}`, or use `N` for the inertial frame"
+                )
             }
             ModelError::UnknownPoint(n) => write!(
                 f,

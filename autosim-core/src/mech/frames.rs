@@ -329,7 +329,12 @@ impl Default for Frames {
 
 impl Frames {
     /// `v · D` for a vector and a dyadic.
-    pub fn dot_vec_dyadic(&mut self, arena: &mut Arena, v: &Vector, d: &super::vector::Dyadic) -> Vector {
+    pub fn dot_vec_dyadic(
+        &mut self,
+        arena: &mut Arena,
+        v: &Vector,
+        d: &super::vector::Dyadic,
+    ) -> Vector {
         let mut acc = Vector::zero();
         for &((l, r), c) in d.terms() {
             let lv = Vector::uv(arena, l);
@@ -345,7 +350,12 @@ impl Frames {
     }
 
     /// `D · v` for a dyadic and a vector.
-    pub fn dot_dyadic_vec(&mut self, arena: &mut Arena, d: &super::vector::Dyadic, v: &Vector) -> Vector {
+    pub fn dot_dyadic_vec(
+        &mut self,
+        arena: &mut Arena,
+        d: &super::vector::Dyadic,
+        v: &Vector,
+    ) -> Vector {
         let mut acc = Vector::zero();
         for &((l, r), c) in d.terms() {
             let rv = Vector::uv(arena, r);

@@ -41,13 +41,19 @@ impl Fv {
     /// `self + other` (same frame).
     pub fn add(&self, arena: &mut Arena, other: &Fv) -> Fv {
         debug_assert_eq!(self.frame, other.frame);
-        Fv::new(self.frame, [0, 1, 2].map(|k| arena.add(self.c[k], other.c[k])))
+        Fv::new(
+            self.frame,
+            [0, 1, 2].map(|k| arena.add(self.c[k], other.c[k])),
+        )
     }
 
     /// `self - other` (same frame).
     pub fn sub(&self, arena: &mut Arena, other: &Fv) -> Fv {
         debug_assert_eq!(self.frame, other.frame);
-        Fv::new(self.frame, [0, 1, 2].map(|k| arena.sub(self.c[k], other.c[k])))
+        Fv::new(
+            self.frame,
+            [0, 1, 2].map(|k| arena.sub(self.c[k], other.c[k])),
+        )
     }
 
     /// `s self`.
@@ -71,7 +77,10 @@ impl Fv {
             let q = arena.mul(a[j], b[i]);
             arena.sub(p, q)
         };
-        Fv::new(self.frame, [comp(arena, 1, 2), comp(arena, 2, 0), comp(arena, 0, 1)])
+        Fv::new(
+            self.frame,
+            [comp(arena, 1, 2), comp(arena, 2, 0), comp(arena, 0, 1)],
+        )
     }
 
     /// The same vector with components in frame `to`.

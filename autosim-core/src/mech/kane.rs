@@ -16,10 +16,10 @@
 //! accelerations are solved numerically by the caller.
 
 use super::error::ModelError;
+use super::frames::FrameId;
 use super::framevec::{
     Fv, Mat3, mat_add, mat_rotate_symmetric, mat_vec, point_inertia, shift_cross_term,
 };
-use super::frames::FrameId;
 use super::system::{BodyId, DofKind, System};
 use super::vector::Vector;
 use crate::expr::{ExprId, SymId};
@@ -236,7 +236,9 @@ impl System {
                 // this body's origin and axes.
                 let mc = cmass[ci];
                 let sc = cfirst[ci].reexpress(&mut self.arena, &mut self.frames, fr);
-                let rot = self.frames.cosine_matrix(&mut self.arena, fr, self.bodies[ci].frame);
+                let rot = self
+                    .frames
+                    .cosine_matrix(&mut self.arena, fr, self.bodies[ci].frame);
                 let jc = mat_rotate_symmetric(&mut self.arena, &rot, &cinertia[ci]);
                 let jp = point_inertia(&mut self.arena, mc, &r.c);
                 let jx = shift_cross_term(&mut self.arena, &r.c, &sc.c);

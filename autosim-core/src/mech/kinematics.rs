@@ -91,7 +91,11 @@ impl System {
         let r = Fv::new(body.frame, point.coordinates);
         let wxr = body.w.cross(&mut self.arena, &r);
         let mut v = body.v0.add(&mut self.arena, &wxr);
-        if point.coordinates.iter().any(|c| !self.arena.is_constant(*c)) {
+        if point
+            .coordinates
+            .iter()
+            .any(|c| !self.arena.is_constant(*c))
+        {
             let mut rel = [self.arena.zero(); 3];
             for k in 0..3 {
                 rel[k] = self.arena.dxdt(point.coordinates[k])?;
@@ -133,7 +137,11 @@ impl System {
     }
 
     /// Coefficient-wise partial derivative of a vector.
-    pub fn partial_vector(&mut self, v: &Vector, x: crate::expr::SymId) -> Result<Vector, ModelError> {
+    pub fn partial_vector(
+        &mut self,
+        v: &Vector,
+        x: crate::expr::SymId,
+    ) -> Result<Vector, ModelError> {
         let mut memo = FxHashMap::default();
         let mut terms = Vec::new();
         for &(u, c) in v.terms() {

@@ -3,16 +3,16 @@
 
 mod body;
 mod error;
-mod framevec;
 mod frames;
+mod framevec;
 mod kane;
 mod kinematics;
 mod system;
 mod vector;
 
 pub use error::ModelError;
-pub use framevec::{Fv, Mat3};
 pub use frames::{Frame, FrameId, Frames, Uv, UvId};
+pub use framevec::{Fv, Mat3};
 pub use kane::Equations;
 pub use system::{
     Body, BodyId, BodySpec, Coordinate, Direction, DofKind, ExtraState, Force, Moment, Output,

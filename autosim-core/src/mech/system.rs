@@ -3,8 +3,8 @@
 //! added state variables and outputs.
 
 use super::error::ModelError;
-use super::framevec::{Fv, Mat3};
 use super::frames::{FrameId, Frames};
+use super::framevec::{Fv, Mat3};
 use super::vector::Vector;
 use crate::expr::{Arena, ExprId, SymId, SymbolKind, UserFnId};
 
@@ -291,9 +291,7 @@ impl System {
         let mut arena = Arena::new();
         let mut frames = Frames::new();
         // `t` is the first symbol, so the name can never be taken.
-        let time = arena
-            .add_symbol("t", SymbolKind::Time)
-            .unwrap_or(SymId(0));
+        let time = arena.add_symbol("t", SymbolKind::Time).unwrap_or(SymId(0));
         arena.set_unit(time, Some("s".to_string()));
         let zero = arena.zero();
         let n_origin = PointId(0);
@@ -529,7 +527,12 @@ impl System {
         Ok(self.push_point(name, body, coordinates))
     }
 
-    pub(crate) fn push_point(&mut self, name: &str, body: BodyId, coordinates: [ExprId; 3]) -> PointId {
+    pub(crate) fn push_point(
+        &mut self,
+        name: &str,
+        body: BodyId,
+        coordinates: [ExprId; 3],
+    ) -> PointId {
         self.points.push(Point {
             name: name.to_string(),
             description: None,
@@ -554,7 +557,8 @@ impl System {
         reaction: Option<PointId>,
         vector: Vector,
     ) -> Result<(), ModelError> {
-        if self.forces.iter().any(|f| f.name == name) || self.moments.iter().any(|m| m.name == name) {
+        if self.forces.iter().any(|f| f.name == name) || self.moments.iter().any(|m| m.name == name)
+        {
             return Err(ModelError::DuplicateName(name.to_string()));
         }
         for p in std::iter::once(point).chain(reaction) {
@@ -579,7 +583,8 @@ impl System {
         reaction: Option<BodyId>,
         vector: Vector,
     ) -> Result<(), ModelError> {
-        if self.forces.iter().any(|f| f.name == name) || self.moments.iter().any(|m| m.name == name) {
+        if self.forces.iter().any(|f| f.name == name) || self.moments.iter().any(|m| m.name == name)
+        {
             return Err(ModelError::DuplicateName(name.to_string()));
         }
         for b in std::iter::once(body).chain(reaction) {

@@ -29,7 +29,9 @@ impl Vector {
         if arena.is_zero(c) {
             Vector::zero()
         } else {
-            Vector { terms: vec![(u, c)] }
+            Vector {
+                terms: vec![(u, c)],
+            }
         }
     }
 
@@ -85,7 +87,11 @@ impl Vector {
     /// `-self`.
     pub fn neg(&self, arena: &mut Arena) -> Vector {
         Vector {
-            terms: self.terms.iter().map(|(u, c)| (*u, arena.neg(*c))).collect(),
+            terms: self
+                .terms
+                .iter()
+                .map(|(u, c)| (*u, arena.neg(*c)))
+                .collect(),
         }
     }
 
@@ -105,7 +111,11 @@ impl Vector {
     }
 
     /// Applies `f` to every coefficient (dropping zeros).
-    pub fn map(&self, arena: &mut Arena, mut f: impl FnMut(&mut Arena, ExprId) -> ExprId) -> Vector {
+    pub fn map(
+        &self,
+        arena: &mut Arena,
+        mut f: impl FnMut(&mut Arena, ExprId) -> ExprId,
+    ) -> Vector {
         let mut terms = Vec::with_capacity(self.terms.len());
         for (u, c) in &self.terms {
             let k = f(arena, *c);
@@ -168,9 +178,12 @@ impl Dyadic {
         for &(u, cu) in a.terms() {
             for &(v, cv) in b.terms() {
                 let c = arena.mul(cu, cv);
-                d = d.add(arena, &Dyadic {
-                    terms: vec![((u, v), c)],
-                });
+                d = d.add(
+                    arena,
+                    &Dyadic {
+                        terms: vec![((u, v), c)],
+                    },
+                );
             }
         }
         d

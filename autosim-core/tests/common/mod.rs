@@ -42,8 +42,16 @@ pub fn floats(v: &Value) -> Vec<f64> {
 /// chain-planar-n or chain-spatial-n of reference-models.md, with the
 /// parameter values of the reference file.
 pub fn chain(n: usize, spatial: bool, params: &Value) -> System {
-    let mut sys = System::new(if spatial { "ChainSpatial" } else { "ChainPlanar" });
-    let p = |name: &str| params[name].as_f64().unwrap_or_else(|| panic!("parameter {name}"));
+    let mut sys = System::new(if spatial {
+        "ChainSpatial"
+    } else {
+        "ChainPlanar"
+    });
+    let p = |name: &str| {
+        params[name]
+            .as_f64()
+            .unwrap_or_else(|| panic!("parameter {name}"))
+    };
     let par = |sys: &mut System, name: &str| -> ExprId {
         let s = sys.add_parameter(name, p(name), None).unwrap();
         sys.arena.sym(s)
@@ -51,7 +59,11 @@ pub fn chain(n: usize, spatial: bool, params: &Value) -> System {
     let k = par(&mut sys, "k");
     let c = par(&mut sys, "c");
     let g = par(&mut sys, "g");
-    let pp = if spatial { Some(par(&mut sys, "P")) } else { None };
+    let pp = if spatial {
+        Some(par(&mut sys, "P"))
+    } else {
+        None
+    };
     let zero = sys.arena.zero();
     let mut lengths = Vec::new();
     for i in 1..=n {
@@ -60,7 +72,11 @@ pub fn chain(n: usize, spatial: bool, params: &Value) -> System {
         let ixx = par(&mut sys, &format!("Ixx{i}"));
         let iyy = par(&mut sys, &format!("Iyy{i}"));
         let izz = par(&mut sys, &format!("Izz{i}"));
-        let parent = if i == 1 { "N".to_string() } else { format!("B{}", i - 1) };
+        let parent = if i == 1 {
+            "N".to_string()
+        } else {
+            format!("B{}", i - 1)
+        };
         let mut spec = BodySpec::new(&format!("B{i}"), &parent);
         if i > 1 {
             let prev: ExprId = lengths[i - 2];
@@ -87,8 +103,13 @@ pub fn chain(n: usize, spatial: bool, params: &Value) -> System {
         let parent_id = sys.body_named(&parent).unwrap();
         let axis_v = sys.unit_vector(parent_id, axis as usize).unwrap();
         let vecm = axis_v.scale(&mut sys.arena, mag);
-        let reaction = if i == 1 { Some(parent_id) } else { Some(parent_id) };
-        sys.add_moment(&format!("spring{i}"), b, reaction, vecm).unwrap();
+        let reaction = if i == 1 {
+            Some(parent_id)
+        } else {
+            Some(parent_id)
+        };
+        sys.add_moment(&format!("spring{i}"), b, reaction, vecm)
+            .unwrap();
     }
     let n3 = sys.unit_vector(autosim_core::mech::BodyId::N, 3).unwrap();
     let mg = sys.arena.neg(g);
@@ -107,7 +128,8 @@ pub fn satellite(params: &Value, small: bool) -> System {
         "L7", "L8", "LTT1", "LTT2", "LTT3", "MB", "MC", "MD", "MF",
     ];
     for n in names {
-        sys.add_parameter(n, params[n].as_f64().unwrap(), None).unwrap();
+        sys.add_parameter(n, params[n].as_f64().unwrap(), None)
+            .unwrap();
     }
     let e = |sys: &mut System, text: &str| -> ExprId { sys.arena.parse_text(text).unwrap() };
     let zero = sys.arena.zero();
@@ -143,11 +165,23 @@ pub fn satellite(params: &Value, small: bool) -> System {
         f.small = vec![true];
     }
     sys.add_bodies(vec![b, c, d, be, f]).unwrap();
-    for (n, u) in [("clkcmd", "rad"), ("camcmd", "rad"), ("thr1", ""), ("thr2", ""), ("thr3", "")] {
+    for (n, u) in [
+        ("clkcmd", "rad"),
+        ("camcmd", "rad"),
+        ("thr1", ""),
+        ("thr2", ""),
+        ("thr3", ""),
+    ] {
         sys.add_input(n, 0.0, Some(u)).unwrap();
     }
     let body = |sys: &System, n: &str| sys.body_named(n).unwrap();
-    let moment = |sys: &mut System, name: &str, on: &str, reaction: Option<&str>, frame: &str, axis: usize, mag: &str| {
+    let moment = |sys: &mut System,
+                  name: &str,
+                  on: &str,
+                  reaction: Option<&str>,
+                  frame: &str,
+                  axis: usize,
+                  mag: &str| {
         let m = sys.arena.parse_text(mag).unwrap();
         let fb = body(sys, frame);
         let d = sys.unit_vector(fb, axis).unwrap().scale(&mut sys.arena, m);
@@ -156,9 +190,33 @@ pub fn satellite(params: &Value, small: bool) -> System {
         sys.add_moment(name, on, r, d).unwrap();
     };
     moment(&mut sys, "boom1", "F", Some("B"), "E", 3, "-KB*q9 - DB*u9");
-    moment(&mut sys, "boom2", "F", Some("B"), "F", 1, "-KB*q10 - DB*u10");
-    moment(&mut sys, "clock", "C", Some("B"), "C", 3, "KC*(clkcmd - q7) - DC*u7");
-    moment(&mut sys, "camera", "D", Some("C"), "D", 1, "KC*(camcmd - q8) - DC*u8");
+    moment(
+        &mut sys,
+        "boom2",
+        "F",
+        Some("B"),
+        "F",
+        1,
+        "-KB*q10 - DB*u10",
+    );
+    moment(
+        &mut sys,
+        "clock",
+        "C",
+        Some("B"),
+        "C",
+        3,
+        "KC*(clkcmd - q7) - DC*u7",
+    );
+    moment(
+        &mut sys,
+        "camera",
+        "D",
+        Some("C"),
+        "D",
+        1,
+        "KC*(camcmd - q8) - DC*u8",
+    );
     moment(&mut sys, "tt1", "B", None, "B", 1, "LTT1*thr1");
     moment(&mut sys, "tt2", "B", None, "B", 2, "LTT2*thr2");
     moment(&mut sys, "tt3", "B", None, "B", 3, "LTT3*thr3");
@@ -169,10 +227,10 @@ pub fn satellite(params: &Value, small: bool) -> System {
 pub fn bind(sys: &System, eqs: &Equations, sample: &Value, params: &Value) -> Bindings {
     let mut b = Bindings::with_defaults(&sys.arena);
     for (id, s) in sys.arena.symbols() {
-        if let Some(x) = params.get(&s.name).and_then(|x| x.as_f64()) {
-            if s.is_constant() {
-                b.set(id, x);
-            }
+        if let Some(x) = params.get(&s.name).and_then(|x| x.as_f64())
+            && s.is_constant()
+        {
+            b.set(id, x);
         }
     }
     let q = floats(&sample["q"]);
@@ -209,9 +267,11 @@ pub fn derivatives(sys: &System, eqs: &Equations, b: &Bindings) -> (Vec<f64>, Ve
     let dq = vals[..n].to_vec();
     let m = DMatrix::from_row_slice(n, n, &vals[n..n + n * n]);
     let f = DVector::from_row_slice(&vals[n + n * n..]);
-    let du = m.clone().cholesky().map(|c| c.solve(&f)).unwrap_or_else(|| {
-        m.lu().solve(&f).expect("solvable mass matrix")
-    });
+    let du = m
+        .clone()
+        .cholesky()
+        .map(|c| c.solve(&f))
+        .unwrap_or_else(|| m.lu().solve(&f).expect("solvable mass matrix"));
     (dq, du.iter().copied().collect())
 }
 

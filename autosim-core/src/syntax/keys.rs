@@ -1,0 +1,142 @@
+//! The vocabulary of `key: value` blocks: one enum per block kind, each
+//! with the table of its spellings (the parser reports unknown keys against
+//! it, with a "did you mean").
+
+/// A key allowed in one kind of `{ key: value }` block.
+pub trait OptionKey: Copy + Eq + std::fmt::Debug + 'static {
+    /// What the keys are called in messages (`body option`).
+    const WHAT: &'static str;
+    /// Every key with its spelling, in documentation order.
+    const ALL: &'static [(&'static str, Self)];
+
+    /// The key as written in a model.
+    fn as_str(self) -> &'static str {
+        Self::ALL
+            .iter()
+            .find(|(_, key)| *key == self)
+            .map_or("?", |(text, _)| text)
+    }
+
+    /// The key spelled `text`, if any.
+    fn from_str(text: &str) -> Option<Self> {
+        Self::ALL
+            .iter()
+            .find(|(spelling, _)| *spelling == text)
+            .map(|(_, key)| *key)
+    }
+}
+
+macro_rules! option_keys {
+    ($(#[$meta:meta])* $name:ident, $what:literal { $($(#[$vmeta:meta])* $variant:ident = $text:literal,)* }) => {
+        $(#[$meta])*
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub enum $name {
+            $($(#[$vmeta])* $variant,)*
+        }
+
+        impl OptionKey for $name {
+            const WHAT: &'static str = $what;
+            const ALL: &'static [(&'static str, Self)] = &[$(($text, $name::$variant),)*];
+        }
+    };
+}
+
+option_keys! {
+    /// Keys of a `body` block.
+    BodyKey, "body option" {
+        /// `parent: B` — the body this one is attached to (default `N`).
+        Parent = "parent",
+        /// `joint: [x, y, z]` — the joint point in the parent.
+        Joint = "joint",
+        /// `translate: [1, 2, 3]` — translation directions (axis index or vector).
+        Translate = "translate",
+        /// `rotate: [1, 2, 3]` — body-fixed rotation axes.
+        Rotate = "rotate",
+        /// `small: [translations, rotations]` — small-motion assumptions.
+        Small = "small",
+        /// `mass: m`
+        Mass = "mass",
+        /// `inertia: diag(a, b, c)` or a matrix.
+        Inertia = "inertia",
+        /// `cm: [x, y, z]` — mass center in body coordinates.
+        Cm = "cm",
+        /// `q: [x, y]` — names of the generalized coordinates.
+        Q = "q",
+        /// `u: [vx, vy]` — names of the generalized speeds.
+        U = "u",
+        /// `initial: [...]` — initial coordinates.
+        Initial = "initial",
+        /// `initial_speeds: [...]` — initial speeds.
+        InitialSpeeds = "initial_speeds",
+    }
+}
+
+option_keys! {
+    /// Keys of a `force` block.
+    ForceKey, "force option" {
+        /// `on: P` — the point the force acts on.
+        On = "on",
+        /// `reaction: Q` — the point taking the equal and opposite force.
+        Reaction = "reaction",
+        /// `vector: F1*b1 + F2*b3` — the whole force vector.
+        Vector = "vector",
+        /// `along: dir(r)` — direction, with `magnitude`.
+        Along = "along",
+        /// `magnitude: -k*x` — scalar along `along`.
+        Magnitude = "magnitude",
+    }
+}
+
+option_keys! {
+    /// Keys of a `moment` block.
+    MomentKey, "moment option" {
+        /// `on: F` — the body the moment acts on.
+        On = "on",
+        /// `reaction: B` — the body taking the opposite moment.
+        Reaction = "reaction",
+        /// `vector: ...` — the whole moment vector.
+        Vector = "vector",
+        /// `about: e3` — axis, with `magnitude`.
+        About = "about",
+        /// `magnitude: ...` — scalar about `about`.
+        Magnitude = "magnitude",
+    }
+}
+
+option_keys! {
+    /// Keys of a `state` block.
+    StateKey, "state option" {
+        /// `initial: 0` — initial value.
+        Initial = "initial",
+        /// `derivative: (F1 - lag)/tau` — the time derivative.
+        Derivative = "derivative",
+    }
+}
+
+option_keys! {
+    /// Keys of the `settings` block.
+    SettingKey, "setting" {
+        /// `threshold: 2` — order-of-smallness truncation threshold.
+        Threshold = "threshold",
+        /// `float: f64` or `float: f32`.
+        Float = "float",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spellings_round_trip() {
+        for &(text, key) in BodyKey::ALL {
+            assert_eq!(key.as_str(), text);
+            assert_eq!(BodyKey::from_str(text), Some(key));
+        }
+        assert_eq!(BodyKey::ALL.len(), 12);
+        assert_eq!(ForceKey::from_str("along"), Some(ForceKey::Along));
+        assert_eq!(MomentKey::from_str("along"), None);
+        assert_eq!(SettingKey::Float.as_str(), "float");
+        assert_eq!(StateKey::ALL.len(), 2);
+    }
+}

@@ -103,11 +103,7 @@ pub fn chain(n: usize, spatial: bool, params: &Value) -> System {
         let parent_id = sys.body_named(&parent).unwrap();
         let axis_v = sys.unit_vector(parent_id, axis as usize).unwrap();
         let vecm = axis_v.scale(&mut sys.arena, mag);
-        let reaction = if i == 1 {
-            Some(parent_id)
-        } else {
-            Some(parent_id)
-        };
+        let reaction = Some(parent_id);
         sys.add_moment(&format!("spring{i}"), b, reaction, vecm)
             .unwrap();
     }

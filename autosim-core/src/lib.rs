@@ -13,4 +13,7 @@
 pub mod diag;
 pub mod expr;
 pub mod mech;
+pub mod model;
+pub mod opt;
+pub mod pipeline;
 pub mod syntax;

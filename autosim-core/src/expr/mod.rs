@@ -4,6 +4,7 @@
 mod arena;
 mod build;
 mod calculus;
+mod count;
 mod eval;
 mod funcs;
 mod number;
@@ -13,6 +14,7 @@ mod text;
 pub use arena::{
     Arena, ExprError, ExprId, Func, Meta, Node, SymId, Symbol, SymbolKind, UserFn, UserFnId,
 };
+pub use count::OpCount;
 pub use eval::{Bindings, NoUserFunctions, UserFunctions};
 pub use number::Number;
 

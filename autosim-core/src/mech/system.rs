@@ -450,6 +450,31 @@ impl System {
         Ok(syms)
     }
 
+    /// Sets the argument expressions of subroutine `index` (declaration order).
+    pub fn set_subroutine_args(
+        &mut self,
+        index: usize,
+        args: Vec<ExprId>,
+    ) -> Result<(), ModelError> {
+        let sub = self
+            .subroutines
+            .get_mut(index)
+            .ok_or_else(|| ModelError::Invalid("unknown subroutine".to_string()))?;
+        sub.args = args;
+        Ok(())
+    }
+
+    /// Sets the initial value of an added state variable.
+    pub fn set_state_initial(&mut self, s: SymId, initial: ExprId) -> Result<(), ModelError> {
+        let st = self
+            .states
+            .iter_mut()
+            .find(|x| x.sym == s)
+            .ok_or_else(|| ModelError::Invalid("not an added state variable".to_string()))?;
+        st.initial = initial;
+        Ok(())
+    }
+
     /// Uniform gravity: the acceleration vector of free fall (e.g. `-g n3`).
     pub fn set_gravity(&mut self, g: Vector) {
         self.gravity = if g.is_zero() { None } else { Some(g) };

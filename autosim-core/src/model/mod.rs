@@ -1,0 +1,516 @@
+//! The resolver: gives the AST its meaning by building the multibody
+//! [`System`] through the `mech` API. Every mistake becomes a diagnostic
+//! with the span of the offending text; all are reported together.
+//!
+//! Names may be used before they are declared: bodies are ordered by parent,
+//! and `let`s and points are evaluated on first use.
+
+mod bodies;
+mod exprs;
+mod scope;
+mod value;
+
+pub use value::Value;
+
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::expr::Number;
+use crate::mech::System;
+use crate::syntax::ast::{self, ForceKey, Item, MomentKey, SettingKey, StateKey};
+use scope::{Lazy, Named, Resolver};
+
+/// The float type generated code computes in.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum FloatType {
+    /// `f64` (default).
+    #[default]
+    F64,
+    /// `f32`.
+    F32,
+}
+
+/// Documentation of one declared item, for generated docs.
+#[derive(Clone, Debug, Default)]
+pub struct ItemDoc {
+    /// The name.
+    pub name: String,
+    /// Doc comments.
+    pub docs: Vec<String>,
+    /// Unit, if any.
+    pub unit: Option<String>,
+}
+
+/// A user function (`extern fn`).
+#[derive(Clone, Debug)]
+pub struct ExternFnInfo {
+    /// Name.
+    pub name: String,
+    /// Formal argument names.
+    pub params: Vec<String>,
+    /// Doc comments.
+    pub docs: Vec<String>,
+}
+
+/// The resolved model: the system plus what code generation and
+/// documentation need to know about the source.
+#[derive(Clone, Debug)]
+pub struct ResolvedModel {
+    /// The multibody system.
+    pub system: System,
+    /// Float type of generated code.
+    pub float: FloatType,
+    /// Doc comments of the model.
+    pub docs: Vec<String>,
+    /// Parameters as declared (docs and units).
+    pub parameter_docs: Vec<ItemDoc>,
+    /// Inputs as declared.
+    pub input_docs: Vec<ItemDoc>,
+    /// Outputs as declared.
+    pub output_docs: Vec<ItemDoc>,
+    /// User functions.
+    pub extern_fns: Vec<ExternFnInfo>,
+    /// Doc comments of user subroutines, in declaration order.
+    pub subroutine_docs: Vec<Vec<String>>,
+}
+
+/// Resolves a parsed model.
+pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
+    let mut r = Resolver::new(&model.name.text);
+    let mut out = ResolvedModel {
+        system: System::default(),
+        float: FloatType::F64,
+        docs: model.docs.clone(),
+        parameter_docs: Vec::new(),
+        input_docs: Vec::new(),
+        output_docs: Vec::new(),
+        extern_fns: Vec::new(),
+        subroutine_docs: Vec::new(),
+    };
+
+    // Settings first: the threshold affects every expression built later.
+    for item in &model.items {
+        if let Item::Settings(s) = item {
+            for opt in &s.options.entries {
+                match opt.key {
+                    SettingKey::Threshold => {
+                        if let Some(k) = r.integer(&opt.value, "the threshold") {
+                            if (1..=20).contains(&k) {
+                                r.sys.set_threshold(k as i16);
+                            } else {
+                                r.error(opt.value.span(), "the threshold must be between 1 and 20");
+                            }
+                        }
+                    }
+                    SettingKey::Float => match &opt.value {
+                        ast::Expr::Name(n) if n.text == "f64" => out.float = FloatType::F64,
+                        ast::Expr::Name(n) if n.text == "f32" => out.float = FloatType::F32,
+                        other => r.push(Diagnostic::error(
+                            other.span(),
+                            "the float type must be `f64` or `f32`",
+                        )),
+                    },
+                }
+            }
+        }
+    }
+
+    // Declarations that do not depend on bodies.
+    for item in &model.items {
+        match item {
+            Item::Parameters(ps) => {
+                for p in &ps.params {
+                    let value = value_f64(&p.value);
+                    if !r.declare(&p.name, Named::Load) {
+                        continue;
+                    }
+                    let unit = p.unit.as_ref().map(|u| u.text.as_str());
+                    match r.sys.add_parameter(&p.name.text, value, unit) {
+                        Ok(s) => {
+                            r.names
+                                .insert(p.name.text.clone(), (Named::Symbol(s), p.name.span));
+                        }
+                        Err(e) => r.error(p.name.span, e.to_string()),
+                    }
+                    let docs = if p.docs.is_empty() {
+                        ps.docs.clone()
+                    } else {
+                        p.docs.clone()
+                    };
+                    out.parameter_docs.push(ItemDoc {
+                        name: p.name.text.clone(),
+                        docs,
+                        unit: p.unit.as_ref().map(|u| u.text.clone()),
+                    });
+                }
+            }
+            Item::Inputs(is) => {
+                for i in &is.inputs {
+                    if !r.declare(&i.name, Named::Load) {
+                        continue;
+                    }
+                    let default = i.default.as_ref().map_or(0.0, value_f64);
+                    let unit = i.unit.as_ref().map(|u| u.text.as_str());
+                    match r.sys.add_input(&i.name.text, default, unit) {
+                        Ok(s) => {
+                            r.names
+                                .insert(i.name.text.clone(), (Named::Symbol(s), i.name.span));
+                        }
+                        Err(e) => r.error(i.name.span, e.to_string()),
+                    }
+                    out.input_docs.push(ItemDoc {
+                        name: i.name.text.clone(),
+                        docs: is.docs.clone(),
+                        unit: i.unit.as_ref().map(|u| u.text.clone()),
+                    });
+                }
+            }
+            Item::ExternFn(f) => {
+                if crate::expr::Func::builtin(&f.name.text).is_some()
+                    || exprs::OPERATIONS.iter().any(|(n, _, _)| *n == f.name.text)
+                {
+                    r.push(
+                        Diagnostic::error(
+                            f.name.span,
+                            format!("`{}` is a built-in function", f.name.text),
+                        )
+                        .help("give the user function another name"),
+                    );
+                    continue;
+                }
+                if !r.declare(&f.name, Named::Load) {
+                    continue;
+                }
+                match r.sys.add_user_function(&f.name.text, f.params.len()) {
+                    Ok(id) => {
+                        r.names
+                            .insert(f.name.text.clone(), (Named::Function(id), f.name.span));
+                    }
+                    Err(e) => r.error(f.name.span, e.to_string()),
+                }
+                out.extern_fns.push(ExternFnInfo {
+                    name: f.name.text.clone(),
+                    params: f.params.iter().map(|p| p.text.clone()).collect(),
+                    docs: f.docs.clone(),
+                });
+            }
+            _ => {}
+        }
+    }
+
+    // Bodies, parents first.
+    let bodies: Vec<&ast::Body> = model
+        .items
+        .iter()
+        .filter_map(|i| if let Item::Body(b) = i { Some(b) } else { None })
+        .collect();
+    r.add_bodies(&bodies);
+
+    // Names whose values are computed on demand, and state and subroutine
+    // symbols (so any expression may use them).
+    for item in &model.items {
+        match item {
+            Item::Let(l) => {
+                let idx = r.lets.len();
+                if r.declare(&l.name, Named::Let(idx)) {
+                    r.lets.push((l, Lazy::Pending));
+                }
+            }
+            Item::Point(p) => {
+                let idx = r.points.len();
+                if r.declare(&p.name, Named::Point(idx)) {
+                    r.points.push((p, Lazy::Pending));
+                }
+            }
+            Item::State(s) => {
+                if !r.declare(&s.name, Named::Load) {
+                    continue;
+                }
+                let zero = r.sys.arena.zero();
+                let unit = s.unit.as_ref().map(|u| u.text.as_str());
+                match r.sys.add_state(&s.name.text, unit, zero) {
+                    Ok(sym) => {
+                        r.names
+                            .insert(s.name.text.clone(), (Named::Symbol(sym), s.name.span));
+                    }
+                    Err(e) => r.error(s.name.span, e.to_string()),
+                }
+            }
+            Item::ExternSub(sub) => {
+                let mut ok = r.declare(&sub.name, Named::Load);
+                for o in &sub.outputs {
+                    ok &= r.declare(&o.name, Named::Load);
+                }
+                if !ok {
+                    continue;
+                }
+                let outs: Vec<(&str, Option<&str>)> = sub
+                    .outputs
+                    .iter()
+                    .map(|o| {
+                        (
+                            o.name.text.as_str(),
+                            o.unit.as_ref().map(|u| u.text.as_str()),
+                        )
+                    })
+                    .collect();
+                match r.sys.add_subroutine(&sub.name.text, Vec::new(), &outs) {
+                    Ok(syms) => {
+                        for (o, s) in sub.outputs.iter().zip(syms) {
+                            r.names
+                                .insert(o.name.text.clone(), (Named::Symbol(s), o.name.span));
+                        }
+                    }
+                    Err(e) => r.error(sub.name.span, e.to_string()),
+                }
+                out.subroutine_docs.push(sub.docs.clone());
+            }
+            _ => {}
+        }
+    }
+
+    // Everything that uses expressions.
+    let mut sub_index = 0;
+    let mut gravity_seen = false;
+    for item in &model.items {
+        match item {
+            Item::Point(p) => {
+                if let Some((Named::Point(i), _)) = r.names.get(&p.name.text).cloned() {
+                    r.point_value(i, p.name.span);
+                }
+            }
+            Item::Let(l) => {
+                if let Some((Named::Let(i), _)) = r.names.get(&l.name.text).cloned() {
+                    r.let_value(i, l.name.span);
+                }
+            }
+            Item::ExternSub(sub) => {
+                let mut args = Vec::new();
+                let mut ok = true;
+                for a in &sub.args {
+                    match r.scalar(a, "an argument of a subroutine") {
+                        Some(x) => args.push(x),
+                        None => ok = false,
+                    }
+                }
+                if ok && sub_index < r.sys.subroutines().len() {
+                    let _ = r.sys.set_subroutine_args(sub_index, args);
+                }
+                sub_index += 1;
+            }
+            Item::State(s) => {
+                let Some((Named::Symbol(sym), _)) = r.names.get(&s.name.text).cloned() else {
+                    continue;
+                };
+                if let Some(opt) = s.options.get(StateKey::Initial) {
+                    if let Some(x) = r.constant(&opt.value, "the initial value of a state") {
+                        let _ = r.sys.set_state_initial(sym, x);
+                    }
+                }
+                match s.options.get(StateKey::Derivative) {
+                    Some(opt) => {
+                        if let Some(d) = r.scalar(&opt.value, "the derivative of a state") {
+                            let _ = r.sys.set_state_derivative(sym, d);
+                        }
+                    }
+                    None => r.push(
+                        Diagnostic::error(
+                            s.name.span,
+                            format!("the state `{}` has no derivative", s.name.text),
+                        )
+                        .help("add `derivative: <expression>` to its block"),
+                    ),
+                }
+            }
+            Item::Gravity(g) => {
+                if gravity_seen {
+                    r.error(g.span, "gravity is set twice");
+                }
+                gravity_seen = true;
+                if let Some(v) = r.vector(&g.value, "gravity") {
+                    r.sys.set_gravity(v);
+                }
+            }
+            Item::Force(f) => force(&mut r, f),
+            Item::Moment(m) => moment(&mut r, m),
+            Item::Output(o) => {
+                if !r.declare(&o.name, Named::Output) {
+                    continue;
+                }
+                if let Some(x) = r.scalar(&o.value, "an output") {
+                    let unit = o.unit.as_ref().map(|u| u.text.as_str());
+                    if let Err(e) = r.sys.add_output(&o.name.text, unit, x) {
+                        r.error(o.name.span, e.to_string());
+                    }
+                    if !o.docs.is_empty() {
+                        r.sys.describe_last_output(&o.docs.join(" "));
+                    }
+                }
+                out.output_docs.push(ItemDoc {
+                    name: o.name.text.clone(),
+                    docs: o.docs.clone(),
+                    unit: o.unit.as_ref().map(|u| u.text.clone()),
+                });
+            }
+            _ => {}
+        }
+    }
+
+    if !r.diags.is_empty() {
+        return Err(r.diags);
+    }
+    out.system = r.sys;
+    Ok(out)
+}
+
+fn value_f64(v: &ast::Value) -> f64 {
+    let x = Number::parse_decimal(&v.number.text)
+        .map(|n| n.to_f64())
+        .or_else(|| v.number.text.parse::<f64>().ok())
+        .unwrap_or(0.0);
+    if v.negative { -x } else { x }
+}
+
+fn force(r: &mut Resolver<'_>, f: &ast::Force) {
+    if !r.declare(&f.name, Named::Load) {
+        return;
+    }
+    let o = &f.options;
+    let Some(on) = o.get(ForceKey::On) else {
+        r.push(
+            Diagnostic::error(
+                f.name.span,
+                format!("the force `{}` has no point of application", f.name.text),
+            )
+            .help("add `on: P` (a point, `B.cm`, or a body for its origin)"),
+        );
+        return;
+    };
+    let point = r.point(&on.value, "`on`");
+    let reaction = match o.get(ForceKey::Reaction) {
+        Some(x) => match r.point(&x.value, "`reaction`") {
+            Some(p) => Some(p),
+            None => return,
+        },
+        None => None,
+    };
+    let vector = load_vector(
+        r,
+        f.name.span,
+        &f.name.text,
+        "force",
+        o.get(ForceKey::Vector).map(|x| &x.value),
+        o.get(ForceKey::Along).map(|x| &x.value),
+        o.get(ForceKey::Magnitude).map(|x| &x.value),
+        "along",
+    );
+    if let (Some(p), Some(v)) = (point, vector) {
+        if let Err(e) = r.sys.add_force(&f.name.text, p, reaction, v) {
+            r.error(f.name.span, e.to_string());
+        }
+    }
+}
+
+fn moment(r: &mut Resolver<'_>, m: &ast::Moment) {
+    if !r.declare(&m.name, Named::Load) {
+        return;
+    }
+    let o = &m.options;
+    let Some(on) = o.get(MomentKey::On) else {
+        r.push(
+            Diagnostic::error(
+                m.name.span,
+                format!(
+                    "the moment `{}` does not say which body it acts on",
+                    m.name.text
+                ),
+            )
+            .help("add `on: B`"),
+        );
+        return;
+    };
+    let body = r.body(&on.value, "`on`");
+    let reaction = match o.get(MomentKey::Reaction) {
+        Some(x) => match r.body(&x.value, "`reaction`") {
+            Some(b) => Some(b),
+            None => return,
+        },
+        None => None,
+    };
+    let vector = load_vector(
+        r,
+        m.name.span,
+        &m.name.text,
+        "moment",
+        o.get(MomentKey::Vector).map(|x| &x.value),
+        o.get(MomentKey::About).map(|x| &x.value),
+        o.get(MomentKey::Magnitude).map(|x| &x.value),
+        "about",
+    );
+    if let (Some(b), Some(v)) = (body, vector) {
+        if let Err(e) = r.sys.add_moment(&m.name.text, b, reaction, v) {
+            r.error(m.name.span, e.to_string());
+        }
+    }
+}
+
+/// `vector: v` or `along/about: d, magnitude: s`.
+#[allow(clippy::too_many_arguments)]
+fn load_vector(
+    r: &mut Resolver<'_>,
+    span: crate::diag::Span,
+    name: &str,
+    what: &str,
+    vector: Option<&ast::Expr>,
+    direction: Option<&ast::Expr>,
+    magnitude: Option<&ast::Expr>,
+    dir_key: &str,
+) -> Option<crate::mech::Vector> {
+    match (vector, direction, magnitude) {
+        (Some(v), None, None) => r.vector(v, &format!("the {what} vector")),
+        (None, Some(d), Some(m)) => {
+            let d = r.vector(d, &format!("`{dir_key}`"));
+            let m = r.scalar(m, "`magnitude`");
+            let (d, m) = (d?, m?);
+            Some(d.scale(&mut r.sys.arena, m))
+        }
+        (Some(v), _, _) => {
+            r.push(
+                Diagnostic::error(
+                    v.span(),
+                    format!("the {what} `{name}` has both `vector` and `{dir_key}`/`magnitude`"),
+                )
+                .help(format!(
+                    "give either `vector: ...` or `{dir_key}: ...` with `magnitude: ...`"
+                )),
+            );
+            None
+        }
+        (None, Some(d), None) => {
+            r.push(
+                Diagnostic::error(
+                    d.span(),
+                    format!("the {what} `{name}` has `{dir_key}` but no `magnitude`"),
+                )
+                .help("add `magnitude: <scalar>`"),
+            );
+            None
+        }
+        (None, None, Some(m)) => {
+            r.push(
+                Diagnostic::error(
+                    m.span(),
+                    format!("the {what} `{name}` has `magnitude` but no `{dir_key}`"),
+                )
+                .help(format!("add `{dir_key}: <unit vector>`")),
+            );
+            None
+        }
+        (None, None, None) => {
+            r.push(
+                Diagnostic::error(span, format!("the {what} `{name}` has no value")).help(format!(
+                    "add `vector: ...`, or `{dir_key}: ...` with `magnitude: ...`"
+                )),
+            );
+            None
+        }
+    }
+}

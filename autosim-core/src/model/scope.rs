@@ -1,0 +1,187 @@
+//! The resolver's state: the system under construction, the names in scope,
+//! lazily evaluated `let`s and points, and the diagnostics collected so far.
+
+use super::value::Value;
+use crate::diag::{Diagnostic, Diagnostics, Span, did_you_mean};
+use crate::expr::{SymId, UserFnId};
+use crate::mech::{BodyId, PointId, System};
+use crate::syntax::ast;
+use rustc_hash::FxHashMap;
+
+/// What a name in a model refers to.
+#[derive(Clone, Debug)]
+pub(crate) enum Named {
+    /// A scalar symbol (parameter, input, coordinate, speed, state, time,
+    /// subroutine output).
+    Symbol(SymId),
+    /// A body (after bodies are added) or its AST index (before).
+    Body(Option<BodyId>),
+    /// A point, by index into the lazily resolved points.
+    Point(usize),
+    /// A `let`, by index.
+    Let(usize),
+    /// A user function.
+    Function(UserFnId),
+    /// An output (not referable in expressions).
+    Output,
+    /// A force or moment (not referable in expressions).
+    Load,
+}
+
+/// Lazy evaluation state of a `let` or a point.
+#[derive(Clone, Debug)]
+pub(crate) enum Lazy<T> {
+    Pending,
+    InProgress,
+    Done(Option<T>),
+}
+
+/// The resolver.
+pub(crate) struct Resolver<'a> {
+    pub sys: System,
+    pub diags: Diagnostics,
+    pub names: FxHashMap<String, (Named, Span)>,
+    pub lets: Vec<(&'a ast::Let, Lazy<Value>)>,
+    pub points: Vec<(&'a ast::Point, Lazy<PointId>)>,
+    /// Unit-vector shorthands like `b1` (lower-case body name and axis).
+    pub uv_short: FxHashMap<String, (BodyId, usize)>,
+}
+
+impl<'a> Resolver<'a> {
+    pub fn new(name: &str) -> Resolver<'a> {
+        let sys = System::new(name);
+        let mut names = FxHashMap::default();
+        names.insert(
+            "t".to_string(),
+            (Named::Symbol(sys.time()), Span::unknown()),
+        );
+        names.insert(
+            "N".to_string(),
+            (Named::Body(Some(BodyId::N)), Span::unknown()),
+        );
+        Resolver {
+            sys,
+            diags: Diagnostics::new(),
+            names,
+            lets: Vec::new(),
+            points: Vec::new(),
+            uv_short: FxHashMap::default(),
+        }
+    }
+
+    pub fn error(&mut self, span: Span, message: impl Into<String>) {
+        self.diags.push(Diagnostic::error(span, message));
+    }
+
+    pub fn push(&mut self, d: Diagnostic) {
+        self.diags.push(d);
+    }
+
+    /// Declares a name; reports a duplicate (pointing at both places).
+    pub fn declare(&mut self, name: &ast::Name, what: Named) -> bool {
+        if name.text == "t" || name.text == "N" {
+            self.push(
+                Diagnostic::error(
+                    name.span,
+                    format!(
+                        "`{}` is reserved ({})",
+                        name.text,
+                        if name.text == "t" {
+                            "time"
+                        } else {
+                            "the inertial frame"
+                        }
+                    ),
+                )
+                .help("choose another name"),
+            );
+            return false;
+        }
+        if let Some((_, first)) = self.names.get(&name.text) {
+            let first = *first;
+            let mut d = Diagnostic::error(
+                name.span,
+                format!("the name `{}` is defined more than once", name.text),
+            )
+            .help("rename one of the definitions");
+            if let Some(lc) = first.start() {
+                d = d.note(format!("first defined at line {}", lc.line));
+            }
+            self.push(d);
+            return false;
+        }
+        self.names.insert(name.text.clone(), (what, name.span));
+        true
+    }
+
+    /// All names a user could have meant (for "did you mean").
+    pub fn known_names(&self) -> Vec<String> {
+        let mut v: Vec<String> = self
+            .names
+            .iter()
+            .filter(|(_, (k, _))| !matches!(k, Named::Output | Named::Load))
+            .map(|(n, _)| n.clone())
+            .collect();
+        v.extend(self.uv_short.keys().cloned());
+        v.sort();
+        v
+    }
+
+    /// An "unknown name" diagnostic with a suggestion.
+    pub fn unknown(&mut self, name: &ast::Name, what: &str) {
+        let known = self.known_names();
+        let mut d = Diagnostic::error(name.span, format!("unknown {what} `{}`", name.text));
+        if let Some(s) = did_you_mean(&name.text, known.iter().map(String::as_str)) {
+            d = d.help(format!("did you mean `{s}`?"));
+        }
+        self.push(d);
+    }
+
+    /// The body a name refers to, reporting if it is not one.
+    pub fn body_by_name(&mut self, name: &ast::Name) -> Option<BodyId> {
+        match self.names.get(&name.text).cloned() {
+            Some((Named::Body(Some(b)), _)) => Some(b),
+            Some((Named::Body(None), _)) => None,
+            Some((other, _)) => {
+                let what = describe(&other);
+                self.push(
+                    Diagnostic::error(name.span, format!("`{}` is {what}, not a body", name.text))
+                        .help("name a body declared with `body`, or `N`"),
+                );
+                None
+            }
+            None => {
+                let bodies: Vec<String> = self
+                    .names
+                    .iter()
+                    .filter(|(_, (k, _))| matches!(k, Named::Body(_)))
+                    .map(|(n, _)| n.clone())
+                    .collect();
+                let mut d = Diagnostic::error(name.span, format!("unknown body `{}`", name.text));
+                if let Some(s) = did_you_mean(&name.text, bodies.iter().map(String::as_str)) {
+                    d = d.help(format!("did you mean `{s}`?"));
+                } else {
+                    d = d.help(format!(
+                        "declare it with `body {} {{ ... }}`, or use `N` for the inertial frame",
+                        name.text
+                    ));
+                }
+                self.push(d);
+                None
+            }
+        }
+    }
+}
+
+/// "a parameter", "a point", ... for messages.
+pub(crate) fn describe(n: &Named) -> &'static str {
+    match n {
+        Named::Symbol(_) => "a scalar",
+        Named::Body(_) => "a body",
+        Named::Point(_) => "a point",
+        Named::Let(_) => "a `let` value",
+        Named::Function(_) => "a function",
+        Named::Output => "an output",
+        Named::Load => "a force or moment",
+    }
+}

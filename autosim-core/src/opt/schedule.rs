@@ -1,0 +1,328 @@
+//! Scheduling a block of the program: which IR nodes get a name (used more
+//! than once, user calls, pivots), in what order they are computed
+//! (subroutines first, then user functions in model order, then each result
+//! with what it needs just before it), and what the block costs.
+
+use super::ir::{Ir, Leaf, Nid, Op};
+use crate::expr::Func;
+use rustc_hash::{FxHashMap, FxHashSet};
+use std::collections::BTreeSet;
+use std::fmt;
+
+/// What a block must produce.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Task {
+    /// Write `value` into output slot `slot`.
+    Store {
+        /// Output slot.
+        slot: usize,
+        /// The value.
+        value: Nid,
+    },
+    /// Stop with an error naming speed `speed` unless `pivot > 0`.
+    Check {
+        /// The pivot.
+        pivot: Nid,
+        /// Speed index (for the message).
+        speed: usize,
+    },
+}
+
+/// One statement of a scheduled block.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Stmt {
+    /// `let <name> = <expression of node>;`
+    Let(Nid),
+    /// Call user subroutine `sub` (its outputs become available).
+    CallSub(usize),
+    /// The pivot check.
+    Check {
+        /// The pivot.
+        pivot: Nid,
+        /// Speed index.
+        speed: usize,
+    },
+    /// Write an output slot.
+    Store {
+        /// Output slot.
+        slot: usize,
+        /// The value.
+        value: Nid,
+    },
+}
+
+/// Operation counts of a block (what one call costs).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Ops {
+    /// Additions and subtractions.
+    pub adds: usize,
+    /// Multiplications.
+    pub muls: usize,
+    /// Divisions.
+    pub divs: usize,
+    /// Calls of built-in functions (sin, cos, sqrt, ...).
+    pub funcs: usize,
+    /// Calls of user functions and subroutines.
+    pub user_calls: usize,
+}
+
+impl Ops {
+    /// Arithmetic operations and built-in function calls.
+    pub fn total(&self) -> usize {
+        self.adds + self.muls + self.divs + self.funcs
+    }
+}
+
+impl fmt::Display for Ops {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} adds, {} multiplies, {} divides, {} functions",
+            self.adds, self.muls, self.divs, self.funcs
+        )?;
+        if self.user_calls > 0 {
+            write!(f, ", {} user calls", self.user_calls)?;
+        }
+        Ok(())
+    }
+}
+
+/// A scheduled block.
+#[derive(Clone, Debug, Default)]
+pub struct Block {
+    /// Statements in order.
+    pub stmts: Vec<Stmt>,
+    /// Names of the nodes bound by `Stmt::Let`.
+    pub names: FxHashMap<Nid, String>,
+    /// Constant nodes read from the precomputed constants.
+    pub hoisted: BTreeSet<Nid>,
+    /// Leaves the block reads.
+    pub leaves: BTreeSet<Leaf>,
+    /// Cost of one execution.
+    pub ops: Ops,
+}
+
+/// How to schedule a block.
+pub struct Options<'a> {
+    /// Read non-trivial constants from the constants block instead of
+    /// computing them.
+    pub hoist_constants: bool,
+    /// Preferred names for some nodes.
+    pub hints: &'a FxHashMap<Nid, String>,
+    /// User-function call nodes in the order they must be called.
+    pub call_order: &'a [Nid],
+    /// Arguments of each user subroutine (declaration order).
+    pub sub_args: &'a [Vec<Nid>],
+    /// Names that generated names must avoid.
+    pub reserved: &'a FxHashSet<String>,
+}
+
+struct Sched<'a> {
+    ir: &'a Ir,
+    opts: &'a Options<'a>,
+    named: FxHashSet<Nid>,
+    emitted: FxHashSet<Nid>,
+    block: Block,
+}
+
+impl Sched<'_> {
+    /// Nodes read as values rather than computed here.
+    fn opaque(&self, n: Nid) -> bool {
+        match self.ir.op(n) {
+            Op::Num(_) | Op::Leaf(_) => true,
+            _ => self.opts.hoist_constants && self.ir.is_constant(n),
+        }
+    }
+
+    fn emit_deps(&mut self, n: Nid) {
+        for c in self.ir.children(n) {
+            self.emit_node(c);
+        }
+    }
+
+    fn emit_node(&mut self, c: Nid) {
+        if self.opaque(c) || self.emitted.contains(&c) {
+            return;
+        }
+        if self.named.contains(&c) {
+            self.emitted.insert(c);
+            self.emit_deps(c);
+            self.block.stmts.push(Stmt::Let(c));
+        } else {
+            self.emit_deps(c);
+        }
+    }
+}
+
+/// Schedules the tasks of one block.
+pub fn schedule(ir: &Ir, tasks: &[Task], opts: &Options<'_>) -> Block {
+    let mut s = Sched {
+        ir,
+        opts,
+        named: FxHashSet::default(),
+        emitted: FxHashSet::default(),
+        block: Block::default(),
+    };
+    let task_nodes: Vec<Nid> = tasks
+        .iter()
+        .map(|t| match t {
+            Task::Store { value, .. } => *value,
+            Task::Check { pivot, .. } => *pivot,
+        })
+        .collect();
+
+    // Reachable computed nodes; subroutine arguments join the roots when
+    // one of the subroutine's outputs is used.
+    let mut roots: Vec<Nid> = task_nodes.clone();
+    let mut subs_used: BTreeSet<usize> = BTreeSet::new();
+    let mut reach: FxHashSet<Nid> = FxHashSet::default();
+    let mut order: Vec<Nid> = Vec::new();
+    loop {
+        let mut stack = roots.clone();
+        while let Some(n) = stack.pop() {
+            if !reach.insert(n) {
+                continue;
+            }
+            order.push(n);
+            if let Op::Leaf(l) = ir.op(n) {
+                s.block.leaves.insert(*l);
+                if let Leaf::SubOut(sub, _) = l {
+                    subs_used.insert(*sub);
+                }
+            }
+            if s.opaque(n) {
+                if !matches!(ir.op(n), Op::Num(_) | Op::Leaf(_)) {
+                    s.block.hoisted.insert(n);
+                }
+                continue;
+            }
+            stack.extend(ir.children(n));
+        }
+        let before = roots.len();
+        for &sub in &subs_used {
+            for a in opts.sub_args.get(sub).map(Vec::as_slice).unwrap_or(&[]) {
+                if !roots.contains(a) {
+                    roots.push(*a);
+                }
+            }
+        }
+        if roots.len() == before {
+            break;
+        }
+    }
+
+    // Use counts over computed nodes.
+    let mut uses: FxHashMap<Nid, usize> = FxHashMap::default();
+    for &r in &roots {
+        *uses.entry(r).or_default() += 1;
+    }
+    for &n in &order {
+        if s.opaque(n) {
+            continue;
+        }
+        for c in ir.children(n) {
+            *uses.entry(c).or_default() += 1;
+        }
+    }
+    for &n in &order {
+        if s.opaque(n) {
+            continue;
+        }
+        let multi = uses.get(&n).copied().unwrap_or(0) >= 2;
+        let user_call = matches!(ir.op(n), Op::Call(Func::User(_), _));
+        if multi || user_call {
+            s.named.insert(n);
+        }
+        // Small integer powers are written as products: name a computed base.
+        if let Op::Powi(b, k) = ir.op(n) {
+            if *k <= 3 && !s.opaque(*b) {
+                s.named.insert(*b);
+            }
+        }
+    }
+    for t in tasks {
+        if let Task::Check { pivot, .. } = t {
+            if !s.opaque(*pivot) {
+                s.named.insert(*pivot);
+            }
+        }
+    }
+
+    // Order: subroutines, user functions, then the tasks.
+    for &sub in &subs_used {
+        for a in opts.sub_args.get(sub).map(Vec::as_slice).unwrap_or(&[]) {
+            s.emit_node(*a);
+        }
+        s.block.stmts.push(Stmt::CallSub(sub));
+    }
+    for &c in opts.call_order {
+        if reach.contains(&c) {
+            s.emit_node(c);
+        }
+    }
+    for t in tasks {
+        match *t {
+            Task::Store { slot, value } => {
+                s.emit_node(value);
+                s.block.stmts.push(Stmt::Store { slot, value });
+            }
+            Task::Check { pivot, speed } => {
+                s.emit_node(pivot);
+                s.block.stmts.push(Stmt::Check { pivot, speed });
+            }
+        }
+    }
+
+    // Names: hints where free, otherwise z1, z2, ... in order of use.
+    let mut used_names: FxHashSet<String> = opts.reserved.clone();
+    let mut counter = 0;
+    let lets: Vec<Nid> = s
+        .block
+        .stmts
+        .iter()
+        .filter_map(|st| {
+            if let Stmt::Let(n) = st {
+                Some(*n)
+            } else {
+                None
+            }
+        })
+        .collect();
+    for n in lets {
+        let name = match opts.hints.get(&n) {
+            Some(h) if !used_names.contains(h) => h.clone(),
+            _ => loop {
+                counter += 1;
+                let z = format!("z{counter}");
+                if !used_names.contains(&z) {
+                    break z;
+                }
+            },
+        };
+        used_names.insert(name.clone());
+        s.block.names.insert(n, name);
+    }
+
+    // Cost: every computed node once.
+    let mut ops = Ops {
+        user_calls: subs_used.len(),
+        ..Ops::default()
+    };
+    for &n in &order {
+        if s.opaque(n) {
+            continue;
+        }
+        match ir.op(n) {
+            Op::Sum { pos, neg } => ops.adds += pos.len() + neg.len() - 1,
+            Op::Mul(..) => ops.muls += 1,
+            Op::Div(..) => ops.divs += 1,
+            Op::Powi(_, k) => ops.muls += (*k as usize).saturating_sub(1),
+            Op::Sqrt(_) | Op::Powf(..) => ops.funcs += 1,
+            Op::Call(Func::User(_), _) => ops.user_calls += 1,
+            Op::Call(..) => ops.funcs += 1,
+            Op::Neg(_) | Op::Num(_) | Op::Leaf(_) => {}
+        }
+    }
+    s.block.ops = ops;
+    s.block
+}

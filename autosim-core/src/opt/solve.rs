@@ -1,0 +1,111 @@
+//! The accelerations: an unrolled LDLᵀ factorization of the mass matrix,
+//! built in the IR so it shares the optimizer's naming and counting.
+//!
+//! Speeds are eliminated leaves first (the reverse of the tree order), which
+//! keeps the factor as sparse as the mass matrix for any tree: entries known
+//! to be zero at generation time, and their fill-in, are skipped.
+
+use super::ir::{Ir, Nid};
+
+/// The IR of the solve of `M du = f`.
+pub struct Solve {
+    /// Pivot `d_k` (for each speed in elimination order) with the speed index.
+    pub pivots: Vec<(Nid, usize)>,
+    /// du/dt per speed (speed order).
+    pub du: Vec<Nid>,
+    /// `(name hint, node)` for the factor's entries, for readable code.
+    pub hints: Vec<(String, Nid)>,
+}
+
+/// Factors `m` (lower triangle used; `None` = structurally zero) and solves
+/// for `f`.
+pub fn ldlt_solve(ir: &mut Ir, m: &[Vec<Option<Nid>>], f: &[Nid]) -> Solve {
+    let n = f.len();
+    // Elimination order: reverse of the speed order.
+    let perm: Vec<usize> = (0..n).rev().collect();
+    let entry = |i: usize, j: usize| -> Option<Nid> {
+        let (a, b) = (perm[i], perm[j]);
+        m[a.max(b)][a.min(b)]
+    };
+    // Symbolic factorization: nonzero pattern of L with fill-in.
+    let mut nz = vec![vec![false; n]; n];
+    for i in 0..n {
+        for j in 0..i {
+            nz[i][j] = entry(i, j).is_some();
+        }
+    }
+    for j in 0..n {
+        for i in j + 1..n {
+            if !nz[i][j] {
+                nz[i][j] = (0..j).any(|k| nz[i][k] && nz[j][k]);
+            }
+        }
+    }
+    let mut l: Vec<Vec<Option<Nid>>> = vec![vec![None; n]; n];
+    let mut ld: Vec<Vec<Option<Nid>>> = vec![vec![None; n]; n];
+    let mut d_inv: Vec<Nid> = Vec::with_capacity(n);
+    let mut pivots = Vec::with_capacity(n);
+    let mut hints = Vec::new();
+    for j in 0..n {
+        // d_j = M_jj - Σ L_jk LD_jk
+        let mut neg = Vec::new();
+        for k in 0..j {
+            if let (Some(a), Some(b)) = (l[j][k], ld[j][k]) {
+                neg.push(ir.mul(a, b));
+            }
+        }
+        let mjj = entry(j, j).unwrap_or_else(|| ir.num(0.0));
+        let d = ir.sum(vec![mjj], neg);
+        pivots.push((d, perm[j]));
+        hints.push((format!("d{}", perm[j] + 1), d));
+        let one = ir.num(1.0);
+        let di = ir.div(one, d);
+        hints.push((format!("d{}_inv", perm[j] + 1), di));
+        d_inv.push(di);
+        for i in j + 1..n {
+            if !nz[i][j] {
+                continue;
+            }
+            let mut neg = Vec::new();
+            for k in 0..j {
+                if let (Some(a), Some(b)) = (l[i][k], ld[j][k]) {
+                    neg.push(ir.mul(a, b));
+                }
+            }
+            let mij = entry(i, j).unwrap_or_else(|| ir.num(0.0));
+            let ldij = ir.sum(vec![mij], neg);
+            let lij = ir.mul(ldij, di);
+            ld[i][j] = Some(ldij);
+            l[i][j] = Some(lij);
+            hints.push((format!("l{}_{}", perm[i] + 1, perm[j] + 1), lij));
+        }
+    }
+    // Forward: y = L⁻¹ f', scale: z = D⁻¹ y, back: x = L⁻ᵀ z.
+    let mut y: Vec<Nid> = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut neg = Vec::new();
+        for k in 0..i {
+            if let Some(a) = l[i][k] {
+                neg.push(ir.mul(a, y[k]));
+            }
+        }
+        let yi = ir.sum(vec![f[perm[i]]], neg);
+        y.push(yi);
+    }
+    let z: Vec<Nid> = (0..n).map(|i| ir.mul(y[i], d_inv[i])).collect();
+    let mut x: Vec<Nid> = vec![ir.num(0.0); n];
+    for i in (0..n).rev() {
+        let mut neg = Vec::new();
+        for k in i + 1..n {
+            if let Some(a) = l[k][i] {
+                neg.push(ir.mul(a, x[k]));
+            }
+        }
+        x[i] = ir.sum(vec![z[i]], neg);
+    }
+    let mut du = vec![ir.num(0.0); n];
+    for i in 0..n {
+        du[perm[i]] = x[i];
+    }
+    Solve { pivots, du, hints }
+}

@@ -1,0 +1,70 @@
+//! Models written in the language, compiled to programs, match the
+//! reference data; the optimized program matches the unoptimized equations.
+
+mod common;
+use autosim_core::diag::SourceFile;
+use autosim_core::opt::Interpreter;
+use autosim_core::pipeline::{Compiled, compile_source};
+use common::*;
+use std::path::PathBuf;
+
+fn models_dir() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../examples/models")
+}
+
+fn compile_file(name: &str) -> Compiled {
+    let path = models_dir().join(name);
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path:?}: {e}"));
+    let file = SourceFile::new(name, text);
+    match compile_source(&file) {
+        Ok(c) => c,
+        Err(d) => panic!("{}", d.render(&file)),
+    }
+}
+
+fn params_from(c: &Compiled, data: &serde_json::Value) -> Vec<f64> {
+    c.program
+        .parameter_names
+        .iter()
+        .map(|n| {
+            data["parameters"][n]
+                .as_f64()
+                .unwrap_or_else(|| panic!("no parameter {n}"))
+        })
+        .collect()
+}
+
+#[test]
+fn satellite_program_matches_reference() {
+    let c = compile_file("satellite.sim");
+    let data = load("satellite");
+    let params = params_from(&c, &data);
+    let it = Interpreter::new(&c.program, &params);
+    let n = c.program.n;
+    let mut worst: f64 = 0.0;
+    for s in data["samples"].as_array().unwrap() {
+        let mut x = floats(&s["q"]);
+        x.extend(floats(&s["u"]));
+        let inp = &s["inputs"];
+        let thr = [
+            inp["thr1"].as_f64().unwrap(),
+            inp["thr2"].as_f64().unwrap(),
+            inp["thr3"].as_f64().unwrap(),
+        ];
+        let cmd = vec![
+            inp["clkcmd"].as_f64().unwrap(),
+            inp["camcmd"].as_f64().unwrap(),
+        ];
+        let mut user = |_f: usize, args: &[f64]| thr[args[1] as usize - 1];
+        let mut sub = |_s: usize, _a: &[f64]| cmd.clone();
+        let dx = it
+            .derivatives(s["t"].as_f64().unwrap(), &x, &[], &mut user, &mut sub)
+            .unwrap();
+        let e_dq = rel_err(&dx[..n], &floats(&s["dq"]));
+        let e_du = rel_err(&dx[n..], &floats(&s["du"]));
+        worst = worst.max(e_dq).max(e_du);
+        assert!(e_dq < 1e-9 && e_du < 1e-9, "dq {e_dq:e} du {e_du:e}");
+    }
+    eprintln!("satellite.sim program: worst relative error {worst:.2e}");
+    eprintln!("derivatives: {}", c.program.derivatives.ops);
+}

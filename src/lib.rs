@@ -1,3 +1,31 @@
-//! autosim: a symbolic multibody compiler.
+//! autosim: a symbolic multibody compiler for Rust.
+//!
+//! Describe a mechanical system (bodies, joints, forces, moments, outputs,
+//! and the user code it calls); at compile time autosim derives the
+//! equations of motion symbolically (Kane's method) and writes Rust that
+//! reads as if a careful dynamicist had written it by hand: no allocation,
+//! common subexpressions named once, constants computed once per parameter
+//! set, an unrolled solve of the mass matrix.
+//!
+//! ```
+//! autosim::model! {
+//!     /// A pendulum with a damped hinge.
+//!     model Pendulum;
+//!     parameters { m = 1 [kg], l = 0.5 [m], g = 9.81 [m/s^2], c = 0.05 [N m s/rad] }
+//!     body P { rotate: 1, mass: m, cm: [0, 0, -l], inertia: 0 }
+//!     moment hinge { on: P, reaction: N, about: n1, magnitude: -c*u(P) }
+//!     gravity = -g*n3;
+//!     output height [m] = dot(pos(P.cm), n3);
+//! }
+//!
+//! use autosim::runtime::Model;
+//! let mut model = pendulum::Pendulum::new();
+//! let x = [0.3, 0.0];
+//! let mut dx = [0.0; 2];
+//! model.derivatives(0.0, &x, &mut dx).unwrap();
+//! assert!(dx[1] < 0.0); // swings back
+//! ```
+#![no_std]
+
 pub use autosim_macros::model;
 pub use autosim_runtime as runtime;

@@ -11,6 +11,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod diag;
+pub mod emit;
 pub mod expr;
 pub mod mech;
 pub mod model;

@@ -359,4 +359,9 @@ pub mod math {
     pub fn powi<F: Float>(x: F, n: i32) -> F {
         x.powi(n)
     }
+    /// `true` if `x > 0` (false for NaN): the pivot test of generated solves.
+    #[inline(always)]
+    pub fn is_positive<F: Float>(x: F) -> bool {
+        x > F::ZERO
+    }
 }

@@ -119,7 +119,7 @@ pub mod run;
 pub use error::{IntegrationError, check_finite};
 pub use float::Float;
 pub use integrate::{StepInfo, Stepper};
-pub use model::{Model, ModelError, StateArray};
+pub use model::{Model, ModelError, OpCount, StateArray};
 pub use run::{Observer, RunError, RunSettings, RunSummary, run};
 
 /// Items used by generated code. Not a public API: it may change without notice.

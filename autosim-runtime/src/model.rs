@@ -109,3 +109,38 @@ pub trait Model {
     /// The default initial state written in the model (zeros where none was given).
     fn initial_state(&self) -> Self::State;
 }
+
+/// Operation counts of a block of generated code: what one call costs.
+///
+/// Generated models publish these as constants (e.g. `DERIVATIVE_OPS`), like
+/// the complexity summaries of AUTOSIM and SD/FAST.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct OpCount {
+    /// Additions and subtractions.
+    pub adds: usize,
+    /// Multiplications.
+    pub muls: usize,
+    /// Divisions.
+    pub divs: usize,
+    /// Calls of built-in functions (sin, cos, sqrt, ...).
+    pub funcs: usize,
+    /// Calls of user functions and subroutines.
+    pub user_calls: usize,
+}
+
+impl OpCount {
+    /// Arithmetic operations plus built-in function calls.
+    pub const fn total(&self) -> usize {
+        self.adds + self.muls + self.divs + self.funcs
+    }
+}
+
+impl core::fmt::Display for OpCount {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "{} adds, {} multiplies, {} divides, {} functions, {} user calls",
+            self.adds, self.muls, self.divs, self.funcs, self.user_calls
+        )
+    }
+}

@@ -205,7 +205,8 @@ impl Arena {
         };
         let mut first = true;
         if let Number::Float(_) = c {
-            if !c.is_one() {
+            // A float 1 before divisors only (`1.0f/x`) must still print.
+            if !c.is_one() || num.is_empty() {
                 Self::write_number(out, c);
                 first = false;
             }

@@ -196,8 +196,8 @@ impl<'a> Resolver<'a> {
         }
         // Checks with spans before the API sees the spec.
         let dofs = spec.dofs();
-        if let Some(opt) = b.options.get(BodyKey::Rotate) {
-            if !matches!(spec.rotations.len(), 0 | 1 | 3) {
+        if let Some(opt) = b.options.get(BodyKey::Rotate)
+            && !matches!(spec.rotations.len(), 0 | 1 | 3) {
                 self.push(
                     Diagnostic::error(
                         opt.value.span(),
@@ -207,7 +207,6 @@ impl<'a> Resolver<'a> {
                 );
                 ok = false;
             }
-        }
         for (key, what, len) in [
             (
                 BodyKey::Q,
@@ -230,15 +229,14 @@ impl<'a> Resolver<'a> {
                 spec.initial_speeds.as_ref().map(Vec::len),
             ),
         ] {
-            if let (Some(len), Some(opt)) = (len, b.options.get(key)) {
-                if len != dofs {
+            if let (Some(len), Some(opt)) = (len, b.options.get(key))
+                && len != dofs {
                     self.error(
                         opt.value.span(),
                         format!("body `{name}` has {dofs} degree{} of freedom, but {len} {what} were given", if dofs == 1 { "" } else { "s" }),
                     );
                     ok = false;
                 }
-            }
         }
         if let Some(opt) = b.options.get(BodyKey::Small) {
             match self.small_flags(&opt.value, &spec) {

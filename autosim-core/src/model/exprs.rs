@@ -381,11 +381,10 @@ impl Resolver<'_> {
             } => (true, operand.as_ref()),
             other => (false, other),
         };
-        if let Expr::Number(n) = inner {
-            if let Ok(v) = n.text.parse::<i64>() {
+        if let Expr::Number(n) = inner
+            && let Ok(v) = n.text.parse::<i64>() {
                 return Some(if neg { -v } else { v });
             }
-        }
         self.error(e.span(), format!("{context} must be an integer"));
         None
     }

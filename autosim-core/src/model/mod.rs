@@ -70,6 +70,9 @@ pub struct ResolvedModel {
     pub extern_fns: Vec<ExternFnInfo>,
     /// Doc comments of user subroutines, in declaration order.
     pub subroutine_docs: Vec<Vec<String>>,
+    /// Parameter names of user subroutines (an argument written as a plain
+    /// name gives its name, others are `arg1`, `arg2`, ...).
+    pub subroutine_params: Vec<Vec<String>>,
 }
 
 /// Resolves a parsed model.
@@ -84,6 +87,7 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
         output_docs: Vec::new(),
         extern_fns: Vec::new(),
         subroutine_docs: Vec::new(),
+        subroutine_params: Vec::new(),
     };
 
     // Settings first: the threshold affects every expression built later.
@@ -262,6 +266,16 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
                     Err(e) => r.error(sub.name.span, e.to_string()),
                 }
                 out.subroutine_docs.push(sub.docs.clone());
+                out.subroutine_params.push(
+                    sub.args
+                        .iter()
+                        .enumerate()
+                        .map(|(k, a)| match a {
+                            ast::Expr::Name(n) => n.text.clone(),
+                            _ => format!("arg{}", k + 1),
+                        })
+                        .collect(),
+                );
             }
             _ => {}
         }
@@ -300,11 +314,10 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
                 let Some((Named::Symbol(sym), _)) = r.names.get(&s.name.text).cloned() else {
                     continue;
                 };
-                if let Some(opt) = s.options.get(StateKey::Initial) {
-                    if let Some(x) = r.constant(&opt.value, "the initial value of a state") {
+                if let Some(opt) = s.options.get(StateKey::Initial)
+                    && let Some(x) = r.constant(&opt.value, "the initial value of a state") {
                         let _ = r.sys.set_state_initial(sym, x);
                     }
-                }
                 match s.options.get(StateKey::Derivative) {
                     Some(opt) => {
                         if let Some(d) = r.scalar(&opt.value, "the derivative of a state") {
@@ -362,9 +375,14 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
 }
 
 fn value_f64(v: &ast::Value) -> f64 {
-    let x = Number::parse_decimal(&v.number.text)
-        .map(|n| n.to_f64())
-        .or_else(|| v.number.text.parse::<f64>().ok())
+    // Rust's parser rounds correctly (once), so `0.018562500000000003`
+    // is the same double as in any other program.
+    let x = v
+        .number
+        .text
+        .parse::<f64>()
+        .ok()
+        .or_else(|| Number::parse_decimal(&v.number.text).map(|n| n.to_f64()))
         .unwrap_or(0.0);
     if v.negative { -x } else { x }
 }
@@ -402,11 +420,10 @@ fn force(r: &mut Resolver<'_>, f: &ast::Force) {
         o.get(ForceKey::Magnitude).map(|x| &x.value),
         "along",
     );
-    if let (Some(p), Some(v)) = (point, vector) {
-        if let Err(e) = r.sys.add_force(&f.name.text, p, reaction, v) {
+    if let (Some(p), Some(v)) = (point, vector)
+        && let Err(e) = r.sys.add_force(&f.name.text, p, reaction, v) {
             r.error(f.name.span, e.to_string());
         }
-    }
 }
 
 fn moment(r: &mut Resolver<'_>, m: &ast::Moment) {
@@ -445,11 +462,10 @@ fn moment(r: &mut Resolver<'_>, m: &ast::Moment) {
         o.get(MomentKey::Magnitude).map(|x| &x.value),
         "about",
     );
-    if let (Some(b), Some(v)) = (body, vector) {
-        if let Err(e) = r.sys.add_moment(&m.name.text, b, reaction, v) {
+    if let (Some(b), Some(v)) = (body, vector)
+        && let Err(e) = r.sys.add_moment(&m.name.text, b, reaction, v) {
             r.error(m.name.span, e.to_string());
         }
-    }
 }
 
 /// `vector: v` or `along/about: d, magnitude: s`.

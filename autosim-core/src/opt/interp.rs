@@ -228,14 +228,13 @@ impl<'a> Interpreter<'a> {
             return *v;
         }
         let ir = &self.prog.ir;
-        if let Some(c) = env.constants {
-            if ir.is_constant(n) && !matches!(ir.op(n), Op::Num(_) | Op::Leaf(_)) {
-                if let Ok(k) = env.hoisted.binary_search(&n) {
+        if let Some(c) = env.constants
+            && ir.is_constant(n) && !matches!(ir.op(n), Op::Num(_) | Op::Leaf(_))
+                && let Ok(k) = env.hoisted.binary_search(&n) {
                     return c[k];
                 }
-            }
-        }
-        let v = match ir.op(n).clone() {
+        
+        match ir.op(n).clone() {
             Op::Num(b) => f64::from_bits(b),
             Op::Leaf(l) => env.leaves.get(&l).copied().unwrap_or(f64::NAN),
             Op::Sum { pos, neg } => {
@@ -277,7 +276,6 @@ impl<'a> Interpreter<'a> {
                     Func::User(u) => user(u.index(), &xs),
                 }
             }
-        };
-        v
+        }
     }
 }

@@ -199,10 +199,10 @@ impl Ir {
     pub fn mul(&mut self, a: Nid, b: Nid) -> Nid {
         match (self.as_num(a), self.as_num(b)) {
             (Some(x), Some(y)) => return self.num(x * y),
-            (Some(x), _) if x == 1.0 => return b,
-            (_, Some(y)) if y == 1.0 => return a,
-            (Some(x), _) if x == -1.0 => return self.neg(b),
-            (_, Some(y)) if y == -1.0 => return self.neg(a),
+            (Some(1.0), _) => return b,
+            (_, Some(1.0)) => return a,
+            (Some(-1.0), _) => return self.neg(b),
+            (_, Some(-1.0)) => return self.neg(a),
             (Some(x), _) | (_, Some(x)) if x == 0.0 => return self.num(0.0),
             _ => {}
         }

@@ -147,14 +147,12 @@ impl<'a> Lowering<'a> {
 
     /// For `b^-k` (k a positive number), the expression `b^k`.
     fn reciprocal_base(&mut self, f: ExprId) -> Option<ExprId> {
-        if let Node::Pow(b, x) = self.arena.node(f).clone() {
-            if let Some(n) = self.arena.as_number(x) {
-                if n.is_negative() {
+        if let Node::Pow(b, x) = self.arena.node(f).clone()
+            && let Some(n) = self.arena.as_number(x)
+                && n.is_negative() {
                     let pos = self.arena.num(n.neg());
                     return Some(self.arena.pow(b, pos));
                 }
-            }
-        }
         None
     }
 

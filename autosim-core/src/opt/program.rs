@@ -236,12 +236,11 @@ pub fn build(model: &mut ResolvedModel, eqs: &Equations) -> Result<Program, Prog
     };
     for idx in 0..ir.len() {
         let nid = Nid(idx as u32);
-        if let Op::Call(f @ (Func::Sin | Func::Cos), args) = ir.op(nid) {
-            if let Op::Leaf(Leaf::State(i)) = ir.op(args[0]) {
+        if let Op::Call(f @ (Func::Sin | Func::Cos), args) = ir.op(nid)
+            && let Op::Leaf(Leaf::State(i)) = ir.op(args[0]) {
                 let pre = if *f == Func::Sin { "sin" } else { "cos" };
                 hint(nid, format!("{pre}_{}", state_names[*i]));
             }
-        }
     }
     for i in 0..n {
         for j in 0..=i {
@@ -290,12 +289,23 @@ pub fn build(model: &mut ResolvedModel, eqs: &Equations) -> Result<Program, Prog
     }
     let derivatives = schedule(&ir, &tasks, &opts(true));
 
+    let mut out_reserved = reserved.clone();
+    for i in 0..n {
+        out_reserved.insert(format!("{}_dot", state_names[n + i]));
+    }
+    let out_opts = Options {
+        hoist_constants: true,
+        hints: &hints,
+        call_order: &call_order,
+        sub_args: &sub_args,
+        reserved: &out_reserved,
+    };
     let out_tasks: Vec<Task> = outs
         .iter()
         .enumerate()
         .map(|(i, v)| Task::Store { slot: i, value: *v })
         .collect();
-    let outputs = schedule(&ir, &out_tasks, &opts(true));
+    let outputs = schedule(&ir, &out_tasks, &out_opts);
     let outputs_need_derivatives = outputs.leaves.iter().any(|l| matches!(l, Leaf::Accel(_)));
 
     let zero = ir.num(0.0);

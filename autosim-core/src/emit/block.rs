@@ -1,0 +1,143 @@
+//! A scheduled block as Rust statements: bindings of the values it reads,
+//! user calls, named intermediates, pivot checks and stores.
+
+use super::expr::{ExprPrinter, ident};
+use crate::model::FloatType;
+use crate::opt::{Block, Leaf, Nid, Program, Stmt};
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+use rustc_hash::FxHashMap;
+
+/// Where a block's stores go.
+pub enum Target<'a> {
+    /// `<array>[slot] = value;`
+    Array(&'a str),
+    /// `<array>[slot / n][slot % n] = value;`
+    Matrix(&'a str, usize),
+    /// Collected into a struct literal `Constants { p1: ..., }` (the
+    /// statements end with that expression).
+    ConstantFields,
+}
+
+/// Emits a block.
+pub struct BlockEmitter<'a> {
+    /// The program.
+    pub prog: &'a Program,
+    /// Float type.
+    pub float: FloatType,
+    /// Slot of each hoisted constant.
+    pub constant_slot: &'a FxHashMap<Nid, usize>,
+    /// Path of the runtime's math module.
+    pub math: TokenStream,
+    /// Path of the runtime crate.
+    pub rt: TokenStream,
+}
+
+impl BlockEmitter<'_> {
+    /// The statements of `block` (with `hoisted`: constants read from `c`).
+    pub fn emit(&self, block: &Block, hoisted: bool, target: Target<'_>) -> TokenStream {
+        let in_constants = matches!(target, Target::ConstantFields);
+        let printer = ExprPrinter {
+            prog: self.prog,
+            names: &block.names,
+            hoisted,
+            float: self.float,
+            constant_slot: self.constant_slot,
+            math: self.math.clone(),
+        };
+        let mut out = TokenStream::new();
+        // Values the block reads.
+        if !in_constants && block.leaves.iter().any(|l| matches!(l, Leaf::Param(_))) {
+            out.extend(quote!(let p = &self.parameters;));
+        }
+        if hoisted && !block.hoisted.is_empty() {
+            out.extend(quote!(let c = &self.constants;));
+        }
+        for l in &block.leaves {
+            match *l {
+                Leaf::State(i) => {
+                    let id = ident(&self.prog.state_names[i]);
+                    let k = Literal::usize_unsuffixed(i);
+                    out.extend(quote!(let #id = x[#k];));
+                }
+                Leaf::Input(i) => {
+                    let id = ident(&self.prog.input_names[i]);
+                    out.extend(quote!(let #id = self.inputs.#id;));
+                }
+                Leaf::Accel(i) => {
+                    let id = ident(&format!("{}_dot", self.prog.state_names[self.prog.n + i]));
+                    let k = Literal::usize_unsuffixed(self.prog.n + i);
+                    out.extend(quote!(let #id = dx[#k];));
+                }
+                Leaf::Param(_) | Leaf::Time | Leaf::SubOut(..) => {}
+            }
+        }
+        let mut fields = Vec::new();
+        for st in &block.stmts {
+            match st {
+                Stmt::Let(n) => {
+                    let name = ident(&block.names[n]);
+                    let e = printer.definition(*n);
+                    out.extend(quote!(let #name = #e;));
+                }
+                Stmt::CallSub(k) => {
+                    let (name, outs) = &self.prog.subroutines[*k];
+                    let f = ident(name);
+                    let pats: Vec<TokenStream> = outs
+                        .iter()
+                        .enumerate()
+                        .map(|(j, o)| {
+                            if block.leaves.contains(&Leaf::SubOut(*k, j)) {
+                                let id = ident(o);
+                                quote!(#id)
+                            } else {
+                                quote!(_)
+                            }
+                        })
+                        .collect();
+                    let args: Vec<TokenStream> = self.prog.sub_args[*k]
+                        .iter()
+                        .map(|a| printer.expr(*a))
+                        .collect();
+                    out.extend(quote!(let [#(#pats),*] = self.externs.#f(#(#args),*);));
+                }
+                Stmt::Check { pivot, speed } => {
+                    let e = printer.expr(*pivot);
+                    let m = &self.math;
+                    let rt = &self.rt;
+                    let k = Literal::usize_unsuffixed(*speed);
+                    let name = &self.prog.state_names[self.prog.n + speed];
+                    out.extend(quote! {
+                        if !#m::is_positive(#e) {
+                            return Err(#rt::ModelError::SingularMassMatrix { speed: #k, name: #name });
+                        }
+                    });
+                }
+                Stmt::Store { slot, value } => {
+                    let e = printer.expr(*value);
+                    match target {
+                        Target::Array(a) => {
+                            let a = ident(a);
+                            let k = Literal::usize_unsuffixed(*slot);
+                            out.extend(quote!(#a[#k] = #e;));
+                        }
+                        Target::Matrix(a, n) => {
+                            let a = ident(a);
+                            let i = Literal::usize_unsuffixed(slot / n);
+                            let j = Literal::usize_unsuffixed(slot % n);
+                            out.extend(quote!(#a[#i][#j] = #e;));
+                        }
+                        Target::ConstantFields => {
+                            let f = ident(&format!("p{}", slot + 1));
+                            fields.push(quote!(#f: #e));
+                        }
+                    }
+                }
+            }
+        }
+        if let Target::ConstantFields = target {
+            out.extend(quote!(Constants { #(#fields),* }));
+        }
+        out
+    }
+}

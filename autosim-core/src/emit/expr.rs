@@ -1,0 +1,315 @@
+//! Printing IR nodes as Rust expressions: names for bound values, literals
+//! in the model's float type, operators with the parentheses the IR's order
+//! of evaluation needs, and calls of the runtime's math functions.
+
+use crate::expr::Func;
+use crate::model::FloatType;
+use crate::opt::{Ir, Leaf, Nid, Op, Program};
+use proc_macro2::{Ident, Literal, Span, TokenStream};
+use quote::quote;
+use rustc_hash::FxHashMap;
+
+/// An identifier from a model name (raw identifiers kept raw; anything that
+/// is not an identifier is sanitized, never a panic).
+pub fn ident(name: &str) -> Ident {
+    if let Some(raw) = name.strip_prefix("r#")
+        && is_ident(raw) {
+            return Ident::new_raw(raw, Span::call_site());
+        }
+    if is_ident(name) && !is_keyword(name) {
+        return Ident::new(name, Span::call_site());
+    }
+    let mut s: String = name
+        .chars()
+        .map(|c| {
+            if c.is_alphanumeric() || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() || s.starts_with(|c: char| c.is_ascii_digit()) {
+        s.insert(0, '_');
+    }
+    if is_keyword(&s) {
+        s.push('_');
+    }
+    Ident::new(&s, Span::call_site())
+}
+
+fn is_ident(s: &str) -> bool {
+    let mut chars = s.chars();
+    match chars.next() {
+        Some(c) if c.is_alphabetic() || c == '_' => {}
+        _ => return false,
+    }
+    s != "_" && chars.all(|c| c.is_alphanumeric() || c == '_')
+}
+
+fn is_keyword(s: &str) -> bool {
+    matches!(
+        s,
+        "as" | "break"
+            | "const"
+            | "continue"
+            | "crate"
+            | "else"
+            | "enum"
+            | "extern"
+            | "false"
+            | "fn"
+            | "for"
+            | "if"
+            | "impl"
+            | "in"
+            | "let"
+            | "loop"
+            | "match"
+            | "mod"
+            | "move"
+            | "mut"
+            | "pub"
+            | "ref"
+            | "return"
+            | "self"
+            | "Self"
+            | "static"
+            | "struct"
+            | "super"
+            | "trait"
+            | "true"
+            | "type"
+            | "unsafe"
+            | "use"
+            | "where"
+            | "while"
+            | "async"
+            | "await"
+            | "dyn"
+            | "abstract"
+            | "become"
+            | "box"
+            | "do"
+            | "final"
+            | "macro"
+            | "override"
+            | "priv"
+            | "typeof"
+            | "unsized"
+            | "virtual"
+            | "yield"
+            | "try"
+            | "gen"
+    )
+}
+
+/// A float literal in the model's type (non-finite values as constants).
+pub fn literal(x: f64, float: FloatType) -> TokenStream {
+    let ty = float_type(float);
+    if x.is_nan() {
+        return quote!(#ty::NAN);
+    }
+    if x.is_infinite() {
+        return if x > 0.0 {
+            quote!(#ty::INFINITY)
+        } else {
+            quote!(#ty::NEG_INFINITY)
+        };
+    }
+    let lit = match float {
+        FloatType::F64 => Literal::f64_unsuffixed(x.abs()),
+        FloatType::F32 => Literal::f32_unsuffixed((x as f32).abs()),
+    };
+    if x < 0.0 { quote!(-#lit) } else { quote!(#lit) }
+}
+
+/// The float type's tokens.
+pub fn float_type(float: FloatType) -> TokenStream {
+    match float {
+        FloatType::F64 => quote!(f64),
+        FloatType::F32 => quote!(f32),
+    }
+}
+
+/// How precedence levels nest when printing.
+#[derive(Clone, Copy, PartialEq, PartialOrd)]
+enum Prec {
+    Sum = 1,
+    Prod = 2,
+    Unary = 3,
+    Atom = 4,
+}
+
+/// Prints IR nodes of one block.
+pub struct ExprPrinter<'a> {
+    /// The program.
+    pub prog: &'a Program,
+    /// Names of nodes bound in the block.
+    pub names: &'a FxHashMap<Nid, String>,
+    /// Whether constants are read from `c` (hoisted).
+    pub hoisted: bool,
+    /// Float type.
+    pub float: FloatType,
+    /// Slot of each hoisted constant.
+    pub constant_slot: &'a FxHashMap<Nid, usize>,
+    /// How to call the runtime's math functions (`math`).
+    pub math: TokenStream,
+}
+
+impl ExprPrinter<'_> {
+    fn ir(&self) -> &Ir {
+        &self.prog.ir
+    }
+
+    fn prec(&self, n: Nid) -> Prec {
+        if self.is_name(n) {
+            return Prec::Atom;
+        }
+        match self.ir().op(n) {
+            Op::Num(b) => {
+                if f64::from_bits(*b) < 0.0 {
+                    Prec::Unary
+                } else {
+                    Prec::Atom
+                }
+            }
+            Op::Leaf(_) | Op::Call(..) | Op::Sqrt(_) | Op::Powf(..) => Prec::Atom,
+            Op::Sum { .. } => Prec::Sum,
+            Op::Mul(..) | Op::Div(..) => Prec::Prod,
+            Op::Powi(_, k) => {
+                if *k <= 3 {
+                    Prec::Prod
+                } else {
+                    Prec::Atom
+                }
+            }
+            Op::Neg(_) => Prec::Unary,
+        }
+    }
+
+    fn is_name(&self, n: Nid) -> bool {
+        self.names.contains_key(&n) || (self.hoisted && self.constant_slot.contains_key(&n))
+    }
+
+    fn wrap(&self, n: Nid, min: Prec) -> TokenStream {
+        let t = self.expr(n);
+        if self.prec(n) < min { quote!((#t)) } else { t }
+    }
+
+    /// The expression computing node `n`: its name if it is bound.
+    pub fn expr(&self, n: Nid) -> TokenStream {
+        if let Some(name) = self.names.get(&n) {
+            let id = ident(name);
+            return quote!(#id);
+        }
+        if self.hoisted
+            && let Some(k) = self.constant_slot.get(&n) {
+                let id = ident(&format!("p{}", k + 1));
+                return quote!(c.#id);
+            }
+        self.definition(n)
+    }
+
+    /// The expression of node `n`'s operation (even if `n` is bound).
+    pub fn definition(&self, n: Nid) -> TokenStream {
+        match self.ir().op(n).clone() {
+            Op::Num(b) => literal(f64::from_bits(b), self.float),
+            Op::Leaf(l) => self.leaf(l),
+            Op::Sum { pos, neg } => {
+                let mut out = TokenStream::new();
+                for (i, t) in pos.iter().enumerate() {
+                    let e = self.wrap(*t, Prec::Sum);
+                    if i == 0 {
+                        out.extend(e)
+                    } else {
+                        out.extend(quote!(+ #e))
+                    }
+                }
+                for t in neg.iter() {
+                    let e = self.wrap(*t, Prec::Prod);
+                    out.extend(quote!(- #e));
+                }
+                out
+            }
+            Op::Mul(a, b) => {
+                let x = self.wrap(a, Prec::Prod);
+                let y = self.wrap(b, Prec::Unary);
+                quote!(#x * #y)
+            }
+            Op::Div(a, b) => {
+                let x = self.wrap(a, Prec::Prod);
+                let y = self.wrap(b, Prec::Unary);
+                quote!(#x / #y)
+            }
+            Op::Neg(a) => {
+                let x = self.wrap(a, Prec::Unary);
+                quote!(-#x)
+            }
+            Op::Powi(a, k) => {
+                let x = self.wrap(a, Prec::Unary);
+                match k {
+                    2 => quote!(#x * #x),
+                    3 => quote!(#x * #x * #x),
+                    _ => {
+                        let m = &self.math;
+                        let x = self.expr(a);
+                        let k = Literal::i32_unsuffixed(k);
+                        quote!(#m::powi(#x, #k))
+                    }
+                }
+            }
+            Op::Sqrt(a) => {
+                let m = &self.math;
+                let x = self.expr(a);
+                quote!(#m::sqrt(#x))
+            }
+            Op::Powf(a, b) => {
+                let m = &self.math;
+                let x = self.expr(a);
+                let y = self.expr(b);
+                quote!(#m::powf(#x, #y))
+            }
+            Op::Call(f, args) => {
+                let xs: Vec<TokenStream> = args.iter().map(|a| self.expr(*a)).collect();
+                match f {
+                    Func::User(u) => {
+                        let name = ident(&self.prog.user_fn_names[u.index()]);
+                        quote!(self.externs.#name(#(#xs),*))
+                    }
+                    other => {
+                        let m = &self.math;
+                        let name = ident(other.builtin_name().unwrap_or("abs"));
+                        quote!(#m::#name(#(#xs),*))
+                    }
+                }
+            }
+        }
+    }
+
+    fn leaf(&self, l: Leaf) -> TokenStream {
+        match l {
+            Leaf::Param(i) => {
+                let id = ident(&self.prog.parameter_names[i]);
+                quote!(p.#id)
+            }
+            Leaf::State(i) => {
+                let id = ident(&self.prog.state_names[i]);
+                quote!(#id)
+            }
+            Leaf::Input(i) => {
+                let id = ident(&self.prog.input_names[i]);
+                quote!(#id)
+            }
+            Leaf::Time => quote!(t),
+            Leaf::SubOut(s, k) => {
+                let id = ident(&self.prog.subroutines[s].1[k]);
+                quote!(#id)
+            }
+            Leaf::Accel(i) => {
+                let id = ident(&format!("{}_dot", self.prog.state_names[self.prog.n + i]));
+                quote!(#id)
+            }
+        }
+    }
+}

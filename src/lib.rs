@@ -26,6 +26,22 @@
 //! assert!(dx[1] < 0.0); // swings back
 //! ```
 #![no_std]
+#![deny(missing_docs)]
 
 pub use autosim_macros::model;
 pub use autosim_runtime as runtime;
+
+/// Compiling `.sim` models from build scripts (feature `build`): write
+/// `autosim::build::compile("models/pendulum.sim")?` in `build.rs` and
+/// `autosim::include_model!(pendulum);` where the module should appear.
+#[cfg(feature = "build")]
+pub use autosim_core::emit::build;
+
+/// Includes a model compiled by a build script (`autosim::build`): expands
+/// to the generated module `$name` from `OUT_DIR/$name.rs`.
+#[macro_export]
+macro_rules! include_model {
+    ($name:ident) => {
+        include!(concat!(env!("OUT_DIR"), "/", stringify!($name), ".rs"));
+    };
+}

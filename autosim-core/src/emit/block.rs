@@ -1,7 +1,7 @@
 //! A scheduled block as Rust statements: bindings of the values it reads,
 //! user calls, named intermediates, pivot checks and stores.
 
-use super::expr::{ExprPrinter, ident};
+use super::expr::{ExprPrinter, Locals, ident};
 use crate::model::FloatType;
 use crate::opt::{Block, Leaf, Nid, Program, Stmt};
 use proc_macro2::{Literal, TokenStream};
@@ -11,9 +11,9 @@ use rustc_hash::FxHashMap;
 /// Where a block's stores go.
 pub enum Target<'a> {
     /// `<array>[slot] = value;`
-    Array(&'a str),
+    Array(&'a proc_macro2::Ident),
     /// `<array>[slot / n][slot % n] = value;`
-    Matrix(&'a str, usize),
+    Matrix(&'a proc_macro2::Ident, usize),
     /// Collected into a struct literal `Constants { p1: ..., }` (the
     /// statements end with that expression).
     ConstantFields,
@@ -31,6 +31,8 @@ pub struct BlockEmitter<'a> {
     pub math: TokenStream,
     /// Path of the runtime crate.
     pub rt: TokenStream,
+    /// The generated code's own locals.
+    pub locals: &'a Locals,
 }
 
 impl BlockEmitter<'_> {
@@ -44,21 +46,23 @@ impl BlockEmitter<'_> {
             float: self.float,
             constant_slot: self.constant_slot,
             math: self.math.clone(),
+            locals: self.locals,
         };
+        let Locals { x, dx, p, c, .. } = self.locals;
         let mut out = TokenStream::new();
         // Values the block reads.
         if !in_constants && block.leaves.iter().any(|l| matches!(l, Leaf::Param(_))) {
-            out.extend(quote!(let p = &self.parameters;));
+            out.extend(quote!(let #p = &self.parameters;));
         }
         if hoisted && !block.hoisted.is_empty() {
-            out.extend(quote!(let c = &self.constants;));
+            out.extend(quote!(let #c = &self.constants;));
         }
         for l in &block.leaves {
             match *l {
                 Leaf::State(i) => {
                     let id = ident(&self.prog.state_names[i]);
                     let k = Literal::usize_unsuffixed(i);
-                    out.extend(quote!(let #id = x[#k];));
+                    out.extend(quote!(let #id = #x[#k];));
                 }
                 Leaf::Input(i) => {
                     let id = ident(&self.prog.input_names[i]);
@@ -67,7 +71,7 @@ impl BlockEmitter<'_> {
                 Leaf::Accel(i) => {
                     let id = ident(&format!("{}_dot", self.prog.state_names[self.prog.n + i]));
                     let k = Literal::usize_unsuffixed(self.prog.n + i);
-                    out.extend(quote!(let #id = dx[#k];));
+                    out.extend(quote!(let #id = #dx[#k];));
                 }
                 Leaf::Param(_) | Leaf::Time | Leaf::SubOut(..) => {}
             }
@@ -117,12 +121,10 @@ impl BlockEmitter<'_> {
                     let e = printer.expr(*value);
                     match target {
                         Target::Array(a) => {
-                            let a = ident(a);
                             let k = Literal::usize_unsuffixed(*slot);
                             out.extend(quote!(#a[#k] = #e;));
                         }
                         Target::Matrix(a, n) => {
-                            let a = ident(a);
                             let i = Literal::usize_unsuffixed(slot / n);
                             let j = Literal::usize_unsuffixed(slot % n);
                             out.extend(quote!(#a[#i][#j] = #e;));

@@ -132,6 +132,70 @@ pub fn float_type(float: FloatType) -> TokenStream {
     }
 }
 
+/// Names of the generated code's own locals, chosen so that no model name
+/// (a coordinate called `x`, a speed called `p`) shadows them.
+#[derive(Clone, Debug)]
+pub struct Locals {
+    /// The state array.
+    pub x: Ident,
+    /// The derivative array.
+    pub dx: Ident,
+    /// The output array.
+    pub y: Ident,
+    /// The parameters.
+    pub p: Ident,
+    /// The precomputed constants.
+    pub c: Ident,
+    /// The mass matrix.
+    pub m: Ident,
+    /// The forcing vector.
+    pub f: Ident,
+    /// The initial state.
+    pub x0: Ident,
+}
+
+impl Locals {
+    /// Locals that avoid every name the program binds.
+    pub fn new(prog: &Program) -> Locals {
+        let mut taken: rustc_hash::FxHashSet<String> = prog.state_names.iter().cloned().collect();
+        taken.extend(prog.input_names.iter().cloned());
+        for (_, outs) in &prog.subroutines {
+            taken.extend(outs.iter().cloned());
+        }
+        for b in [
+            &prog.derivatives,
+            &prog.outputs,
+            &prog.mass_matrix,
+            &prog.forcing,
+            &prog.constants,
+            &prog.initial,
+        ] {
+            taken.extend(b.names.values().cloned());
+        }
+        for i in 0..prog.n {
+            taken.insert(format!("{}_dot", prog.state_names[prog.n + i]));
+        }
+        let mut pick = |base: &str| {
+            let mut name = base.to_string();
+            while taken.contains(&name) {
+                name.push('_');
+            }
+            taken.insert(name.clone());
+            ident(&name)
+        };
+        Locals {
+            x: pick("x"),
+            dx: pick("dx"),
+            y: pick("y"),
+            p: pick("p"),
+            c: pick("c"),
+            m: pick("m"),
+            f: pick("f"),
+            x0: pick("x0"),
+        }
+    }
+}
+
 /// How precedence levels nest when printing.
 #[derive(Clone, Copy, PartialEq, PartialOrd)]
 enum Prec {
@@ -155,6 +219,8 @@ pub struct ExprPrinter<'a> {
     pub constant_slot: &'a FxHashMap<Nid, usize>,
     /// How to call the runtime's math functions (`math`).
     pub math: TokenStream,
+    /// The generated code's own locals.
+    pub locals: &'a Locals,
 }
 
 impl ExprPrinter<'_> {
@@ -206,7 +272,8 @@ impl ExprPrinter<'_> {
         if self.hoisted
             && let Some(k) = self.constant_slot.get(&n) {
                 let id = ident(&format!("p{}", k + 1));
-                return quote!(c.#id);
+                let c = &self.locals.c;
+                return quote!(#c.#id);
             }
         self.definition(n)
     }
@@ -291,7 +358,8 @@ impl ExprPrinter<'_> {
         match l {
             Leaf::Param(i) => {
                 let id = ident(&self.prog.parameter_names[i]);
-                quote!(p.#id)
+                let p = &self.locals.p;
+                quote!(#p.#id)
             }
             Leaf::State(i) => {
                 let id = ident(&self.prog.state_names[i]);

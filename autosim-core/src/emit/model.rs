@@ -3,7 +3,7 @@
 //! operation counts.
 
 use super::block::{BlockEmitter, Target};
-use super::expr::{float_type, ident, literal};
+use super::expr::{Locals, float_type, ident, literal};
 use crate::model::{FloatType, ItemDoc};
 use crate::opt::{Block, Leaf, Ops, Program};
 use crate::pipeline::Compiled;
@@ -115,13 +115,16 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
         .enumerate()
         .map(|(k, n)| (*n, k))
         .collect();
+    let locals = Locals::new(prog);
     let be = BlockEmitter {
         prog,
         float,
         constant_slot: &constant_slot,
         math: math.clone(),
         rt: rt.clone(),
+        locals: &locals,
     };
+    let Locals { x: lx, dx: ldx, y: ly, p: lp, m: lm, f: lf, x0: lx0, .. } = &locals;
 
     // Parameters.
     let param_syms = sys.parameters();
@@ -156,8 +159,8 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
         p_defaults.push(quote!(#id: #lit));
         p_units.push(unit);
         let k = Literal::usize_unsuffixed(i);
-        p_get.push(quote!(#k => p.#id,));
-        p_set.push(quote!(#k => p.#id = *v,));
+        p_get.push(quote!(#k => #lp.#id,));
+        p_set.push(quote!(#k => #lp.#id = *v,));
     }
     let p_names: Vec<&String> = prog.parameter_names.iter().collect();
     let (p_get_body, p_set_body) = if p_get.is_empty() {
@@ -165,7 +168,7 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
     } else {
         (
             quote! {
-                let p = &self.parameters;
+                let #lp = &self.parameters;
                 for (k, v) in values.iter_mut().enumerate() {
                     *v = match k {
                         #(#p_get)*
@@ -174,14 +177,14 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
                 }
             },
             quote! {
-                let mut p = self.parameters;
+                let mut #lp = self.parameters;
                 for (k, v) in values.iter().enumerate() {
                     match k {
                         #(#p_set)*
                         _ => {}
                     }
                 }
-                self.set_parameters(p);
+                self.set_parameters(#lp);
             },
         )
     };
@@ -281,21 +284,21 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
     };
     let c_body = if c_uses_p {
         let inner = c_body;
-        quote!(let p = parameters; #inner)
+        quote!(let #lp = parameters; #inner)
     } else {
         c_body
     };
 
     // Blocks.
-    let deriv = block_fn_body(&be, &prog.derivatives, Target::Array("dx"));
-    let mm = block_fn_body(&be, &prog.mass_matrix, Target::Matrix("m", n.max(1)));
-    let fo = block_fn_body(&be, &prog.forcing, Target::Array("f"));
+    let deriv = block_fn_body(&be, &prog.derivatives, Target::Array(ldx));
+    let mm = block_fn_body(&be, &prog.mass_matrix, Target::Matrix(lm, n.max(1)));
+    let fo = block_fn_body(&be, &prog.forcing, Target::Array(lf));
     let outs_body = {
-        let body = block_fn_body(&be, &prog.outputs, Target::Array("y"));
+        let body = block_fn_body(&be, &prog.outputs, Target::Array(ly));
         if prog.outputs_need_derivatives {
             quote! {
-                let mut dx = [0.0; #n_states_lit];
-                <Self as #rt::Model>::derivatives(self, t, x, &mut dx)?;
+                let mut #ldx = [0.0; #n_states_lit];
+                <Self as #rt::Model>::derivatives(self, t, #lx, &mut #ldx)?;
                 #body
             }
         } else {
@@ -313,42 +316,24 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
             .iter()
             .any(|st| matches!(st, crate::opt::Stmt::Store { .. }))
         {
-            let body = be.emit(&nonzero, false, Target::Array("x0"));
-            quote!(let mut x0 = [0.0; #n_states_lit]; #body x0)
+            let body = be.emit(&nonzero, false, Target::Array(lx0));
+            quote!(let mut #lx0 = [0.0; #n_states_lit]; #body #lx0)
         } else {
             quote!([0.0; #n_states_lit])
         }
     };
-    let t_arg = |b: &Block| if uses_time(b) { quote!(t) } else { quote!(_t) };
-    let x_arg = |b: &Block| {
-        if b.leaves.iter().any(|l| matches!(l, Leaf::State(_))) {
-            quote!(x)
-        } else {
-            quote!(_x)
-        }
-    };
+    let t_arg = |b: &Block| if uses_time(b) { quote!(t) } else { quote!(_) };
+    let reads_state = |b: &Block| b.leaves.iter().any(|l| matches!(l, Leaf::State(_)));
+    let x_arg = |b: &Block| if reads_state(b) { quote!(#lx) } else { quote!(_) };
     let (dt, dxx) = (t_arg(&prog.derivatives), x_arg(&prog.derivatives));
-    let out_t = if uses_time(&prog.outputs) || prog.outputs_need_derivatives {
-        quote!(t)
-    } else {
-        quote!(_t)
-    };
-    let out_x = if prog
-        .outputs
-        .leaves
-        .iter()
-        .any(|l| matches!(l, Leaf::State(_)))
-        || prog.outputs_need_derivatives
-    {
-        quote!(x)
-    } else {
-        quote!(_x)
-    };
-    let out_y = if n_out == 0 { quote!(_y) } else { quote!(y) };
+    let need = prog.outputs_need_derivatives;
+    let out_t = if uses_time(&prog.outputs) || need { quote!(t) } else { quote!(_) };
+    let out_x = if reads_state(&prog.outputs) || need { quote!(#lx) } else { quote!(_) };
+    let out_y = if n_out == 0 { quote!(_) } else { quote!(#ly) };
     let (mt, mx) = (t_arg(&prog.mass_matrix), x_arg(&prog.mass_matrix));
     let (ft, fx) = (t_arg(&prog.forcing), x_arg(&prog.forcing));
-    let m_arg = if n == 0 { quote!(_m) } else { quote!(m) };
-    let f_arg = if n == 0 { quote!(_f) } else { quote!(f) };
+    let m_arg = if n == 0 { quote!(_) } else { quote!(#lm) };
+    let f_arg = if n == 0 { quote!(_) } else { quote!(#lf) };
 
     let state_names = &prog.state_names;
     let state_units = &prog.state_units;
@@ -578,7 +563,7 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
                 const OUTPUT_NAMES: &'static [&'static str] = &[#(#out_names),*];
                 const OUTPUT_UNITS: &'static [&'static str] = &[#(#out_units),*];
 
-                fn derivatives(&mut self, #dt: #ty, #dxx: &[#ty; #n_states_lit], dx: &mut [#ty; #n_states_lit]) -> Result<(), #rt::ModelError> {
+                fn derivatives(&mut self, #dt: #ty, #dxx: &[#ty; #n_states_lit], #ldx: &mut [#ty; #n_states_lit]) -> Result<(), #rt::ModelError> {
                     #deriv
                     Ok(())
                 }

@@ -38,19 +38,13 @@ impl Arena {
     // ----- arithmetic -----
 
     /// `a + b`. Common symbolic factors are pulled out
-    /// (`gcf(a, b) (a/gcf + b/gcf)`, the paper's `add`).
+    /// (`gcf(a, b) (a/gcf + b/gcf)`, the paper's `add`; see [`Arena::sum`]).
     pub fn add(&mut self, a: ExprId, b: ExprId) -> ExprId {
         if self.is_zero(a) {
             return b;
         }
         if self.is_zero(b) {
             return a;
-        }
-        if let Some(g) = self.symbolic_gcf(a, b) {
-            let ga = self.div(a, g);
-            let gb = self.div(b, g);
-            let s = self.sum(&[ga, gb]);
-            return self.mul(g, s);
         }
         self.sum(&[a, b])
     }
@@ -239,6 +233,20 @@ impl Arena {
         if merged.is_empty() {
             return self.num(constant);
         }
+
+        // Pull out a symbolic factor common to every term.
+        if constant.is_zero() && merged.len() >= 2 {
+            if let Some(g) = self.common_factor(&merged) {
+                let inv = self.inv(g);
+                let parts: Vec<ExprId> = merged
+                    .iter()
+                    .map(|&(m, c)| self.product_with(c, &[m, inv]))
+                    .collect();
+                let inner = self.sum(&parts);
+                return self.mul(g, inner);
+            }
+        }
+
         if merged.len() == 1 && constant.is_zero() {
             let (m, c) = merged[0];
             return self.make_term(c, m);
@@ -278,6 +286,59 @@ impl Arena {
         } else {
             s
         }
+    }
+
+    /// The product of the factors (with the smallest numeric exponent) that
+    /// every monomial of a sum has, if any.
+    fn common_factor(&mut self, terms: &[(ExprId, Number)]) -> Option<ExprId> {
+        let powers = |arena: &Arena, m: ExprId| -> Vec<(ExprId, Number)> {
+            arena
+                .monomial_factors(m)
+                .into_iter()
+                .filter(|f| *f != arena.one())
+                .map(|f| match arena.node(f) {
+                    Node::Pow(b, x) => match arena.as_number(*x) {
+                        Some(n) => (*b, n),
+                        None => (f, Number::ONE),
+                    },
+                    _ => (f, Number::ONE),
+                })
+                .collect()
+        };
+        let mut common = powers(self, terms[0].0);
+        for &(m, _) in &terms[1..] {
+            if common.is_empty() {
+                return None;
+            }
+            let other = powers(self, m);
+            common.retain_mut(|(base, e)| {
+                match other.iter().find(|(b, _)| b == base) {
+                    Some((_, e2)) if e.is_negative() == e2.is_negative() => {
+                        let smaller = if e.is_negative() {
+                            e.cmp_value(*e2).is_ge()
+                        } else {
+                            e.cmp_value(*e2).is_le()
+                        };
+                        if !smaller {
+                            *e = *e2;
+                        }
+                        true
+                    }
+                    _ => false,
+                }
+            });
+        }
+        if common.is_empty() {
+            return None;
+        }
+        let factors: Vec<ExprId> = common
+            .into_iter()
+            .map(|(b, e)| {
+                let en = self.num(e);
+                self.pow(b, en)
+            })
+            .collect();
+        Some(self.product(&factors))
     }
 
     /// Finds `c M sin²x + c M cos²x` (→ `c M`) and `c M - c M sin²x`

@@ -110,10 +110,43 @@ impl Arena {
                 }
             }
             Node::Prod(c, fs) => {
-                if c.is_negative() {
-                    out.push('-');
+                // A negative product with a sum factor reads better with
+                // the sum negated: `y*(1 - y^2/6)`, not `-y*(y^2/6 - 1)`.
+                let sum_at = fs.iter().position(|f| matches!(self.node(*f), Node::Sum(_)));
+                match sum_at {
+                    Some(k) if c.is_negative() => {
+                        let mut t = String::new();
+                        self.write_prod_parts(&mut t, c.abs(), &[]);
+                        let rest: Vec<ExprId> =
+                            fs.iter().enumerate().filter(|(i, _)| *i != k).map(|(_, f)| *f).collect();
+                        let mut first = true;
+                        if t != "1" {
+                            out.push_str(&t);
+                            first = false;
+                        }
+                        for f in &rest {
+                            if !first {
+                                out.push('*');
+                            }
+                            self.write_expr(out, *f, Prec::Pow);
+                            first = false;
+                        }
+                        if !first {
+                            out.push('*');
+                        }
+                        out.push('(');
+                        if let Node::Sum(ts) = self.node(fs[k]) {
+                            self.write_sum(out, ts, true);
+                        }
+                        out.push(')');
+                    }
+                    _ => {
+                        if c.is_negative() {
+                            out.push('-');
+                        }
+                        self.write_prod_parts(out, c.abs(), fs);
+                    }
                 }
-                self.write_prod_parts(out, c.abs(), fs);
             }
             Node::Pow(b, x) => match self.as_number(*x) {
                 Some(n) if n.is_negative() => {

@@ -239,13 +239,32 @@ impl Ir {
         self.intern(Op::Div(a, b))
     }
 
-    /// `-a`.
+    /// `-a`; a negation is pushed into a sum that has subtracted terms
+    /// (`-(a - b)` is `b - a`), also through a product or quotient.
     pub fn neg(&mut self, a: Nid) -> Nid {
         if let Some(x) = self.as_num(a) {
             return self.num(-x);
         }
-        if let Op::Neg(x) = *self.op(a) {
-            return x;
+        match self.op(a).clone() {
+            Op::Neg(x) => return x,
+            Op::Sum { pos, neg } if !neg.is_empty() => {
+                return self.sum(neg.to_vec(), pos.to_vec());
+            }
+            Op::Mul(x, y) => {
+                for (s, other) in [(y, x), (x, y)] {
+                    if matches!(self.op(s), Op::Sum { neg, .. } if !neg.is_empty()) {
+                        let ns = self.neg(s);
+                        return self.mul(other, ns);
+                    }
+                }
+            }
+            Op::Div(x, y) => {
+                if matches!(self.op(x), Op::Sum { neg, .. } if !neg.is_empty()) {
+                    let nx = self.neg(x);
+                    return self.div(nx, y);
+                }
+            }
+            _ => {}
         }
         self.intern(Op::Neg(a))
     }

@@ -115,6 +115,16 @@ impl Span {
         self.file.map(|(start, _)| start)
     }
 
+    /// The line the span starts on: in its file, or in the Rust file of a
+    /// model written as tokens (when the compiler tells; not in unit tests).
+    pub fn line(self) -> Option<usize> {
+        match (self.file, self.tokens) {
+            (Some((start, _)), _) => Some(start.line),
+            (None, Some((first, _))) => Some(first.start().line).filter(|&line| line > 0),
+            (None, None) => None,
+        }
+    }
+
     /// End (exclusive) of the span in its file, if it came from a file.
     pub fn end(self) -> Option<LineCol> {
         self.file.map(|(_, end)| end)
@@ -278,13 +288,47 @@ impl Diagnostics {
     ///   = help: did you mean `rotate`?
     /// ```
     pub fn render(&self, file: &SourceFile) -> String {
-        let mut sorted: Vec<&Diagnostic> = self.list.iter().collect();
-        sorted.sort_by_key(|d| d.span.start());
         let mut out = String::new();
-        for diagnostic in sorted {
-            render_one(&mut out, diagnostic, file);
+        for diagnostic in self.sorted() {
+            render_one(&mut out, diagnostic, file, Header::Compact);
         }
         out
+    }
+
+    /// The diagnostics of a model file as one combined `syn::Error` at `at`
+    /// (for the macro: the `file = "..."` literal), one message per
+    /// diagnostic, sorted by position, each followed by its place in the
+    /// file the way rustc shows its own (rustc adds the `error: `):
+    ///
+    /// ```text
+    /// unknown body option `rotat`
+    ///  --> sat.sim:3:30
+    ///   |
+    /// 3 | body C "clock" { parent: B, rotat: 3 }
+    ///   |                             ^^^^^
+    ///   = help: did you mean `rotate`?
+    /// ```
+    ///
+    /// `None` when there is nothing to report.
+    pub fn to_syn_error_in(&self, file: &SourceFile, at: proc_macro2::Span) -> Option<syn::Error> {
+        let mut errors = self.sorted().into_iter().map(|diagnostic| {
+            let mut text = String::new();
+            render_one(&mut text, diagnostic, file, Header::Rustc);
+            syn::Error::new(at, text.trim_end())
+        });
+        let mut error = errors.next()?;
+        for other in errors {
+            error.combine(other);
+        }
+        Some(error)
+    }
+
+    /// The diagnostics sorted by position in their file (stable: reported
+    /// order among equal positions and for token spans).
+    fn sorted(&self) -> Vec<&Diagnostic> {
+        let mut sorted: Vec<&Diagnostic> = self.list.iter().collect();
+        sorted.sort_by_key(|d| d.span.start());
+        sorted
     }
 }
 
@@ -339,16 +383,19 @@ impl SourceFile {
         match std::fs::read_to_string(path) {
             Ok(text) => Ok(SourceFile::new(shown_as, text)),
             Err(error) => {
-                let diagnostic = Diagnostic::error(
-                    at,
-                    format!("cannot read model file `{}`: {error}", path.display()),
-                );
+                // The path as the user wrote it: the full path depends on the
+                // machine (and is not what they wrote).
+                let shown = shown_as.into();
                 let diagnostic = if error.kind() == std::io::ErrorKind::NotFound {
-                    diagnostic.help(
-                        "the path is relative to the crate root (the directory of Cargo.toml)",
-                    )
+                    Diagnostic::error(at, format!("model file `{}` not found", shown.display()))
+                        .help(
+                            "the path is relative to the crate root (the directory of Cargo.toml)",
+                        )
                 } else {
-                    diagnostic
+                    Diagnostic::error(
+                        at,
+                        format!("cannot read model file `{}`: {error}", shown.display()),
+                    )
                 };
                 Err(diagnostic.into())
             }
@@ -363,19 +410,36 @@ impl SourceFile {
     }
 }
 
-fn render_one(out: &mut String, diagnostic: &Diagnostic, file: &SourceFile) {
+/// How a rendered diagnostic begins.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Header {
+    /// `path:line:col: error: message` (terminals, build scripts).
+    Compact,
+    /// `message`, then ` --> path:line:col` (inside a compiler error, which
+    /// adds its own `error: `).
+    Rustc,
+}
+
+fn render_one(out: &mut String, diagnostic: &Diagnostic, file: &SourceFile, header: Header) {
     use std::fmt::Write as _;
     let path = file.path.display();
+    let message = &diagnostic.message;
     let (start, end) = match (diagnostic.span.start(), diagnostic.span.end()) {
         (Some(start), Some(end)) => (start, end),
         _ => {
-            let _ = writeln!(out, "{path}: error: {}", diagnostic.message);
+            let _ = match header {
+                Header::Compact => writeln!(out, "{path}: error: {message}"),
+                Header::Rustc => writeln!(out, "{message}\n--> {path}"),
+            };
             render_footer(out, diagnostic, 0);
             return;
         }
     };
-    let _ = writeln!(out, "{path}:{start}: error: {}", diagnostic.message);
     let gutter = start.line.to_string().len();
+    let _ = match header {
+        Header::Compact => writeln!(out, "{path}:{start}: error: {message}"),
+        Header::Rustc => writeln!(out, "{message}\n{:gutter$}--> {path}:{start}", ""),
+    };
     if let Some(line) = file.line(start.line) {
         let line = line.trim_end();
         let _ = writeln!(out, "{:gutter$} |", "");
@@ -481,6 +545,28 @@ mod tests {
     }
 
     #[test]
+    fn renders_for_the_compiler_without_a_second_error_prefix() {
+        let file = SourceFile::new("sat.sim", "model S;\nbody C { rotat: 3 }\n");
+        let mut diags = Diagnostics::new();
+        diags.push(
+            Diagnostic::error(at(2, 10, 5), "unknown body option `rotat`")
+                .help("did you mean `rotate`?"),
+        );
+        diags.error(Span::unknown(), "nowhere");
+        let messages: Vec<String> = diags
+            .to_syn_error_in(&file, proc_macro2::Span::call_site())
+            .into_iter()
+            .flatten()
+            .map(|e| e.to_string())
+            .collect();
+        let expect = "unknown body option `rotat`\n --> sat.sim:2:10\n  |\n2 | body C { rotat: 3 }\n  |          ^^^^^\n  = help: did you mean `rotate`?";
+        assert_eq!(
+            messages,
+            vec!["nowhere\n--> sat.sim".to_string(), expect.to_string()]
+        );
+    }
+
+    #[test]
     fn renders_sorted_and_without_location() {
         let file = SourceFile::new("m.sim", "a\n\tb c\n");
         let mut diags = Diagnostics::new();
@@ -514,7 +600,10 @@ mod tests {
         let diags = result
             .err()
             .map(|d| d.iter().map(|d| d.message.clone()).collect::<Vec<_>>());
-        assert!(diags.is_some_and(|m| m.len() == 1 && m[0].starts_with("cannot read model file")));
+        assert_eq!(
+            diags,
+            Some(vec!["model file `x.sim` not found".to_string()])
+        );
     }
 
     #[test]

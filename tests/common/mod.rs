@@ -11,7 +11,13 @@ pub fn reference_dir() -> PathBuf {
     if let Ok(dir) = std::env::var("AUTOSIM_SHARED") {
         return PathBuf::from(dir).join("reference");
     }
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/reference")
+    // The first ancestor of this crate that has `shared/reference` beside it.
+    let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    manifest
+        .ancestors()
+        .map(|dir| dir.join("../shared/reference"))
+        .find(|dir| dir.is_dir())
+        .unwrap_or_else(|| manifest.join("../shared/reference"))
 }
 
 /// A reference file by model name (`satellite`, `chain-planar-3`, ...).

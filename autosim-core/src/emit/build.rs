@@ -126,12 +126,15 @@ impl Config {
         if !self.quiet {
             println!("cargo::rerun-if-changed={}", path.display());
         }
-        let file = SourceFile::read(path, path, Span::unknown()).map_err(|d| {
-            BuildError::Model(d.render(&SourceFile::new(path, String::new())))
-        })?;
+        let file = SourceFile::read(path, path, Span::unknown())
+            .map_err(|d| BuildError::Model(d.render(&SourceFile::new(path, String::new()))))?;
         let compiled = compile_source(&file).map_err(|d| BuildError::Model(d.render(&file)))?;
         let name = compiled.model.system.name().to_string();
-        let module = self.emit.module_name.clone().unwrap_or_else(|| snake_case(&name));
+        let module = self
+            .emit
+            .module_name
+            .clone()
+            .unwrap_or_else(|| snake_case(&name));
         let shown = path.display().to_string();
         let text = format!(
             "{}{}",

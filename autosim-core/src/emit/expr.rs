@@ -13,9 +13,10 @@ use rustc_hash::FxHashMap;
 /// is not an identifier is sanitized, never a panic).
 pub fn ident(name: &str) -> Ident {
     if let Some(raw) = name.strip_prefix("r#")
-        && is_ident(raw) {
-            return Ident::new_raw(raw, Span::call_site());
-        }
+        && is_ident(raw)
+    {
+        return Ident::new_raw(raw, Span::call_site());
+    }
     if is_ident(name) && !is_keyword(name) {
         return Ident::new(name, Span::call_site());
     }
@@ -270,11 +271,12 @@ impl ExprPrinter<'_> {
             return quote!(#id);
         }
         if self.hoisted
-            && let Some(k) = self.constant_slot.get(&n) {
-                let id = ident(&format!("p{}", k + 1));
-                let c = &self.locals.c;
-                return quote!(#c.#id);
-            }
+            && let Some(k) = self.constant_slot.get(&n)
+        {
+            let id = ident(&format!("p{}", k + 1));
+            let c = &self.locals.c;
+            return quote!(#c.#id);
+        }
         self.definition(n)
     }
 

@@ -124,7 +124,16 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
         rt: rt.clone(),
         locals: &locals,
     };
-    let Locals { x: lx, dx: ldx, y: ly, p: lp, m: lm, f: lf, x0: lx0, .. } = &locals;
+    let Locals {
+        x: lx,
+        dx: ldx,
+        y: ly,
+        p: lp,
+        m: lm,
+        f: lf,
+        x0: lx0,
+        ..
+    } = &locals;
 
     // Parameters.
     let param_syms = sys.parameters();
@@ -223,6 +232,24 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
         i_units.push(unit);
     }
     let i_names: Vec<&String> = prog.input_names.iter().collect();
+    // All-zero defaults are what `derive(Default)` gives (clippy prefers it).
+    let inputs_zero = sys.inputs().iter().all(|s| {
+        matches!(sys.arena.symbol(*s).kind, crate::expr::SymbolKind::Input { default } if default == 0.0)
+    });
+    let (inputs_derive_default, inputs_default_impl) = if inputs_zero {
+        (quote!(, Default), quote!())
+    } else {
+        (
+            quote!(),
+            quote! {
+                impl Default for Inputs {
+                    fn default() -> Self {
+                        Inputs { #(#i_defaults,)* }
+                    }
+                }
+            },
+        )
+    };
 
     // User code.
     let mut trait_fns = Vec::new();
@@ -324,11 +351,25 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
     };
     let t_arg = |b: &Block| if uses_time(b) { quote!(t) } else { quote!(_) };
     let reads_state = |b: &Block| b.leaves.iter().any(|l| matches!(l, Leaf::State(_)));
-    let x_arg = |b: &Block| if reads_state(b) { quote!(#lx) } else { quote!(_) };
+    let x_arg = |b: &Block| {
+        if reads_state(b) {
+            quote!(#lx)
+        } else {
+            quote!(_)
+        }
+    };
     let (dt, dxx) = (t_arg(&prog.derivatives), x_arg(&prog.derivatives));
     let need = prog.outputs_need_derivatives;
-    let out_t = if uses_time(&prog.outputs) || need { quote!(t) } else { quote!(_) };
-    let out_x = if reads_state(&prog.outputs) || need { quote!(#lx) } else { quote!(_) };
+    let out_t = if uses_time(&prog.outputs) || need {
+        quote!(t)
+    } else {
+        quote!(_)
+    };
+    let out_x = if reads_state(&prog.outputs) || need {
+        quote!(#lx)
+    } else {
+        quote!(_)
+    };
     let out_y = if n_out == 0 { quote!(_) } else { quote!(#ly) };
     let (mt, mx) = (t_arg(&prog.mass_matrix), x_arg(&prog.mass_matrix));
     let (ft, fx) = (t_arg(&prog.forcing), x_arg(&prog.forcing));
@@ -469,16 +510,12 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
             }
 
             /// Inputs of the model, supplied by the caller at run time.
-            #[derive(Clone, Copy, Debug, PartialEq)]
+            #[derive(Clone, Copy, Debug, PartialEq #inputs_derive_default)]
             pub struct Inputs {
                 #(#i_fields,)*
             }
 
-            impl Default for Inputs {
-                fn default() -> Self {
-                    Inputs { #(#i_defaults,)* }
-                }
-            }
+            #inputs_default_impl
 
             #trait_item
 

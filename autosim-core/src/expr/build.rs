@@ -235,16 +235,17 @@ impl Arena {
         }
 
         // Pull out a symbolic factor common to every term.
-        if constant.is_zero() && merged.len() >= 2 {
-            if let Some(g) = self.common_factor(&merged) {
-                let inv = self.inv(g);
-                let parts: Vec<ExprId> = merged
-                    .iter()
-                    .map(|&(m, c)| self.product_with(c, &[m, inv]))
-                    .collect();
-                let inner = self.sum(&parts);
-                return self.mul(g, inner);
-            }
+        if constant.is_zero()
+            && merged.len() >= 2
+            && let Some(g) = self.common_factor(&merged)
+        {
+            let inv = self.inv(g);
+            let parts: Vec<ExprId> = merged
+                .iter()
+                .map(|&(m, c)| self.product_with(c, &[m, inv]))
+                .collect();
+            let inner = self.sum(&parts);
+            return self.mul(g, inner);
         }
 
         if merged.len() == 1 && constant.is_zero() {
@@ -311,21 +312,19 @@ impl Arena {
                 return None;
             }
             let other = powers(self, m);
-            common.retain_mut(|(base, e)| {
-                match other.iter().find(|(b, _)| b == base) {
-                    Some((_, e2)) if e.is_negative() == e2.is_negative() => {
-                        let smaller = if e.is_negative() {
-                            e.cmp_value(*e2).is_ge()
-                        } else {
-                            e.cmp_value(*e2).is_le()
-                        };
-                        if !smaller {
-                            *e = *e2;
-                        }
-                        true
+            common.retain_mut(|(base, e)| match other.iter().find(|(b, _)| b == base) {
+                Some((_, e2)) if e.is_negative() == e2.is_negative() => {
+                    let smaller = if e.is_negative() {
+                        e.cmp_value(*e2).is_ge()
+                    } else {
+                        e.cmp_value(*e2).is_le()
+                    };
+                    if !smaller {
+                        *e = *e2;
                     }
-                    _ => false,
+                    true
                 }
+                _ => false,
             });
         }
         if common.is_empty() {
@@ -571,7 +570,11 @@ impl Arena {
             let base_meta = self.meta(base);
             let order = match integer {
                 Some(n) => (i128::from(base_meta.order) * n).clamp(-1000, 1000) as i16,
-                None => 0,
+                // sqrt(q1^2 + q2^2) is as small as q1 (order 1), not O(1):
+                // scale the order, rounded toward zero.
+                None => (f64::from(base_meta.order) * e.to_f64())
+                    .trunc()
+                    .clamp(-1000.0, 1000.0) as i16,
             };
             return self.intern(
                 Node::Pow(base, exponent),

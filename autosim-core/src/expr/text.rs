@@ -112,13 +112,19 @@ impl Arena {
             Node::Prod(c, fs) => {
                 // A negative product with a sum factor reads better with
                 // the sum negated: `y*(1 - y^2/6)`, not `-y*(y^2/6 - 1)`.
-                let sum_at = fs.iter().position(|f| matches!(self.node(*f), Node::Sum(_)));
+                let sum_at = fs
+                    .iter()
+                    .position(|f| matches!(self.node(*f), Node::Sum(_)));
                 match sum_at {
                     Some(k) if c.is_negative() => {
                         let mut t = String::new();
                         self.write_prod_parts(&mut t, c.abs(), &[]);
-                        let rest: Vec<ExprId> =
-                            fs.iter().enumerate().filter(|(i, _)| *i != k).map(|(_, f)| *f).collect();
+                        let rest: Vec<ExprId> = fs
+                            .iter()
+                            .enumerate()
+                            .filter(|(i, _)| *i != k)
+                            .map(|(_, f)| *f)
+                            .collect();
                         let mut first = true;
                         if t != "1" {
                             out.push_str(&t);

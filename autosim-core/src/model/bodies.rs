@@ -197,16 +197,17 @@ impl<'a> Resolver<'a> {
         // Checks with spans before the API sees the spec.
         let dofs = spec.dofs();
         if let Some(opt) = b.options.get(BodyKey::Rotate)
-            && !matches!(spec.rotations.len(), 0 | 1 | 3) {
-                self.push(
-                    Diagnostic::error(
-                        opt.value.span(),
-                        format!("body `{name}` has {} rotations", spec.rotations.len()),
-                    )
-                    .help("a body rotates 0, 1 or 3 times: `rotate: 3` or `rotate: [1, 2, 3]`"),
-                );
-                ok = false;
-            }
+            && !matches!(spec.rotations.len(), 0 | 1 | 3)
+        {
+            self.push(
+                Diagnostic::error(
+                    opt.value.span(),
+                    format!("body `{name}` has {} rotations", spec.rotations.len()),
+                )
+                .help("a body rotates 0, 1 or 3 times: `rotate: 3` or `rotate: [1, 2, 3]`"),
+            );
+            ok = false;
+        }
         for (key, what, len) in [
             (
                 BodyKey::Q,
@@ -230,13 +231,17 @@ impl<'a> Resolver<'a> {
             ),
         ] {
             if let (Some(len), Some(opt)) = (len, b.options.get(key))
-                && len != dofs {
-                    self.error(
-                        opt.value.span(),
-                        format!("body `{name}` has {dofs} degree{} of freedom, but {len} {what} were given", if dofs == 1 { "" } else { "s" }),
-                    );
-                    ok = false;
-                }
+                && len != dofs
+            {
+                self.error(
+                    opt.value.span(),
+                    format!(
+                        "body `{name}` has {dofs} degree{} of freedom, but {len} {what} were given",
+                        if dofs == 1 { "" } else { "s" }
+                    ),
+                );
+                ok = false;
+            }
         }
         if let Some(opt) = b.options.get(BodyKey::Small) {
             match self.small_flags(&opt.value, &spec) {
@@ -324,9 +329,16 @@ impl<'a> Resolver<'a> {
         match v {
             Expr::Call { func, args, .. } if func.text == "diag" => {
                 if args.len() != 3 {
-                    self.error(
-                        func.span,
-                        format!("`diag` takes 3 arguments, but {} were given", args.len()),
+                    self.push(
+                        Diagnostic::error(
+                            func.span,
+                            format!(
+                                "`diag` takes 3 arguments, but {} {} given",
+                                args.len(),
+                                if args.len() == 1 { "was" } else { "were" }
+                            ),
+                        )
+                        .help("write `diag(I11, I22, I33)`, the moments of inertia about the body's axes 1, 2 and 3"),
                     );
                     return None;
                 }

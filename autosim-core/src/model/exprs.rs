@@ -35,9 +35,12 @@ impl Resolver<'_> {
             Expr::Number(n) => match Number::parse_decimal(&n.text) {
                 Some(x) => Some(Value::Scalar(self.sys.arena.num(x))),
                 None => {
-                    self.error(
-                        n.span,
-                        format!("`{}` is not a number this compiler can represent", n.text),
+                    self.push(
+                        Diagnostic::error(
+                            n.span,
+                            format!("`{}` is not a number this compiler can represent", n.text),
+                        )
+                        .help("numbers in expressions are exact fractions of at most 38 digits (between 1e-38 and 1e38); declare a parameter for other values"),
                     );
                     None
                 }
@@ -287,13 +290,24 @@ impl Resolver<'_> {
             Value::Vector(v) => Some(v),
             Value::Scalar(s) if self.sys.arena.is_zero(s) => Some(Vector::zero()),
             other => {
-                let hint = match &other {
-                    Value::Scalar(_) => "; multiply it by a unit vector, e.g. `F*b1`",
-                    Value::List(_) => {
-                        "; a list `[x, y, z]` has no axes: write `x*b1 + y*b2 + z*b3`"
+                let hint = match (&other, e) {
+                    // `about: 3`: an axis number where its unit vector belongs.
+                    (Value::Scalar(_), Expr::Number(n))
+                        if matches!(n.text.as_str(), "1" | "2" | "3") =>
+                    {
+                        format!(
+                            "; an axis is a unit vector: write `n{k}` for axis {k} of N, or `b{k}` for axis {k} of a body `B`",
+                            k = n.text
+                        )
                     }
-                    Value::Point(_) => "; use `pos(P)` for its position",
-                    _ => "",
+                    (Value::Scalar(_), _) => {
+                        "; multiply it by a unit vector, e.g. `F*b1`".to_string()
+                    }
+                    (Value::List(_), _) => {
+                        "; a list `[x, y, z]` has no axes: write `x*b1 + y*b2 + z*b3`".to_string()
+                    }
+                    (Value::Point(_), _) => "; use `pos(P)` for its position".to_string(),
+                    _ => String::new(),
                 };
                 self.error(
                     e.span(),
@@ -309,6 +323,20 @@ impl Resolver<'_> {
 
     /// A point (a body stands for its origin).
     pub fn point(&mut self, e: &Expr, context: &str) -> Option<PointId> {
+        if let Expr::Name(n) = e
+            && self.is_undeclared(n)
+        {
+            self.unknown_of_kind(
+                n,
+                "point",
+                |k| matches!(k, Named::Point(_) | Named::Body(_)),
+                format!(
+                    "declare it with `point {} in B at [x, y, z];`, or use `B.cm` or a body (its origin)",
+                    n.text
+                ),
+            );
+            return None;
+        }
         match self.eval(e)? {
             Value::Point(p) => Some(p),
             Value::Body(b) => Some(self.sys.body(b).origin),
@@ -327,6 +355,11 @@ impl Resolver<'_> {
 
     /// A body.
     pub fn body(&mut self, e: &Expr, context: &str) -> Option<BodyId> {
+        if let Expr::Name(n) = e
+            && self.is_undeclared(n)
+        {
+            return self.body_by_name(n);
+        }
         match self.eval(e)? {
             Value::Body(b) => Some(b),
             other => {
@@ -382,9 +415,10 @@ impl Resolver<'_> {
             other => (false, other),
         };
         if let Expr::Number(n) = inner
-            && let Ok(v) = n.text.parse::<i64>() {
-                return Some(if neg { -v } else { v });
-            }
+            && let Ok(v) = n.text.parse::<i64>()
+        {
+            return Some(if neg { -v } else { v });
+        }
         self.error(e.span(), format!("{context} must be an integer"));
         None
     }

@@ -122,7 +122,7 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
         match item {
             Item::Parameters(ps) => {
                 for p in &ps.params {
-                    let value = value_f64(&p.value);
+                    let value = finite_value(&mut r, &p.value);
                     if !r.declare(&p.name, Named::Load) {
                         continue;
                     }
@@ -151,7 +151,7 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
                     if !r.declare(&i.name, Named::Load) {
                         continue;
                     }
-                    let default = i.default.as_ref().map_or(0.0, value_f64);
+                    let default = i.default.as_ref().map_or(0.0, |v| finite_value(&mut r, v));
                     let unit = i.unit.as_ref().map(|u| u.text.as_str());
                     match r.sys.add_input(&i.name.text, default, unit) {
                         Ok(s) => {
@@ -315,9 +315,10 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
                     continue;
                 };
                 if let Some(opt) = s.options.get(StateKey::Initial)
-                    && let Some(x) = r.constant(&opt.value, "the initial value of a state") {
-                        let _ = r.sys.set_state_initial(sym, x);
-                    }
+                    && let Some(x) = r.constant(&opt.value, "the initial value of a state")
+                {
+                    let _ = r.sys.set_state_initial(sym, x);
+                }
                 match s.options.get(StateKey::Derivative) {
                     Some(opt) => {
                         if let Some(d) = r.scalar(&opt.value, "the derivative of a state") {
@@ -374,6 +375,25 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
     Ok(out)
 }
 
+/// The value of a parameter or input default, reported when it does not
+/// fit a float (`1e999` would become infinity in generated code).
+fn finite_value(r: &mut Resolver<'_>, v: &ast::Value) -> f64 {
+    let x = value_f64(v);
+    if !x.is_finite() {
+        r.push(
+            Diagnostic::error(
+                v.span,
+                format!(
+                    "`{}` is too large for a floating-point number",
+                    v.number.text
+                ),
+            )
+            .help("values must be finite: at most about 1.8e308"),
+        );
+    }
+    x
+}
+
 fn value_f64(v: &ast::Value) -> f64 {
     // Rust's parser rounds correctly (once), so `0.018562500000000003`
     // is the same double as in any other program.
@@ -421,9 +441,10 @@ fn force(r: &mut Resolver<'_>, f: &ast::Force) {
         "along",
     );
     if let (Some(p), Some(v)) = (point, vector)
-        && let Err(e) = r.sys.add_force(&f.name.text, p, reaction, v) {
-            r.error(f.name.span, e.to_string());
-        }
+        && let Err(e) = r.sys.add_force(&f.name.text, p, reaction, v)
+    {
+        r.error(f.name.span, e.to_string());
+    }
 }
 
 fn moment(r: &mut Resolver<'_>, m: &ast::Moment) {
@@ -463,9 +484,10 @@ fn moment(r: &mut Resolver<'_>, m: &ast::Moment) {
         "about",
     );
     if let (Some(b), Some(v)) = (body, vector)
-        && let Err(e) = r.sys.add_moment(&m.name.text, b, reaction, v) {
-            r.error(m.name.span, e.to_string());
-        }
+        && let Err(e) = r.sys.add_moment(&m.name.text, b, reaction, v)
+    {
+        r.error(m.name.span, e.to_string());
+    }
 }
 
 /// `vector: v` or `along/about: d, magnitude: s`.

@@ -104,8 +104,8 @@ impl<'a> Resolver<'a> {
                 format!("the name `{}` is defined more than once", name.text),
             )
             .help("rename one of the definitions");
-            if let Some(lc) = first.start() {
-                d = d.note(format!("first defined at line {}", lc.line));
+            if let Some(line) = first.line() {
+                d = d.note(format!("first defined at line {line}"));
             }
             self.push(d);
             return false;
@@ -151,25 +151,48 @@ impl<'a> Resolver<'a> {
                 None
             }
             None => {
-                let bodies: Vec<String> = self
-                    .names
-                    .iter()
-                    .filter(|(_, (k, _))| matches!(k, Named::Body(_)))
-                    .map(|(n, _)| n.clone())
-                    .collect();
-                let mut d = Diagnostic::error(name.span, format!("unknown body `{}`", name.text));
-                if let Some(s) = did_you_mean(&name.text, bodies.iter().map(String::as_str)) {
-                    d = d.help(format!("did you mean `{s}`?"));
-                } else {
-                    d = d.help(format!(
+                self.unknown_of_kind(
+                    name,
+                    "body",
+                    |k| matches!(k, Named::Body(_)),
+                    format!(
                         "declare it with `body {} {{ ... }}`, or use `N` for the inertial frame",
                         name.text
-                    ));
-                }
-                self.push(d);
+                    ),
+                );
                 None
             }
         }
+    }
+
+    /// True when `name` refers to nothing: not declared, not a unit vector.
+    pub fn is_undeclared(&self, name: &ast::Name) -> bool {
+        !self.names.contains_key(&name.text) && !self.uv_short.contains_key(&name.text)
+    }
+
+    /// "unknown {what} `x`" where a `what` is expected, suggesting only names
+    /// that `fits` accepts (a point is not suggested where a body is
+    /// needed), else giving `otherwise` as help.
+    pub fn unknown_of_kind(
+        &mut self,
+        name: &ast::Name,
+        what: &str,
+        fits: fn(&Named) -> bool,
+        otherwise: String,
+    ) {
+        let mut candidates: Vec<&str> = self
+            .names
+            .iter()
+            .filter(|(_, (k, _))| fits(k))
+            .map(|(n, _)| n.as_str())
+            .collect();
+        candidates.sort_unstable();
+        let d = Diagnostic::error(name.span, format!("unknown {what} `{}`", name.text));
+        let d = match did_you_mean(&name.text, candidates) {
+            Some(s) => d.help(format!("did you mean `{s}`?")),
+            None => d.help(otherwise),
+        };
+        self.push(d);
     }
 }
 

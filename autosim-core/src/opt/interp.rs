@@ -229,11 +229,13 @@ impl<'a> Interpreter<'a> {
         }
         let ir = &self.prog.ir;
         if let Some(c) = env.constants
-            && ir.is_constant(n) && !matches!(ir.op(n), Op::Num(_) | Op::Leaf(_))
-                && let Ok(k) = env.hoisted.binary_search(&n) {
-                    return c[k];
-                }
-        
+            && ir.is_constant(n)
+            && !matches!(ir.op(n), Op::Num(_) | Op::Leaf(_))
+            && let Ok(k) = env.hoisted.binary_search(&n)
+        {
+            return c[k];
+        }
+
         match ir.op(n).clone() {
             Op::Num(b) => f64::from_bits(b),
             Op::Leaf(l) => env.leaves.get(&l).copied().unwrap_or(f64::NAN),

@@ -149,10 +149,11 @@ impl<'a> Lowering<'a> {
     fn reciprocal_base(&mut self, f: ExprId) -> Option<ExprId> {
         if let Node::Pow(b, x) = self.arena.node(f).clone()
             && let Some(n) = self.arena.as_number(x)
-                && n.is_negative() {
-                    let pos = self.arena.num(n.neg());
-                    return Some(self.arena.pow(b, pos));
-                }
+            && n.is_negative()
+        {
+            let pos = self.arena.num(n.neg());
+            return Some(self.arena.pow(b, pos));
+        }
         None
     }
 

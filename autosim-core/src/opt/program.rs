@@ -237,10 +237,11 @@ pub fn build(model: &mut ResolvedModel, eqs: &Equations) -> Result<Program, Prog
     for idx in 0..ir.len() {
         let nid = Nid(idx as u32);
         if let Op::Call(f @ (Func::Sin | Func::Cos), args) = ir.op(nid)
-            && let Op::Leaf(Leaf::State(i)) = ir.op(args[0]) {
-                let pre = if *f == Func::Sin { "sin" } else { "cos" };
-                hint(nid, format!("{pre}_{}", state_names[*i]));
-            }
+            && let Op::Leaf(Leaf::State(i)) = ir.op(args[0])
+        {
+            let pre = if *f == Func::Sin { "sin" } else { "cos" };
+            hint(nid, format!("{pre}_{}", state_names[*i]));
+        }
     }
     for i in 0..n {
         for j in 0..=i {

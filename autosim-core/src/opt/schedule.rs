@@ -235,15 +235,18 @@ pub fn schedule(ir: &Ir, tasks: &[Task], opts: &Options<'_>) -> Block {
         }
         // Small integer powers are written as products: name a computed base.
         if let Op::Powi(b, k) = ir.op(n)
-            && *k <= 3 && !s.opaque(*b) {
-                s.named.insert(*b);
-            }
+            && *k <= 3
+            && !s.opaque(*b)
+        {
+            s.named.insert(*b);
+        }
     }
     for t in tasks {
         if let Task::Check { pivot, .. } = t
-            && !s.opaque(*pivot) {
-                s.named.insert(*pivot);
-            }
+            && !s.opaque(*pivot)
+        {
+            s.named.insert(*pivot);
+        }
     }
 
     // Order: subroutines, user functions, then the tasks.

@@ -1,0 +1,45 @@
+//! Every example model, compiled twice: through `autosim::model!` and
+//! through `build.rs` (`autosim::build`). Compiled under `#![deny(warnings)]`
+//! (and clippy in CI), so generated code must be warning-free.
+#![deny(warnings)]
+#![deny(missing_docs)]
+
+/// The models expanded by the macro.
+pub mod via_macro {
+    autosim::model!(file = "../../examples/models/chain_planar_1.sim");
+    autosim::model!(file = "../../examples/models/chain_planar_10.sim");
+    autosim::model!(file = "../../examples/models/chain_planar_2.sim");
+    autosim::model!(file = "../../examples/models/chain_planar_3.sim");
+    autosim::model!(file = "../../examples/models/chain_planar_5.sim");
+    autosim::model!(file = "../../examples/models/chain_spatial_1.sim");
+    autosim::model!(file = "../../examples/models/chain_spatial_10.sim");
+    autosim::model!(file = "../../examples/models/chain_spatial_2.sim");
+    autosim::model!(file = "../../examples/models/chain_spatial_20.sim");
+    autosim::model!(file = "../../examples/models/chain_spatial_3.sim");
+    autosim::model!(file = "../../examples/models/chain_spatial_3_stiff.sim");
+    autosim::model!(file = "../../examples/models/chain_spatial_5.sim");
+    autosim::model!(file = "../../examples/models/chain_spatial_7.sim");
+    autosim::model!(file = "../../examples/models/features.sim");
+    autosim::model!(file = "../../examples/models/satellite.sim");
+    autosim::model!(file = "../../examples/models/satellite_small.sim");
+}
+
+/// The models written by the build script.
+pub mod via_build {
+    autosim::include_model!(chain_planar1);
+    autosim::include_model!(chain_planar10);
+    autosim::include_model!(chain_planar2);
+    autosim::include_model!(chain_planar3);
+    autosim::include_model!(chain_planar5);
+    autosim::include_model!(chain_spatial1);
+    autosim::include_model!(chain_spatial10);
+    autosim::include_model!(chain_spatial2);
+    autosim::include_model!(chain_spatial20);
+    autosim::include_model!(chain_spatial3);
+    autosim::include_model!(chain_spatial3_stiff);
+    autosim::include_model!(chain_spatial5);
+    autosim::include_model!(chain_spatial7);
+    autosim::include_model!(features);
+    autosim::include_model!(satellite);
+    autosim::include_model!(satellite_small);
+}

@@ -1,0 +1,273 @@
+//! The build-script path matches the reference data, and every generated
+//! model (both paths) matches the core's evaluation of its unoptimized
+//! equations at random states (a differential test of the optimizer).
+
+#[path = "../../common/mod.rs"]
+mod common;
+
+use autosim::runtime::Model;
+use autosim_core::diag::SourceFile;
+use autosim_core::expr::Bindings;
+use autosim_core::pipeline::{Compiled, compile_source};
+use autosim_models_check::{via_build, via_macro};
+use common::*;
+use nalgebra::{DMatrix, DVector};
+
+/// A small deterministic generator (xorshift), so failures reproduce.
+struct Rng(u64);
+
+impl Rng {
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        lo + (hi - lo) * ((self.0 >> 11) as f64 / (1u64 << 53) as f64)
+    }
+}
+
+fn compile(file: &str) -> Compiled {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/models")
+        .join(file);
+    let text = std::fs::read_to_string(&path).expect("model file");
+    let src = SourceFile::new(file, text);
+    compile_source(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)))
+}
+
+/// du/dt from the symbolic equations: evaluate M and f, solve with nalgebra.
+fn reference_derivatives(
+    c: &Compiled,
+    params: &[f64],
+    t: f64,
+    x: &[f64],
+    inputs: &[f64],
+) -> Vec<f64> {
+    let sys = &c.model.system;
+    let eqs = &c.equations;
+    let mut b = Bindings::with_defaults(&sys.arena);
+    for (s, v) in sys.parameters().iter().zip(params) {
+        b.set(*s, *v);
+    }
+    for (s, v) in sys.inputs().iter().zip(inputs) {
+        b.set(*s, *v);
+    }
+    for (s, v) in eqs
+        .coordinates
+        .iter()
+        .chain(&eqs.speeds)
+        .chain(&eqs.states)
+        .zip(x)
+    {
+        b.set(*s, *v);
+    }
+    b.set(sys.time(), t);
+    let n = eqs.coordinates.len();
+    let mut roots = eqs.kinematics.clone();
+    for row in &eqs.mass_matrix {
+        roots.extend(row);
+    }
+    roots.extend(&eqs.forcing);
+    let v = sys
+        .arena
+        .eval_many(&roots, &b, &mut autosim_core::expr::NoUserFunctions);
+    let m = DMatrix::from_row_slice(n, n, &v[n..n + n * n]);
+    let f = DVector::from_row_slice(&v[n + n * n..]);
+    let du = m.lu().solve(&f).expect("regular mass matrix");
+    let mut out = v[..n].to_vec();
+    out.extend(du.iter());
+    out
+}
+
+macro_rules! differential {
+    ($test:ident, $file:literal, $($path:ident)::+) => {
+        #[test]
+        fn $test() {
+            let c = compile($file);
+            let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+            let mut worst: f64 = 0.0;
+            let mut model = $($path)::+::new();
+            let mut params = vec![0.0; <$($path)::+ as Model>::PARAMETER_NAMES.len()];
+            model.parameter_values(&mut params);
+            let n = c.program.n;
+            for _ in 0..25 {
+                let mut x = [0.0; <$($path)::+ as Model>::STATE_NAMES.len()];
+                for (i, v) in x.iter_mut().enumerate() {
+                    *v = if i < n { rng.uniform(-3.0, 3.0) } else { rng.uniform(-2.0, 2.0) };
+                }
+                let t = rng.uniform(0.0, 10.0);
+                let mut dx = x;
+                if model.derivatives(t, &x, &mut dx).is_err() {
+                    continue;
+                }
+                let want = reference_derivatives(&c, &params, t, &x, &[]);
+                let e = rel_err(&dx[..2 * n], &want);
+                worst = worst.max(e);
+                assert!(e < 1e-12, "{}: optimized vs unoptimized {e:e}", $file);
+            }
+            eprintln!("{}: worst relative difference {worst:.2e}", $file);
+        }
+    };
+}
+
+differential!(
+    chain_planar_10_macro,
+    "chain_planar_10.sim",
+    via_macro::chain_planar10::ChainPlanar10
+);
+differential!(
+    chain_planar_10_build,
+    "chain_planar_10.sim",
+    via_build::chain_planar10::ChainPlanar10
+);
+differential!(
+    chain_spatial_7_macro,
+    "chain_spatial_7.sim",
+    via_macro::chain_spatial7::ChainSpatial7
+);
+differential!(
+    chain_spatial_10_build,
+    "chain_spatial_10.sim",
+    via_build::chain_spatial10::ChainSpatial10
+);
+differential!(
+    chain_spatial_20_build,
+    "chain_spatial_20.sim",
+    via_build::chain_spatial20::ChainSpatial20
+);
+differential!(
+    chain_spatial_3_stiff_build,
+    "chain_spatial_3_stiff.sim",
+    via_build::chain_spatial3_stiff::ChainSpatial3Stiff
+);
+
+macro_rules! reference {
+    ($test:ident, $reference:literal, $($path:ident)::+) => {
+        #[test]
+        fn $test() {
+            let data = load($reference);
+            let mut model = $($path)::+::new();
+            let mut values = vec![0.0; <$($path)::+ as Model>::PARAMETER_NAMES.len()];
+            for (name, v) in <$($path)::+ as Model>::PARAMETER_NAMES.iter().zip(values.iter_mut()) {
+                *v = data["parameters"][*name].as_f64().expect("parameter in reference");
+            }
+            model.set_parameter_values(&values);
+            let n = <$($path)::+ as Model>::STATE_NAMES.len() / 2;
+            for s in data["samples"].as_array().unwrap() {
+                let mut x = [0.0; <$($path)::+ as Model>::STATE_NAMES.len()];
+                x[..n].copy_from_slice(&floats(&s["q"]));
+                x[n..].copy_from_slice(&floats(&s["u"]));
+                let mut dx = x;
+                model.derivatives(s["t"].as_f64().unwrap(), &x, &mut dx).unwrap();
+                let e_dq = rel_err(&dx[..n], &floats(&s["dq"]));
+                let e_du = rel_err(&dx[n..], &floats(&s["du"]));
+                assert!(e_dq < 1e-9 && e_du < 1e-9, "{}: dq {e_dq:e} du {e_du:e}", $reference);
+            }
+        }
+    };
+}
+
+reference!(
+    build_chain_planar_1,
+    "chain-planar-1",
+    via_build::chain_planar1::ChainPlanar1
+);
+reference!(
+    build_chain_planar_2,
+    "chain-planar-2",
+    via_build::chain_planar2::ChainPlanar2
+);
+reference!(
+    build_chain_planar_3,
+    "chain-planar-3",
+    via_build::chain_planar3::ChainPlanar3
+);
+reference!(
+    build_chain_planar_5,
+    "chain-planar-5",
+    via_build::chain_planar5::ChainPlanar5
+);
+reference!(
+    build_chain_planar_10,
+    "chain-planar-10",
+    via_build::chain_planar10::ChainPlanar10
+);
+reference!(
+    build_chain_spatial_1,
+    "chain-spatial-1",
+    via_build::chain_spatial1::ChainSpatial1
+);
+reference!(
+    build_chain_spatial_2,
+    "chain-spatial-2",
+    via_build::chain_spatial2::ChainSpatial2
+);
+reference!(
+    build_chain_spatial_3,
+    "chain-spatial-3",
+    via_build::chain_spatial3::ChainSpatial3
+);
+reference!(
+    build_chain_spatial_5,
+    "chain-spatial-5",
+    via_build::chain_spatial5::ChainSpatial5
+);
+reference!(
+    build_chain_spatial_10,
+    "chain-spatial-10",
+    via_build::chain_spatial10::ChainSpatial10
+);
+
+/// The satellite through build.rs, with the sample's recorded user values.
+struct Recorded {
+    cmd: [f64; 2],
+    thrust: [f64; 3],
+}
+
+impl via_build::satellite::Externs for Recorded {
+    fn thrust(&mut self, _t: f64, axis: f64, _error: f64) -> f64 {
+        self.thrust[(axis as usize).clamp(1, 3) - 1]
+    }
+    fn cmd(&mut self, _t: f64) -> [f64; 2] {
+        self.cmd
+    }
+}
+
+#[test]
+fn build_satellite() {
+    let data = load("satellite");
+    let mut model = via_build::satellite::Satellite::new(Recorded {
+        cmd: [0.0; 2],
+        thrust: [0.0; 3],
+    });
+    for s in data["samples"].as_array().unwrap() {
+        let i = &s["inputs"];
+        let f = |k: &str| i[k].as_f64().unwrap();
+        model.externs.cmd = [f("clkcmd"), f("camcmd")];
+        model.externs.thrust = [f("thr1"), f("thr2"), f("thr3")];
+        let mut x = [0.0; 20];
+        x[..10].copy_from_slice(&floats(&s["q"]));
+        x[10..].copy_from_slice(&floats(&s["u"]));
+        let mut dx = x;
+        model
+            .derivatives(s["t"].as_f64().unwrap(), &x, &mut dx)
+            .unwrap();
+        let e = rel_err(&dx[10..], &floats(&s["du"]));
+        assert!(e < 1e-9, "satellite via build.rs: du {e:e}");
+    }
+}
+
+#[test]
+fn markdown_documentation_is_written() {
+    let md = std::fs::read_to_string(concat!(env!("OUT_DIR"), "/satellite.md"))
+        .expect("satellite.md in OUT_DIR");
+    for needle in [
+        "# Satellite",
+        "| `KB` | 2000 | N m/rad |",
+        "## Outputs",
+        "`roll`",
+        "## Equations",
+        "thrust(",
+    ] {
+        assert!(md.contains(needle), "satellite.md lacks {needle:?}");
+    }
+}

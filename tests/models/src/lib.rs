@@ -9,6 +9,7 @@ pub mod via_macro {
     autosim::model!(file = "../../examples/models/chain_planar_1.sim");
     autosim::model!(file = "../../examples/models/chain_planar_10.sim");
     autosim::model!(file = "../../examples/models/chain_planar_2.sim");
+    autosim::model!(file = "../../examples/models/chain_planar_2_f32.sim");
     autosim::model!(file = "../../examples/models/chain_planar_3.sim");
     autosim::model!(file = "../../examples/models/chain_planar_5.sim");
     autosim::model!(file = "../../examples/models/chain_spatial_1.sim");
@@ -29,6 +30,7 @@ pub mod via_build {
     autosim::include_model!(chain_planar1);
     autosim::include_model!(chain_planar10);
     autosim::include_model!(chain_planar2);
+    autosim::include_model!(chain_planar2_f32);
     autosim::include_model!(chain_planar3);
     autosim::include_model!(chain_planar5);
     autosim::include_model!(chain_spatial1);

@@ -271,3 +271,26 @@ fn markdown_documentation_is_written() {
         assert!(md.contains(needle), "satellite.md lacks {needle:?}");
     }
 }
+
+/// The f32 model agrees with the f64 model to single precision.
+#[test]
+fn f32_model_matches_f64_model() {
+    let mut m64 = via_macro::chain_planar2::ChainPlanar2::new();
+    let mut m32 = via_build::chain_planar2_f32::ChainPlanar2F32::new();
+    let mut rng = Rng(7);
+    let mut worst: f64 = 0.0;
+    for _ in 0..100 {
+        let mut x = [0.0f64; 4];
+        for v in x.iter_mut() {
+            *v = rng.uniform(-2.0, 2.0);
+        }
+        let x32 = x.map(|v| v as f32);
+        let (mut d64, mut d32) = ([0.0f64; 4], [0.0f32; 4]);
+        m64.derivatives(0.0, &x, &mut d64).unwrap();
+        m32.derivatives(0.0, &x32, &mut d32).unwrap();
+        let got: Vec<f64> = d32.iter().map(|v| f64::from(*v)).collect();
+        worst = worst.max(rel_err(&got, &d64));
+    }
+    eprintln!("f32 vs f64: worst relative difference {worst:.2e}");
+    assert!(worst < 1e-4, "f32 model differs by {worst:e}");
+}

@@ -131,14 +131,17 @@ impl System {
 
         // Coordinates and speeds.
         let dofs = spec.dofs();
+        let nt = spec.translations.len();
         let first = self.coordinates.len();
+        // For a quaternion the coordinate list has e0 before e1..e3.
+        let name_index = |k: usize| if spec.quaternion && k >= nt { k + 1 } else { k };
         let mut syms = Vec::with_capacity(dofs);
         for k in 0..dofs {
             let global = first + k;
             let qn = spec
                 .coordinate_names
                 .as_ref()
-                .map(|v| v[k].clone())
+                .map(|v| v[name_index(k)].clone())
                 .unwrap_or_else(|| format!("q{}", global + 1));
             let un = spec
                 .speed_names
@@ -181,7 +184,6 @@ impl System {
 
         // Frames: one per rotation, sharing the rotation axis (Eqs. 8-10).
         let axes: Vec<usize> = spec.rotations.iter().map(|a| (*a - 1) as usize).collect();
-        let nt = spec.translations.len();
         let prefix = name.to_lowercase();
         let mut frame = parent_body.frame;
         let mut rot_frames: Vec<FrameId> = Vec::with_capacity(axes.len());
@@ -205,15 +207,23 @@ impl System {
         if axes.len() == 1 {
             w_rel[axes[0]] = self.arena.sym(syms[nt].1);
             rot_kinds.push(axes[0]);
-        } else if axes.len() == 3 {
+        } else if axes.len() == 3 || spec.quaternion {
             for k in 0..3 {
                 w_rel[k] = self.arena.sym(syms[nt + k].1);
                 rot_kinds.push(k);
             }
         }
+        let quaternion = if spec.quaternion {
+            Some(self.quaternion_frame(&spec, &mut frame, &syms[nt..nt + 3], &w_rel)?)
+        } else {
+            None
+        };
 
         // Kinematical equations dq/dt = f(q, u).
         let mut qdots: Vec<ExprId> = syms.iter().map(|s| self.arena.sym(s.1)).collect();
+        if let Some(rates) = quaternion {
+            qdots[nt..nt + 3].copy_from_slice(&rates);
+        }
         if axes.len() == 3 {
             let rates =
                 self.euler_rates(&name, &axes, &rot_frames, parent_body.frame, frame, &w_rel)?;
@@ -253,7 +263,7 @@ impl System {
         let v0 = v0_parent.reexpress(&mut self.arena, &mut self.frames, frame);
         let w_in_b = w_a.reexpress(&mut self.arena, &mut self.frames, frame);
         let w = w_in_b.add(&mut self.arena, &Fv::new(frame, w_rel));
-        if !axes.is_empty() {
+        if !axes.is_empty() || spec.quaternion {
             let wv = w.to_vector(&mut self.arena, &self.frames);
             debug_assert_eq!(self.frame_w.len(), frame.index());
             self.frame_w.push(wv);
@@ -312,7 +322,7 @@ impl System {
             let initial_q = spec
                 .initial_coordinates
                 .as_ref()
-                .and_then(|v| v.get(k).copied())
+                .and_then(|v| v.get(name_index(k)).copied())
                 .unwrap_or(zero_init);
             let initial_u = spec
                 .initial_speeds
@@ -357,6 +367,16 @@ impl System {
 
     fn validate(&self, spec: &BodySpec) -> Result<(), ModelError> {
         let name = &spec.name;
+        if spec.quaternion && !spec.rotations.is_empty() {
+            return Err(ModelError::Invalid(format!(
+                "body `{name}`: give either rotation axes or a quaternion, not both"
+            )));
+        }
+        if spec.quaternion && spec.small.iter().skip(spec.translations.len()).any(|s| *s) {
+            return Err(ModelError::Invalid(format!(
+                "body `{name}`: quaternion coordinates cannot be small; use `rotate: [1, 2, 3]` with small angles"
+            )));
+        }
         if !matches!(spec.rotations.len(), 0 | 1 | 3) {
             return Err(ModelError::RotationCount {
                 body: name.clone(),
@@ -396,31 +416,32 @@ impl System {
             }
         }
         let dofs = spec.dofs();
-        for (what, names) in [
-            ("coordinate", &spec.coordinate_names),
-            ("speed", &spec.speed_names),
+        let ncoord = spec.coordinate_count();
+        for (what, names, expected) in [
+            ("coordinate", &spec.coordinate_names, ncoord),
+            ("speed", &spec.speed_names, dofs),
         ] {
             if let Some(v) = names
-                && v.len() != dofs
+                && v.len() != expected
             {
                 return Err(ModelError::NameCount {
                     body: name.clone(),
                     what,
-                    expected: dofs,
+                    expected,
                     got: v.len(),
                 });
             }
         }
-        for (what, vals) in [
-            ("initial coordinate", &spec.initial_coordinates),
-            ("initial speed", &spec.initial_speeds),
+        for (what, vals, expected) in [
+            ("initial coordinate", &spec.initial_coordinates, ncoord),
+            ("initial speed", &spec.initial_speeds, dofs),
         ] {
             if let Some(v) = vals {
-                if v.len() != dofs {
+                if v.len() != expected {
                     return Err(ModelError::NameCount {
                         body: name.clone(),
                         what,
-                        expected: dofs,
+                        expected,
                         got: v.len(),
                     });
                 }
@@ -487,6 +508,90 @@ impl System {
             }
         }
         Fv::new(parent_frame, c)
+    }
+
+    /// The frame of a body oriented by Euler parameters, and the rates of
+    /// `e1, e2, e3` (`e0` becomes an added state with its own rate).
+    ///
+    /// `C_ij = b_i · a_j` in terms of `e0..e3`, and `de/dt = ½ e ⊗ (0, ω)`
+    /// with `ω` the angular velocity relative to the parent in body axes.
+    fn quaternion_frame(
+        &mut self,
+        spec: &BodySpec,
+        frame: &mut FrameId,
+        syms: &[(crate::expr::SymId, crate::expr::SymId, crate::expr::SymId)],
+        w: &[ExprId; 3],
+    ) -> Result<[ExprId; 3], ModelError> {
+        let name = &spec.name;
+        let nt = spec.translations.len();
+        let e0_name = spec
+            .coordinate_names
+            .as_ref()
+            .map(|v| v[nt].clone())
+            .unwrap_or_else(|| format!("{name}_e0"));
+        if self.arena.symbol_named(&e0_name).is_some() || self.body_named(&e0_name).is_some() {
+            return Err(ModelError::DuplicateName(e0_name));
+        }
+        let one = self.arena.one();
+        let e0_init = spec
+            .initial_coordinates
+            .as_ref()
+            .and_then(|v| v.get(nt).copied())
+            .unwrap_or(one);
+        let e0s = self.add_state(&e0_name, Some("1"), e0_init)?;
+        let e = [
+            self.arena.sym(e0s),
+            self.arena.sym(syms[0].0),
+            self.arena.sym(syms[1].0),
+            self.arena.sym(syms[2].0),
+        ];
+        let a = &mut self.arena;
+        let sq = e.map(|x| a.powi(x, 2));
+        let two = crate::expr::Number::int(2);
+        let mut pr = |i: usize, j: usize| a.mul(e[i], e[j]);
+        let (e01, e02, e03, e12, e13, e23) = (pr(0, 1), pr(0, 2), pr(0, 3), pr(1, 2), pr(1, 3), pr(2, 3));
+        let lin = |a: &mut crate::expr::Arena, p: ExprId, m: ExprId| {
+            let d = a.sub(p, m);
+            a.scale(two, d)
+        };
+        let plus = |a: &mut crate::expr::Arena, p: ExprId, m: ExprId| {
+            let d = a.add(p, m);
+            a.scale(two, d)
+        };
+        let diag = |a: &mut crate::expr::Arena, k: usize| {
+            let mut terms = vec![sq[0]];
+            for (i, s) in sq.iter().enumerate().skip(1) {
+                terms.push(if i == k { *s } else { a.neg(*s) });
+            }
+            a.sum(&terms)
+        };
+        let c = [
+            [diag(a, 1), plus(a, e12, e03), lin(a, e13, e02)],
+            [lin(a, e12, e03), diag(a, 2), plus(a, e23, e01)],
+            [plus(a, e13, e02), lin(a, e23, e01), diag(a, 3)],
+        ];
+        let prefix = name.to_lowercase();
+        *frame = self.frames.add_general(&mut self.arena, *frame, c, name, &prefix);
+        // Rates: ė0 = -½ (e1 ω1 + e2 ω2 + e3 ω3), ė = ½ (e0 ω + e × ω).
+        let a = &mut self.arena;
+        let half = crate::expr::Number::rational(1, 2).unwrap_or(crate::expr::Number::ONE);
+        let mut rate = |terms: [(ExprId, ExprId, i64); 3]| {
+            let parts: Vec<ExprId> = terms
+                .iter()
+                .map(|(x, y, s)| {
+                    let p = a.mul(*x, *y);
+                    a.scale(crate::expr::Number::int(*s), p)
+                })
+                .collect();
+            let sum = a.sum(&parts);
+            a.scale(half, sum)
+        };
+        let e0dot = rate([(e[1], w[0], -1), (e[2], w[1], -1), (e[3], w[2], -1)]);
+        let e1dot = rate([(e[0], w[0], 1), (e[2], w[2], 1), (e[3], w[1], -1)]);
+        let e2dot = rate([(e[0], w[1], 1), (e[3], w[0], 1), (e[1], w[2], -1)]);
+        let e3dot = rate([(e[0], w[2], 1), (e[1], w[1], 1), (e[2], w[0], -1)]);
+        self.set_state_derivative(e0s, e0dot)?;
+        Ok([e1dot, e2dot, e3dot])
     }
 
     /// dq/dt of three body-fixed rotations from the angular velocity

@@ -60,7 +60,7 @@ pub struct Uv {
     /// Axis index within that frame (0-based).
     pub axis: usize,
     /// The unit vector in terms of the home frame's parent's unit vectors.
-    pub in_parent: Option<[(UvId, ExprId); 2]>,
+    pub in_parent: Option<Vec<(UvId, ExprId)>>,
 }
 
 /// The frame tree with its unit vectors and product tables.
@@ -147,7 +147,7 @@ impl Frames {
                 name: format!("{uv_prefix}{}", k + 1),
                 home: id,
                 axis: k,
-                in_parent: Some([(p.triad[i], coefs[0]), (p.triad[j], coefs[1])]),
+                in_parent: Some(vec![(p.triad[i], coefs[0]), (p.triad[j], coefs[1])]),
             });
             triad[k] = uv;
         }
@@ -157,6 +157,43 @@ impl Frames {
             depth: p.depth + 1,
             triad,
             rotation: Some((axis, angle)),
+        });
+        id
+    }
+
+    /// Adds a frame oriented by a general direction-cosine matrix relative
+    /// to `parent`: `c[i][j] = b_i · a_j` (all three unit vectors new).
+    pub fn add_general(
+        &mut self,
+        arena: &mut Arena,
+        parent: FrameId,
+        c: [[ExprId; 3]; 3],
+        name: &str,
+        uv_prefix: &str,
+    ) -> FrameId {
+        let id = FrameId(self.frames.len() as u32);
+        let p = self.frames[parent.index()].clone();
+        let mut triad = p.triad;
+        for (i, row) in c.iter().enumerate() {
+            let parts: Vec<(UvId, ExprId)> = (0..3)
+                .filter(|j| !arena.is_zero(row[*j]))
+                .map(|j| (p.triad[j], row[j]))
+                .collect();
+            let uv = UvId(self.uvs.len() as u32);
+            self.uvs.push(Uv {
+                name: format!("{uv_prefix}{}", i + 1),
+                home: id,
+                axis: i,
+                in_parent: Some(parts),
+            });
+            triad[i] = uv;
+        }
+        self.frames.push(Frame {
+            name: name.to_string(),
+            parent: Some(parent),
+            depth: p.depth + 1,
+            triad,
+            rotation: None,
         });
         id
     }
@@ -194,7 +231,7 @@ impl Frames {
         let r = if self.in_home_triad(deep, other).is_some() {
             arena.zero()
         } else {
-            match self.uvs[deep.index()].in_parent {
+            match self.uvs[deep.index()].in_parent.clone() {
                 Some(parts) => {
                     let mut terms = Vec::with_capacity(2);
                     for (a, coef) in parts {
@@ -240,7 +277,7 @@ impl Frames {
                 Vector::uv(arena, w).neg(arena)
             }
         } else {
-            match self.uvs[deep.index()].in_parent {
+            match self.uvs[deep.index()].in_parent.clone() {
                 Some(parts) => {
                     let mut acc = Vector::zero();
                     for (a, coef) in parts {

@@ -59,6 +59,11 @@ pub struct BodySpec {
     pub translations: Vec<Direction>,
     /// Body-fixed rotation axes, in sequence (0, 1 or 3 of 1, 2, 3).
     pub rotations: Vec<i64>,
+    /// Orientation by Euler parameters (a unit quaternion `e0..e3`, free of
+    /// singularities) instead of `rotations`: three speeds (the angular
+    /// velocity components in the body's axes) and four coordinates, of
+    /// which `e0` is kept as an added state.
+    pub quaternion: bool,
     /// Mass (default: parameter `M<name>`).
     pub mass: Option<ExprId>,
     /// Inertia matrix about the mass center in the body's axes (default:
@@ -69,11 +74,12 @@ pub struct BodySpec {
     /// Which degrees of freedom are small (translations first, then
     /// rotations); empty means none.
     pub small: Vec<bool>,
-    /// Names of the coordinates (default `q<k>` by global index).
+    /// Names of the coordinates (default `q<k>` by global index); for a
+    /// quaternion body the rotational names are `e0, e1, e2, e3`.
     pub coordinate_names: Option<Vec<String>>,
     /// Names of the speeds (default `u<k>`).
     pub speed_names: Option<Vec<String>>,
-    /// Initial coordinate values (default 0).
+    /// Initial coordinate values (default 0; `e0 = 1` for a quaternion).
     pub initial_coordinates: Option<Vec<ExprId>>,
     /// Initial speed values (default 0).
     pub initial_speeds: Option<Vec<ExprId>>,
@@ -89,6 +95,7 @@ impl BodySpec {
             joint: None,
             translations: Vec::new(),
             rotations: Vec::new(),
+            quaternion: false,
             mass: None,
             inertia: None,
             cm: None,
@@ -100,9 +107,19 @@ impl BodySpec {
         }
     }
 
-    /// Number of degrees of freedom.
+    /// Number of degrees of freedom (= speeds).
     pub fn dofs(&self) -> usize {
-        self.translations.len() + self.rotations.len()
+        self.translations.len() + self.rotation_dofs()
+    }
+
+    /// Number of rotational degrees of freedom.
+    pub fn rotation_dofs(&self) -> usize {
+        if self.quaternion { 3 } else { self.rotations.len() }
+    }
+
+    /// Number of coordinates (one more than the speeds for a quaternion).
+    pub fn coordinate_count(&self) -> usize {
+        self.dofs() + usize::from(self.quaternion)
     }
 }
 

@@ -117,6 +117,11 @@ pub fn chain(n: usize, spatial: bool, params: &Value) -> System {
 /// The satellite of reference-models.md; inputs clkcmd, camcmd, thr1..thr3
 /// replace the user procedures.
 pub fn satellite(params: &Value, small: bool) -> System {
+    satellite_with(params, small, false)
+}
+
+/// The satellite with the bus oriented by Euler parameters if `quaternion`.
+pub fn satellite_with(params: &Value, small: bool, quaternion: bool) -> System {
     let mut sys = System::new("Satellite");
     let names = [
         "DB", "DC", "G", "IB11", "IB12", "IB13", "IB22", "IB23", "IB33", "IC", "ID11", "ID12",
@@ -131,7 +136,12 @@ pub fn satellite(params: &Value, small: bool) -> System {
     let zero = sys.arena.zero();
     let mut b = BodySpec::new("B", "N");
     b.translations = vec![Direction::Axis(1), Direction::Axis(2), Direction::Axis(3)];
-    b.rotations = vec![1, 2, 3];
+    if quaternion {
+        b.quaternion = true;
+        b.coordinate_names = Some(["q1", "q2", "q3", "e0", "e1", "e2", "e3"].map(String::from).to_vec());
+    } else {
+        b.rotations = vec![1, 2, 3];
+    }
     if small {
         b.small = vec![true; 6];
     }

@@ -29,10 +29,14 @@ fn snapshot_every_feature() {
 
 #[test]
 fn snapshot_markdown() {
-    let text = std::fs::read_to_string(models_dir().join("chain_planar_2.sim")).expect("model file");
+    let text =
+        std::fs::read_to_string(models_dir().join("chain_planar_2.sim")).expect("model file");
     let src = SourceFile::new("chain_planar_2.sim", text);
     let c = compile_source(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)));
-    insta::assert_snapshot!("chain_planar_2_markdown", markdown(&c, "chain_planar_2.sim"));
+    insta::assert_snapshot!(
+        "chain_planar_2_markdown",
+        markdown(&c, "chain_planar_2.sim")
+    );
 }
 
 /// Every example model, generated twice in one process, is byte-identical.
@@ -45,7 +49,10 @@ fn generation_is_deterministic() {
         .filter(|n| n.ends_with(".sim"))
         .collect();
     files.sort();
-    assert!(files.len() >= 10, "expected the example models, found {files:?}");
+    assert!(
+        files.len() >= 10,
+        "expected the example models, found {files:?}"
+    );
     for f in &files {
         let a = generate(f);
         let b = generate(f);

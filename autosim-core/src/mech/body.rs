@@ -109,6 +109,7 @@ impl System {
             .body_named(&spec.parent)
             .ok_or_else(|| ModelError::UnknownBody(spec.parent.clone()))?;
         self.validate(&spec)?;
+        let spec = self.apply_locks(spec)?;
 
         let parent_body = self.bodies[parent.index()].clone();
         let zero = self.arena.zero();
@@ -186,6 +187,23 @@ impl System {
         let axes: Vec<usize> = spec.rotations.iter().map(|a| (*a - 1) as usize).collect();
         let prefix = name.to_lowercase();
         let mut frame = parent_body.frame;
+        for (k, (axis, angle)) in spec.fixed_rotations.iter().enumerate() {
+            if !self.arena.is_constant(*angle) {
+                return Err(ModelError::NotConstant {
+                    what: format!("fixed rotation angle of body `{name}`"),
+                });
+            }
+            frame = self.frames.add_rotated(
+                &mut self.arena,
+                frame,
+                (*axis - 1).clamp(0, 2) as usize,
+                *angle,
+                &format!("{name}#{k}"),
+                &format!("{prefix}#{k}_"),
+            );
+            let w = self.frame_w[parent_body.frame.index()].clone();
+            self.frame_w.push(w);
+        }
         let mut rot_frames: Vec<FrameId> = Vec::with_capacity(axes.len());
         for (k, &axis) in axes.iter().enumerate() {
             let q = self.arena.sym(syms[nt + k].0);
@@ -231,6 +249,7 @@ impl System {
         }
 
         // Angular velocities of the new frames (basis-free, for dxdt).
+        // (Fixed rotations add no angular velocity.)
         let mut w_frame = self.frame_w[parent_body.frame.index()].clone();
         for (k, &axis) in axes.iter().enumerate() {
             let f = rot_frames[k];
@@ -363,6 +382,101 @@ impl System {
             v0,
         });
         Ok(id)
+    }
+
+    /// Turns locked degrees of freedom into parameters: a locked
+    /// translation moves the joint point by a constant, a locked rotation
+    /// becomes a constant rotation of the joint.
+    fn apply_locks(&mut self, mut spec: BodySpec) -> Result<BodySpec, ModelError> {
+        if !spec.locked.iter().any(|l| *l) {
+            return Ok(spec);
+        }
+        let name = spec.name.clone();
+        let nt = spec.translations.len();
+        let dofs = spec.dofs();
+        if spec.locked.len() != dofs {
+            return Err(ModelError::Invalid(format!(
+                "body `{name}`: {} lock flags for {dofs} degrees of freedom",
+                spec.locked.len()
+            )));
+        }
+        let rot_locked: Vec<bool> = spec.locked[nt..].to_vec();
+        if spec.quaternion && rot_locked.iter().any(|l| *l) {
+            return Err(ModelError::Invalid(format!(
+                "body `{name}`: a quaternion orientation cannot be locked; lock all three angles of `rotate: [1, 2, 3]` instead"
+            )));
+        }
+        if rot_locked.len() == 3 && rot_locked.iter().any(|l| *l) && !rot_locked.iter().all(|l| *l)
+        {
+            return Err(ModelError::Invalid(format!(
+                "body `{name}`: lock all three rotations of the body or none (its speeds are angular velocity components)"
+            )));
+        }
+        let zero = self.arena.zero();
+        let defaults = crate::expr::Bindings::with_defaults(&self.arena);
+        let mut keep = Vec::new();
+        let mut joint = spec.joint.unwrap_or([zero; 3]);
+        let mut fixed = Vec::new();
+        for k in 0..dofs {
+            let global_hint = self.coordinates.len() + k + 1;
+            let qn = spec
+                .coordinate_names
+                .as_ref()
+                .map(|v| v[k].clone())
+                .unwrap_or_else(|| format!("q{global_hint}"));
+            if !spec.locked[k] {
+                keep.push(k);
+                continue;
+            }
+            let init = spec
+                .initial_coordinates
+                .as_ref()
+                .and_then(|v| v.get(k).copied())
+                .unwrap_or(zero);
+            let value = self
+                .arena
+                .eval(init, &defaults, &mut crate::expr::NoUserFunctions);
+            let unit = if k < nt { "m" } else { "rad" };
+            let p =
+                self.parameter_or_default(&qn, if value.is_finite() { value } else { 0.0 }, unit)?;
+            if k < nt {
+                let d = self.direction(&name, &spec.translations[k])?;
+                for i in 0..3 {
+                    let t = self.arena.mul(d[i], p);
+                    joint[i] = self.arena.add(joint[i], t);
+                }
+            } else {
+                fixed.push((spec.rotations[k - nt], p));
+            }
+        }
+        let pick = |v: &[_]| keep.iter().map(|k| v[*k]).collect::<Vec<_>>();
+        spec.joint = Some(joint);
+        spec.fixed_rotations.extend(fixed);
+        let translations: Vec<Direction> = keep
+            .iter()
+            .filter(|k| **k < nt)
+            .map(|k| spec.translations[*k].clone())
+            .collect();
+        let rotations: Vec<i64> = keep
+            .iter()
+            .filter(|k| **k >= nt)
+            .map(|k| spec.rotations[*k - nt])
+            .collect();
+        spec.translations = translations;
+        spec.rotations = rotations;
+        spec.coordinate_names = spec
+            .coordinate_names
+            .map(|v| keep.iter().map(|k| v[*k].clone()).collect());
+        spec.speed_names = spec
+            .speed_names
+            .map(|v| keep.iter().map(|k| v[*k].clone()).collect());
+        spec.initial_coordinates = spec.initial_coordinates.map(|v| pick(&v));
+        spec.initial_speeds = spec.initial_speeds.map(|v| pick(&v));
+        if !spec.small.is_empty() {
+            spec.small = keep.iter().map(|k| spec.small[*k]).collect();
+        }
+        spec.locked = Vec::new();
+        Ok(spec)
     }
 
     fn validate(&self, spec: &BodySpec) -> Result<(), ModelError> {
@@ -549,7 +663,8 @@ impl System {
         let sq = e.map(|x| a.powi(x, 2));
         let two = crate::expr::Number::int(2);
         let mut pr = |i: usize, j: usize| a.mul(e[i], e[j]);
-        let (e01, e02, e03, e12, e13, e23) = (pr(0, 1), pr(0, 2), pr(0, 3), pr(1, 2), pr(1, 3), pr(2, 3));
+        let (e01, e02, e03, e12, e13, e23) =
+            (pr(0, 1), pr(0, 2), pr(0, 3), pr(1, 2), pr(1, 3), pr(2, 3));
         let lin = |a: &mut crate::expr::Arena, p: ExprId, m: ExprId| {
             let d = a.sub(p, m);
             a.scale(two, d)
@@ -571,7 +686,9 @@ impl System {
             [plus(a, e13, e02), lin(a, e23, e01), diag(a, 3)],
         ];
         let prefix = name.to_lowercase();
-        *frame = self.frames.add_general(&mut self.arena, *frame, c, name, &prefix);
+        *frame = self
+            .frames
+            .add_general(&mut self.arena, *frame, c, name, &prefix);
         // Rates: ė0 = -½ (e1 ω1 + e2 ω2 + e3 ω3), ė = ½ (e0 ω + e × ω).
         let a = &mut self.arena;
         let half = crate::expr::Number::rational(1, 2).unwrap_or(crate::expr::Number::ONE);

@@ -64,6 +64,13 @@ pub struct BodySpec {
     /// velocity components in the body's axes) and four coordinates, of
     /// which `e0` is kept as an added state.
     pub quaternion: bool,
+    /// Constant rotations (axis 1..3, angle) applied at the joint before
+    /// the free rotations (what locked rotations become).
+    pub fixed_rotations: Vec<(i64, ExprId)>,
+    /// Degrees of freedom locked at compile time (translations first, then
+    /// rotations; empty means none): each becomes a parameter named after
+    /// its coordinate, with its initial value as default, and has no speed.
+    pub locked: Vec<bool>,
     /// Mass (default: parameter `M<name>`).
     pub mass: Option<ExprId>,
     /// Inertia matrix about the mass center in the body's axes (default:
@@ -96,6 +103,8 @@ impl BodySpec {
             translations: Vec::new(),
             rotations: Vec::new(),
             quaternion: false,
+            fixed_rotations: Vec::new(),
+            locked: Vec::new(),
             mass: None,
             inertia: None,
             cm: None,
@@ -114,7 +123,11 @@ impl BodySpec {
 
     /// Number of rotational degrees of freedom.
     pub fn rotation_dofs(&self) -> usize {
-        if self.quaternion { 3 } else { self.rotations.len() }
+        if self.quaternion {
+            3
+        } else {
+            self.rotations.len()
+        }
     }
 
     /// Number of coordinates (one more than the speeds for a quaternion).

@@ -120,8 +120,17 @@ pub fn satellite(params: &Value, small: bool) -> System {
     satellite_with(params, small, false)
 }
 
+/// The satellite with the boom hinge angles (q9, q10) locked at zero.
+pub fn satellite_locked_boom(params: &Value) -> System {
+    build_satellite(params, false, false, true)
+}
+
 /// The satellite with the bus oriented by Euler parameters if `quaternion`.
 pub fn satellite_with(params: &Value, small: bool, quaternion: bool) -> System {
+    build_satellite(params, small, quaternion, false)
+}
+
+fn build_satellite(params: &Value, small: bool, quaternion: bool, lock_boom: bool) -> System {
     let mut sys = System::new("Satellite");
     let names = [
         "DB", "DC", "G", "IB11", "IB12", "IB13", "IB22", "IB23", "IB33", "IC", "ID11", "ID12",
@@ -138,7 +147,11 @@ pub fn satellite_with(params: &Value, small: bool, quaternion: bool) -> System {
     b.translations = vec![Direction::Axis(1), Direction::Axis(2), Direction::Axis(3)];
     if quaternion {
         b.quaternion = true;
-        b.coordinate_names = Some(["q1", "q2", "q3", "e0", "e1", "e2", "e3"].map(String::from).to_vec());
+        b.coordinate_names = Some(
+            ["q1", "q2", "q3", "e0", "e1", "e2", "e3"]
+                .map(String::from)
+                .to_vec(),
+        );
     } else {
         b.rotations = vec![1, 2, 3];
     }
@@ -169,6 +182,12 @@ pub fn satellite_with(params: &Value, small: bool, quaternion: bool) -> System {
     if small {
         be.small = vec![true];
         f.small = vec![true];
+    }
+    if lock_boom {
+        be.locked = vec![true];
+        f.locked = vec![true];
+        be.coordinate_names = Some(vec!["q9".to_string()]);
+        f.coordinate_names = Some(vec!["q10".to_string()]);
     }
     sys.add_bodies(vec![b, c, d, be, f]).unwrap();
     for (n, u) in [

@@ -61,11 +61,23 @@ fn derivatives(c: &mut Criterion) {
     bench_model(c, "chain-spatial-1", chain_spatial1::ChainSpatial1::new());
     bench_model(c, "chain-spatial-3", chain_spatial3::ChainSpatial3::new());
     bench_model(c, "chain-spatial-5", chain_spatial5::ChainSpatial5::new());
-    bench_model(c, "chain-spatial-10", chain_spatial10::ChainSpatial10::new());
-    bench_model(c, "chain-spatial-20", chain_spatial20::ChainSpatial20::new());
+    bench_model(
+        c,
+        "chain-spatial-10",
+        chain_spatial10::ChainSpatial10::new(),
+    );
+    bench_model(
+        c,
+        "chain-spatial-20",
+        chain_spatial20::ChainSpatial20::new(),
+    );
     bench_model(c, "chain-planar-10", chain_planar10::ChainPlanar10::new());
     bench_model(c, "satellite", satellite::Satellite::new(Quiet));
-    bench_model(c, "satellite-small", satellite_small::SatelliteSmall::new(Quiet));
+    bench_model(
+        c,
+        "satellite-small",
+        satellite_small::SatelliteSmall::new(Quiet),
+    );
 }
 
 criterion_group!(benches, derivatives);

@@ -118,9 +118,21 @@ impl Span {
     /// The line the span starts on: in its file, or in the Rust file of a
     /// model written as tokens (when the compiler tells; not in unit tests).
     pub fn line(self) -> Option<usize> {
+        self.position().map(|at| at.line)
+    }
+
+    /// Where the span starts: in its file, or in the Rust file of a model
+    /// written as tokens (when the compiler tells; not in unit tests).
+    fn position(self) -> Option<LineCol> {
         match (self.file, self.tokens) {
-            (Some((start, _)), _) => Some(start.line),
-            (None, Some((first, _))) => Some(first.start().line).filter(|&line| line > 0),
+            (Some((start, _)), _) => Some(start),
+            (None, Some((first, _))) => {
+                let at = first.start();
+                (at.line > 0).then_some(LineCol {
+                    line: at.line,
+                    col: at.column + 1,
+                })
+            }
             (None, None) => None,
         }
     }
@@ -267,10 +279,10 @@ impl Diagnostics {
     }
 
     /// All diagnostics as one combined `syn::Error` (one message per
-    /// diagnostic, each at its own span), for the macro to return.
-    /// `None` when there is nothing to report.
+    /// diagnostic, each at its own span, in source order), for the macro to
+    /// return. `None` when there is nothing to report.
     pub fn to_syn_error(&self) -> Option<syn::Error> {
-        let mut iter = self.list.iter();
+        let mut iter = self.sorted().into_iter();
         let mut error = iter.next()?.to_syn_error();
         for diagnostic in iter {
             error.combine(diagnostic.to_syn_error());
@@ -323,11 +335,11 @@ impl Diagnostics {
         Some(error)
     }
 
-    /// The diagnostics sorted by position in their file (stable: reported
-    /// order among equal positions and for token spans).
+    /// The diagnostics in source order (stable: reported order among equal
+    /// positions; those without a position first).
     fn sorted(&self) -> Vec<&Diagnostic> {
         let mut sorted: Vec<&Diagnostic> = self.list.iter().collect();
-        sorted.sort_by_key(|d| d.span.start());
+        sorted.sort_by_key(|d| d.span.position());
         sorted
     }
 }
@@ -616,9 +628,35 @@ mod tests {
         let error = diags
             .to_syn_error()
             .map(|e| e.into_iter().map(|e| e.to_string()).collect::<Vec<_>>());
+        // In source order: the one without a place first.
         assert_eq!(
             error,
-            Some(vec!["one\n= help: fix".to_string(), "two".to_string()])
+            Some(vec!["two".to_string(), "one\n= help: fix".to_string()])
         );
+    }
+
+    #[test]
+    fn token_spans_are_sorted_by_position() {
+        use std::str::FromStr;
+        let tokens = proc_macro2::TokenStream::from_str(
+            "first
+second",
+        )
+        .unwrap_or_default();
+        let spans: Vec<Span> = tokens
+            .into_iter()
+            .map(|t| Span::from_token(t.span()))
+            .collect();
+        let mut diags = Diagnostics::new();
+        diags.error(spans[1], "second");
+        diags.error(spans[0], "first");
+        let messages: Vec<String> = diags
+            .to_syn_error()
+            .into_iter()
+            .flatten()
+            .map(|e| e.to_string())
+            .collect();
+        assert_eq!(messages, ["first", "second"]);
+        assert_eq!(spans[1].line(), Some(2));
     }
 }

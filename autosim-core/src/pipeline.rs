@@ -3,7 +3,7 @@
 
 use crate::diag::{Diagnostic, Diagnostics, SourceFile};
 use crate::mech::Equations;
-use crate::model::{ResolvedModel, resolve};
+use crate::model::{ResolvedModel, Scene, resolve_scene};
 use crate::opt::{Program, build};
 use crate::syntax::{self, ast};
 
@@ -20,7 +20,12 @@ pub struct Compiled {
 
 /// Resolves, derives and schedules a parsed model.
 pub fn compile(model: &ast::Model) -> Result<Compiled, Diagnostics> {
-    let mut resolved = resolve(model)?;
+    compile_scene(model, &Scene::default())
+}
+
+/// Like [`compile`], with the options of a use site.
+pub fn compile_scene(model: &ast::Model, scene: &Scene) -> Result<Compiled, Diagnostics> {
+    let mut resolved = resolve_scene(model, scene)?;
     let equations = resolved
         .system
         .equations()
@@ -37,6 +42,11 @@ pub fn compile(model: &ast::Model) -> Result<Compiled, Diagnostics> {
 /// Compiles a model file's text.
 pub fn compile_source(file: &SourceFile) -> Result<Compiled, Diagnostics> {
     compile(&syntax::parse_source(file)?)
+}
+
+/// Compiles a model file's text with the options of a use site.
+pub fn compile_source_scene(file: &SourceFile, scene: &Scene) -> Result<Compiled, Diagnostics> {
+    compile_scene(&syntax::parse_source(file)?, scene)
 }
 
 /// Compiles a model written as Rust tokens.

@@ -68,3 +68,21 @@ fn satellite_program_matches_reference() {
     eprintln!("satellite.sim program: worst relative error {worst:.2e}");
     eprintln!("derivatives: {}", c.program.derivatives.ops);
 }
+
+/// Scene options: locking the boom at the use site.
+#[test]
+fn scene_lock_boom() {
+    use autosim_core::model::Scene;
+    use autosim_core::pipeline::compile_source_scene;
+    let path = models_dir().join("satellite.sim");
+    let file = SourceFile::new("satellite.sim", std::fs::read_to_string(path).unwrap());
+    let scene = Scene {
+        lock: vec![Scene::name("q9"), Scene::name("q10")],
+        ..Scene::default()
+    };
+    let c = match compile_source_scene(&file, &scene) {
+        Ok(c) => c,
+        Err(d) => panic!("{}", d.render(&file)),
+    };
+    assert_eq!(c.program.n, 8);
+}

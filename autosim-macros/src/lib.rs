@@ -4,16 +4,22 @@
 
 use autosim_core::diag::{Diagnostics, SourceFile, Span};
 use autosim_core::emit::{EmitOptions, model_tokens, snake_case};
-use autosim_core::pipeline::{compile_source, compile_tokens};
+use autosim_core::model::{FloatType, Scene};
+use autosim_core::pipeline::{compile_source_scene, compile_tokens};
+use autosim_core::syntax::ast;
 use proc_macro2::{TokenStream, TokenTree};
 use quote::{format_ident, quote, quote_spanned};
 use std::path::PathBuf;
+use syn::parse::Parse;
 
 /// Compiles a model into a Rust module.
 ///
 /// Inline: `autosim::model! { model Pendulum; ... }`. From a file relative to
 /// the crate root: `autosim::model!(file = "models/pendulum.sim");` (the crate
-/// is rebuilt when the file changes). Either way the macro expands to
+/// is rebuilt when the file changes), optionally with scene options that
+/// tailor the model to one use: `name = RigidBoom`, `float = f32`,
+/// `threshold = 3`, `outputs = [roll, yaw]`, `small = [B, q9]`,
+/// `lock = [q9, q10]` (bodies or coordinates). Either way the macro expands to
 /// `pub mod <model_name_in_snake_case> { ... }` holding the model type, its
 /// `Parameters`, `Inputs` and (if it calls user code) `Externs` trait.
 #[proc_macro]
@@ -23,7 +29,7 @@ pub fn model(input: proc_macro::TokenStream) -> proc_macro::TokenStream {
 
 fn expand(input: TokenStream) -> TokenStream {
     match file_argument(&input) {
-        Some(Ok((path, span))) => expand_file(&path, span),
+        Some(Ok((path, span, scene))) => expand_file(&path, span, &scene),
         Some(Err(e)) => e.to_compile_error(),
         None => {
             let name = model_name(&input);
@@ -35,26 +41,87 @@ fn expand(input: TokenStream) -> TokenStream {
     }
 }
 
-/// `file = "path"` → the path literal and its span.
-fn file_argument(input: &TokenStream) -> Option<syn::Result<(String, proc_macro2::Span)>> {
+/// `file = "path"` and scene options → the path, its span, the scene.
+fn file_argument(input: &TokenStream) -> Option<syn::Result<(String, proc_macro2::Span, Scene)>> {
     let tokens: Vec<TokenTree> = input.clone().into_iter().collect();
     match tokens.as_slice() {
-        [TokenTree::Ident(i), TokenTree::Punct(p), rest @ ..]
-            if i == "file" && p.as_char() == '=' =>
-        {
-            let lit: syn::Result<syn::LitStr> = syn::parse2(rest.iter().cloned().collect());
-            Some(lit.map(|l| (l.value(), l.span())).map_err(|e| {
-                syn::Error::new(
-                    e.span(),
-                    "expected `file = \"path/to/model.sim\"` (a path relative to the crate root)",
-                )
-            }))
+        [TokenTree::Ident(i), TokenTree::Punct(p), ..] if i == "file" && p.as_char() == '=' => {
+            Some(syn::parse::Parser::parse2(file_args, input.clone()))
         }
         _ => None,
     }
 }
 
-fn expand_file(path: &str, span: proc_macro2::Span) -> TokenStream {
+fn file_args(input: syn::parse::ParseStream) -> syn::Result<(String, proc_macro2::Span, Scene)> {
+    let _: syn::Ident = input.parse()?;
+    let _: syn::Token![=] = input.parse()?;
+    let lit: syn::LitStr = input.parse().map_err(|e| {
+        syn::Error::new(
+            e.span(),
+            "expected `file = \"path/to/model.sim\"` (a path relative to the crate root)",
+        )
+    })?;
+    let mut scene = Scene::default();
+    while !input.is_empty() {
+        let _: syn::Token![,] = input.parse()?;
+        if input.is_empty() {
+            break;
+        }
+        let key: syn::Ident = input.parse()?;
+        let _: syn::Token![=] = input.parse()?;
+        let name = |i: &syn::Ident| ast::Name {
+            text: i.to_string(),
+            span: Span::from_token(i.span()),
+        };
+        let list = |input: syn::parse::ParseStream| -> syn::Result<Vec<ast::Name>> {
+            let content;
+            syn::bracketed!(content in input);
+            let items = content.parse_terminated(syn::Ident::parse, syn::Token![,])?;
+            Ok(items.iter().map(name).collect())
+        };
+        match key.to_string().as_str() {
+            "name" => scene.name = Some(name(&input.parse()?)),
+            "float" => {
+                let f: syn::Ident = input.parse()?;
+                scene.float = Some(match f.to_string().as_str() {
+                    "f64" => FloatType::F64,
+                    "f32" => FloatType::F32,
+                    _ => {
+                        return Err(syn::Error::new(
+                            f.span(),
+                            "the float type is `f64` or `f32`",
+                        ));
+                    }
+                });
+            }
+            "threshold" => {
+                let k: syn::LitInt = input.parse()?;
+                let v: i16 = k.base10_parse()?;
+                if !(1..=20).contains(&v) {
+                    return Err(syn::Error::new(
+                        k.span(),
+                        "the threshold must be between 1 and 20",
+                    ));
+                }
+                scene.threshold = Some(v);
+            }
+            "outputs" => scene.outputs = Some(list(input)?),
+            "small" => scene.small = list(input)?,
+            "lock" => scene.lock = list(input)?,
+            other => {
+                return Err(syn::Error::new(
+                    key.span(),
+                    format!(
+                        "unknown model option `{other}`: the options are `name`, `float`, `threshold`, `outputs`, `small` and `lock`"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok((lit.value(), lit.span(), scene))
+}
+
+fn expand_file(path: &str, span: proc_macro2::Span, scene: &Scene) -> TokenStream {
     let root = std::env::var("CARGO_MANIFEST_DIR")
         .map(PathBuf::from)
         .unwrap_or_default();
@@ -65,20 +132,17 @@ fn expand_file(path: &str, span: proc_macro2::Span) -> TokenStream {
     };
     let full_str = full.to_string_lossy().to_string();
     let track = quote_spanned!(span=> const _: &str = include_str!(#full_str););
-    match compile_source(&file) {
+    match compile_source_scene(&file, scene) {
         Ok(c) => {
             let module = model_tokens(&c, &EmitOptions::default());
             quote!(#module #track)
         }
         Err(d) => {
-            let text = d.render(&file);
-            let name = model_name_in_text(&file.text);
-            let placeholder = placeholder(name);
-            quote_spanned!(span=> ::core::compile_error!(#text);)
-                .into_iter()
-                .chain(placeholder)
-                .chain(track)
-                .collect()
+            // One error per diagnostic, each showing `path:line:col` and
+            // the excerpt, at the span of the path literal.
+            let errors = d.to_syn_error_in(&file, span).map(|e| e.to_compile_error());
+            let placeholder = placeholder(model_name_in_text(&file.text));
+            quote!(#errors #placeholder #track)
         }
     }
 }
@@ -123,9 +187,10 @@ fn model_name(input: &TokenStream) -> Option<String> {
     while let Some(t) = it.next() {
         if let TokenTree::Ident(i) = &t
             && i == "model"
-                && let Some(TokenTree::Ident(n)) = it.next() {
-                    return Some(n.to_string());
-                }
+            && let Some(TokenTree::Ident(n)) = it.next()
+        {
+            return Some(n.to_string());
+        }
     }
     None
 }

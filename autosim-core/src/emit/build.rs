@@ -7,7 +7,8 @@ use super::file::{format_tokens, header};
 use super::markdown::markdown;
 use super::model::{EmitOptions, model_tokens, snake_case};
 use crate::diag::{SourceFile, Span};
-use crate::pipeline::compile_source;
+use crate::model::Scene;
+use crate::pipeline::compile_source_scene;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
@@ -51,6 +52,7 @@ pub struct Config {
     markdown: bool,
     emit: EmitOptions,
     quiet: bool,
+    scene: Scene,
 }
 
 /// What one compiled model produced.
@@ -95,6 +97,14 @@ impl Config {
         self
     }
 
+    /// Compiles the next models for a scene: a new model name, float type,
+    /// threshold, selected outputs, small or locked degrees of freedom (see
+    /// [`Scene`]).
+    pub fn scene(&mut self, scene: Scene) -> &mut Config {
+        self.scene = scene;
+        self
+    }
+
     /// Does not print `cargo::rerun-if-changed` lines (for use outside build
     /// scripts, e.g. in tests).
     pub fn quiet(&mut self, yes: bool) -> &mut Config {
@@ -128,7 +138,8 @@ impl Config {
         }
         let file = SourceFile::read(path, path, Span::unknown())
             .map_err(|d| BuildError::Model(d.render(&SourceFile::new(path, String::new()))))?;
-        let compiled = compile_source(&file).map_err(|d| BuildError::Model(d.render(&file)))?;
+        let compiled = compile_source_scene(&file, &self.scene)
+            .map_err(|d| BuildError::Model(d.render(&file)))?;
         let name = compiled.model.system.name().to_string();
         let module = self
             .emit

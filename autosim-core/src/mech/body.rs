@@ -102,14 +102,23 @@ impl System {
                 "`N` is the inertial frame and cannot be declared as a body".to_string(),
             ));
         }
-        if self.body_named(&name).is_some() {
+        self.check_new_name(&name)?;
+        if name == "t" {
             return Err(ModelError::DuplicateName(name));
         }
         let parent = self
             .body_named(&spec.parent)
             .ok_or_else(|| ModelError::UnknownBody(spec.parent.clone()))?;
         self.validate(&spec)?;
-        let spec = self.apply_locks(spec)?;
+        let mut spec = spec;
+        let (q_names, u_names) = self.default_names(&spec);
+        spec.coordinate_names.get_or_insert(q_names);
+        spec.speed_names.get_or_insert(u_names);
+        // Everything that can fail is checked before anything is created,
+        // so a rejected body leaves the system as it was.
+        self.precheck(&spec)?;
+        let declared = spec.dofs();
+        let (spec, locked) = self.apply_locks(spec)?;
 
         let parent_body = self.bodies[parent.index()].clone();
         let zero = self.arena.zero();
@@ -361,6 +370,18 @@ impl System {
             });
         }
         let indices: Vec<usize> = (first..first + dofs).collect();
+        let mut body_dofs = Vec::with_capacity(declared);
+        let mut free = syms.iter();
+        for k in 0..declared {
+            match locked.iter().find(|(i, _)| *i == k) {
+                Some((_, p)) => body_dofs.push((*p, zero)),
+                None => {
+                    if let Some((q, u, _)) = free.next() {
+                        body_dofs.push((self.arena.sym(*q), self.arena.sym(*u)));
+                    }
+                }
+            }
+        }
         self.coordinates.extend(coords);
         self.bodies[parent.index()].children.push(id);
         self.bodies.push(Body {
@@ -372,6 +393,7 @@ impl System {
             frame,
             joint,
             coordinates: indices,
+            dofs: body_dofs,
             rotation_axes: axes,
             mass,
             inertia,
@@ -381,16 +403,142 @@ impl System {
             w,
             v0,
         });
+        self.declared_dofs += declared;
         Ok(id)
+    }
+
+    /// The checks of `add_body` that need names and expressions: free
+    /// names, constant geometry and mass properties, valid directions.
+    fn precheck(&self, spec: &BodySpec) -> Result<(), ModelError> {
+        let name = &spec.name;
+        let taken = |n: &str| {
+            self.arena.symbol_named(n).is_some()
+                || self.body_named(n).is_some()
+                || self.point_named(n).is_some()
+                || self.arena.user_fn_named(n).is_some()
+        };
+        let is_parameter = |n: &str| {
+            self.arena
+                .symbol_named(n)
+                .is_some_and(|s| self.arena.symbol(s).is_constant())
+        };
+        let nt = spec.translations.len();
+        let qn = spec.coordinate_names.clone().unwrap_or_default();
+        let un = spec.speed_names.clone().unwrap_or_default();
+        let mut new_names: Vec<String> = Vec::new();
+        for k in 0..spec.dofs() {
+            let q = &qn[if spec.quaternion && k >= nt { k + 1 } else { k }];
+            if spec.locked.get(k).copied().unwrap_or(false) {
+                // A locked coordinate becomes (or reuses) a parameter.
+                if taken(q) && !is_parameter(q) {
+                    return Err(ModelError::DuplicateName(q.clone()));
+                }
+                continue;
+            }
+            new_names.push(q.clone());
+            new_names.push(un[k].clone());
+            new_names.push(format!("{}_dot", un[k]));
+        }
+        if spec.quaternion {
+            new_names.push(qn[nt].clone());
+        }
+        for (i, n) in new_names.iter().enumerate() {
+            if taken(n) || new_names[..i].contains(n) || n == name {
+                return Err(ModelError::DuplicateName(n.clone()));
+            }
+        }
+        let zero = self.arena.zero();
+        let joint = spec.joint.unwrap_or([zero; 3]);
+        let cm = spec.cm.unwrap_or([zero; 3]);
+        for (what, c) in [("joint coordinates", &joint), ("mass center", &cm)] {
+            if c.iter().any(|x| !self.arena.is_constant(*x)) {
+                return Err(ModelError::NotConstant {
+                    what: format!("{what} of body `{name}`"),
+                });
+            }
+        }
+        let mass_ok = spec.mass.is_none_or(|m| self.arena.is_constant(m));
+        let inertia_ok = spec
+            .inertia
+            .is_none_or(|i| i.iter().flatten().all(|x| self.arena.is_constant(*x)));
+        if !mass_ok || !inertia_ok {
+            return Err(ModelError::NotConstant {
+                what: format!("mass and inertia of body `{name}`"),
+            });
+        }
+        let mut defaults = Vec::new();
+        if spec.mass.is_none() {
+            defaults.push(format!("M{name}"));
+        }
+        if spec.inertia.is_none() {
+            for j in 1..=3 {
+                for k in j..=3 {
+                    defaults.push(format!("I{name}{j}{k}"));
+                }
+            }
+        }
+        for d in defaults {
+            if taken(&d) && !is_parameter(&d) {
+                return Err(ModelError::DuplicateName(d));
+            }
+        }
+        for d in &spec.translations {
+            if let Direction::Vector(v) = d {
+                if v.iter().any(|x| !self.arena.is_constant(*x)) {
+                    return Err(ModelError::NotConstant {
+                        what: format!("translation direction of body `{name}`"),
+                    });
+                }
+                if v.iter().all(|x| self.arena.is_zero(*x)) {
+                    return Err(ModelError::ZeroDirection { body: name.clone() });
+                }
+            }
+        }
+        for (axis, angle) in &spec.fixed_rotations {
+            if !(1..=3).contains(axis) {
+                return Err(ModelError::AxisOutOfRange {
+                    body: name.clone(),
+                    axis: *axis,
+                });
+            }
+            if !self.arena.is_constant(*angle) {
+                return Err(ModelError::NotConstant {
+                    what: format!("fixed rotation angle of body `{name}`"),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The default coordinate and speed names of the next body: `q<k>` and
+    /// `u<k>`, counting every degree of freedom declared so far (locked ones
+    /// too), and `<Body>_e0` for a quaternion's scalar part.
+    pub fn default_names(&self, spec: &BodySpec) -> (Vec<String>, Vec<String>) {
+        let first = self.declared_dofs;
+        let mut q: Vec<String> = (0..spec.dofs())
+            .map(|k| format!("q{}", first + k + 1))
+            .collect();
+        if spec.quaternion {
+            q.insert(spec.translations.len(), format!("{}_e0", spec.name));
+        }
+        let u = (0..spec.dofs())
+            .map(|k| format!("u{}", first + k + 1))
+            .collect();
+        (q, u)
     }
 
     /// Turns locked degrees of freedom into parameters: a locked
     /// translation moves the joint point by a constant, a locked rotation
     /// becomes a constant rotation of the joint.
-    fn apply_locks(&mut self, mut spec: BodySpec) -> Result<BodySpec, ModelError> {
+    #[allow(clippy::type_complexity)]
+    fn apply_locks(
+        &mut self,
+        mut spec: BodySpec,
+    ) -> Result<(BodySpec, Vec<(usize, ExprId)>), ModelError> {
         if !spec.locked.iter().any(|l| *l) {
-            return Ok(spec);
+            return Ok((spec, Vec::new()));
         }
+        let mut locked_params = Vec::new();
         let name = spec.name.clone();
         let nt = spec.translations.len();
         let dofs = spec.dofs();
@@ -439,6 +587,7 @@ impl System {
             let unit = if k < nt { "m" } else { "rad" };
             let p =
                 self.parameter_or_default(&qn, if value.is_finite() { value } else { 0.0 }, unit)?;
+            locked_params.push((k, p));
             if k < nt {
                 let d = self.direction(&name, &spec.translations[k])?;
                 for i in 0..3 {
@@ -476,7 +625,7 @@ impl System {
             spec.small = keep.iter().map(|k| spec.small[*k]).collect();
         }
         spec.locked = Vec::new();
-        Ok(spec)
+        Ok((spec, locked_params))
     }
 
     fn validate(&self, spec: &BodySpec) -> Result<(), ModelError> {

@@ -263,6 +263,61 @@ impl System {
             let c = um.w.dot(&mut self.arena, &mom[b]);
             forcing[k] = self.arena.add(a, c);
         }
+        // A force at a point that moves in its body (coordinates depending
+        // on the state) has, besides the rigid-body part projected above,
+        // the partial velocities of that motion: Σ_s (F · ∂r/∂s) ∂ṡ/∂u_k
+        // over the symbols s of the coordinates that have a derivative.
+        for force in self.forces.clone() {
+            for (p, negate) in [(Some(force.point), false), (force.reaction, true)] {
+                let Some(p) = p else { continue };
+                let point = self.points[p.index()].clone();
+                let mut syms: Vec<SymId> = Vec::new();
+                for c in point.coordinates {
+                    if !self.arena.is_constant(c) {
+                        syms.extend(self.arena.free_symbols(c));
+                    }
+                }
+                syms.sort();
+                syms.dedup();
+                let rates: Vec<(SymId, ExprId)> = syms
+                    .iter()
+                    .filter_map(|s| self.arena.dxdt_of_symbol(*s).map(|d| (*s, d)))
+                    .filter(|(_, d)| !self.arena.is_constant(*d))
+                    .collect();
+                if rates.is_empty() {
+                    continue;
+                }
+                let frame = self.bodies[point.body.index()].frame;
+                let f = Fv::from_vector(&mut self.arena, &mut self.frames, &force.vector, frame);
+                let mut f_dr = Vec::with_capacity(rates.len());
+                for (s, d) in &rates {
+                    let mut t = Vec::with_capacity(3);
+                    for i in 0..3 {
+                        let dr = self.arena.partial(point.coordinates[i], *s)?;
+                        t.push(self.arena.mul(dr, f.c[i]));
+                    }
+                    f_dr.push((self.arena.sum(&t), *d));
+                }
+                for k in 0..n {
+                    let u = self.coordinates[k].u;
+                    let mut terms = Vec::new();
+                    for (fd, d) in &f_dr {
+                        let du = self.arena.partial(*d, u)?;
+                        if !self.arena.is_zero(du) {
+                            terms.push(self.arena.mul(*fd, du));
+                        }
+                    }
+                    if terms.is_empty() {
+                        continue;
+                    }
+                    let mut s = self.arena.sum(&terms);
+                    if negate {
+                        s = self.arena.neg(s);
+                    }
+                    forcing[k] = self.arena.add(forcing[k], s);
+                }
+            }
+        }
 
         // 6. Mass matrix: unit-rate momentum of each subtree, carried inward.
         let mut mass = vec![vec![zero; n]; n];

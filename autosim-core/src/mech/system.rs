@@ -192,6 +192,10 @@ pub struct Body {
     pub joint: [ExprId; 3],
     /// Indices of the body's coordinates (translations, then rotations).
     pub coordinates: Vec<usize>,
+    /// Every declared degree of freedom in order, as (coordinate, speed)
+    /// expressions: the symbols of a free one, the parameter and 0 of a
+    /// locked one.
+    pub dofs: Vec<(ExprId, ExprId)>,
     /// Rotation axes (0-based) in sequence.
     pub rotation_axes: Vec<usize>,
     /// Mass.
@@ -307,6 +311,10 @@ pub struct System {
     pub(crate) inputs: Vec<SymId>,
     pub(crate) parameters: Vec<SymId>,
     pub(crate) time: SymId,
+    /// Degrees of freedom declared so far, locked ones included: default
+    /// names `q<k>`, `u<k>` count them, so locking one does not rename the
+    /// others.
+    pub(crate) declared_dofs: usize,
 }
 
 impl Default for System {
@@ -335,6 +343,7 @@ impl System {
             frame: FrameId::N,
             joint: [zero; 3],
             coordinates: Vec::new(),
+            dofs: Vec::new(),
             rotation_axes: Vec::new(),
             mass: zero,
             inertia: [[zero; 3]; 3],
@@ -367,6 +376,7 @@ impl System {
             inputs: Vec::new(),
             parameters: Vec::new(),
             time,
+            declared_dofs: 0,
         }
     }
 
@@ -385,7 +395,7 @@ impl System {
         self.arena.set_threshold(threshold);
     }
 
-    fn check_new_name(&self, name: &str) -> Result<(), ModelError> {
+    pub(crate) fn check_new_name(&self, name: &str) -> Result<(), ModelError> {
         if self.arena.symbol_named(name).is_some()
             || self.body_named(name).is_some()
             || self.point_named(name).is_some()

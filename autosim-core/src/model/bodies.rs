@@ -10,12 +10,14 @@ use crate::syntax::ast::{self, BodyKey, Expr};
 impl<'a> Resolver<'a> {
     /// Adds all bodies, parents first.
     pub fn add_bodies(&mut self, bodies: &[&'a ast::Body]) {
-        for b in bodies {
-            self.declare(&b.name, Named::Body(None));
-        }
+        // A body whose name is refused (reported) is not added.
+        let declared: Vec<bool> = bodies
+            .iter()
+            .map(|b| self.declare(&b.name, Named::Body(None)))
+            .collect();
         // Parent of each body (index into `bodies`, or None for N/unknown).
         let mut parent_of: Vec<Option<usize>> = vec![None; bodies.len()];
-        let mut parent_ok = vec![true; bodies.len()];
+        let mut parent_ok = declared;
         for (i, b) in bodies.iter().enumerate() {
             let Some(opt) = b.options.get(BodyKey::Parent) else {
                 continue;
@@ -166,10 +168,16 @@ impl<'a> Resolver<'a> {
                     .map(|m| spec.mass = Some(m))
                     .is_some(),
                 BodyKey::Inertia => self.inertia(v).map(|m| spec.inertia = Some(m)).is_some(),
-                BodyKey::Rotate => self
-                    .axes(v, "a rotation axis")
-                    .map(|a| spec.rotations = a)
-                    .is_some(),
+                BodyKey::Rotate => match v {
+                    Expr::Name(n) if n.text == "quaternion" => {
+                        spec.quaternion = true;
+                        true
+                    }
+                    _ => self
+                        .axes(v, "a rotation axis")
+                        .map(|a| spec.rotations = a)
+                        .is_some(),
+                },
                 BodyKey::Translate => self
                     .translations(v)
                     .map(|t| spec.translations = t)
@@ -190,7 +198,7 @@ impl<'a> Resolver<'a> {
                     .constants_list(v, "initial speeds")
                     .map(|n| spec.initial_speeds = Some(n))
                     .is_some(),
-                BodyKey::Small => true,
+                BodyKey::Small | BodyKey::Lock => true,
             };
             ok &= good;
         }
@@ -243,10 +251,54 @@ impl<'a> Resolver<'a> {
                 ok = false;
             }
         }
+        // `small` and `lock` may name default coordinates (`q9`).
+        if spec.coordinate_names.is_none()
+            && (b.options.get(BodyKey::Small).is_some() || b.options.get(BodyKey::Lock).is_some())
+        {
+            let (q, _) = self.sys.default_names(&spec);
+            spec.coordinate_names = Some(q);
+        }
         if let Some(opt) = b.options.get(BodyKey::Small) {
             match self.small_flags(&opt.value, &spec) {
                 Some(flags) => spec.small = flags,
                 None => ok = false,
+            }
+        }
+        if let Some(opt) = b.options.get(BodyKey::Lock) {
+            match self.small_flags(&opt.value, &spec) {
+                Some(flags) => spec.locked = flags,
+                None => ok = false,
+            }
+        }
+        // The scene's `small` and `lock` add to the body's own.
+        if !self.scene.small.is_empty() || !self.scene.lock.is_empty() {
+            let coords = spec
+                .coordinate_names
+                .clone()
+                .unwrap_or_else(|| self.sys.default_names(&spec).0);
+            let e0 = spec.quaternion.then_some(spec.translations.len());
+            let dofs = spec.dofs();
+            for (names, is_lock) in [
+                (self.scene.small.clone(), false),
+                (self.scene.lock.clone(), true),
+            ] {
+                let (flags, matched) =
+                    crate::model::Scene::flags(&names, &spec.name, &coords, dofs, e0);
+                if matched.is_empty() {
+                    continue;
+                }
+                self.scene_matched.extend(matched);
+                let target = if is_lock {
+                    &mut spec.locked
+                } else {
+                    &mut spec.small
+                };
+                if target.is_empty() {
+                    *target = vec![false; dofs];
+                }
+                for (t, f) in target.iter_mut().zip(flags) {
+                    *t |= f;
+                }
             }
         }
         ok.then_some(spec)
@@ -299,6 +351,20 @@ impl<'a> Resolver<'a> {
                     None => ok = false,
                 },
                 other => match self.integer(other, "a translation axis") {
+                    Some(a)
+                        if out
+                            .iter()
+                            .any(|d| matches!(d, Direction::Axis(x) if *x == a)) =>
+                    {
+                        self.push(
+                            Diagnostic::error(
+                                other.span(),
+                                format!("the body already translates along axis {a}"),
+                            )
+                            .help("each translation needs a direction of its own"),
+                        );
+                        ok = false;
+                    }
                     Some(a) if (1..=3).contains(&a) => out.push(Direction::Axis(a)),
                     Some(a) => {
                         self.push(
@@ -419,6 +485,13 @@ impl<'a> Resolver<'a> {
         let mut ok = true;
         for it in items {
             match it {
+                Expr::Name(n) if n.text == "t" || n.text == "N" => {
+                    self.push(
+                        Diagnostic::error(n.span, format!("`{}` is reserved", n.text))
+                            .help("choose another name"),
+                    );
+                    ok = false;
+                }
                 Expr::Name(n) => {
                     if self.names.contains_key(&n.text) || out.contains(&n.text) {
                         self.push(
@@ -441,7 +514,8 @@ impl<'a> Resolver<'a> {
         ok.then_some(out)
     }
 
-    /// `small: all | none | translations | rotations | [..., coordinate names]`.
+    /// `small` or `lock`: `all | none | translations | rotations | [...,
+    /// coordinate names]`, one flag per degree of freedom.
     fn small_flags(&mut self, v: &Expr, spec: &BodySpec) -> Option<Vec<bool>> {
         let nt = spec.translations.len();
         let dofs = spec.dofs();
@@ -455,7 +529,7 @@ impl<'a> Resolver<'a> {
             let Expr::Name(n) = it else {
                 self.error(
                     it.span(),
-                    "`small` takes `all`, `none`, `translations`, `rotations` or coordinate names",
+                    "`small` and `lock` take `all`, `none`, `translations`, `rotations` or coordinate names",
                 );
                 ok = false;
                 continue;
@@ -469,6 +543,9 @@ impl<'a> Resolver<'a> {
                     .coordinate_names
                     .as_ref()
                     .and_then(|ns| ns.iter().position(|x| x == other))
+                    // A quaternion's names are e0..e3 for three speeds.
+                    .map(|k| if spec.quaternion && k > nt { k - 1 } else { k })
+                    .filter(|k| *k < dofs)
                 {
                     Some(k) => flags[k] = true,
                     None => {

@@ -1,10 +1,10 @@
 //! Evaluation of model expressions into values: names, members, operators
 //! and the operations of the paper's Tables 6 and 12.
 
-use super::scope::{Lazy, Named, Resolver, describe};
+use super::scope::{Lazy, MAX_PENDING, Named, Resolver, describe};
 use super::value::{self, Op, Value};
 use crate::diag::{Diagnostic, Span};
-use crate::expr::{ExprId, Func, Number};
+use crate::expr::{ExprId, Func, Number, SymbolKind};
 use crate::mech::{BodyId, PointId, Vector};
 use crate::syntax::ast::{self, BinOp, Expr, Member, UnOp};
 
@@ -57,26 +57,7 @@ impl Resolver<'_> {
                     }
                 }
             }
-            Expr::Binary {
-                op,
-                lhs,
-                rhs,
-                op_span,
-                ..
-            } => {
-                let a = self.eval(lhs);
-                let b = self.eval(rhs);
-                let (a, b) = (a?, b?);
-                let op = match op {
-                    BinOp::Add => Op::Add,
-                    BinOp::Sub => Op::Sub,
-                    BinOp::Mul => Op::Mul,
-                    BinOp::Div => Op::Div,
-                    BinOp::Pow => Op::Pow,
-                };
-                let r = value::binary(&mut self.sys, op, a, b);
-                self.lift(*op_span, r)
-            }
+            Expr::Binary { .. } => self.eval_binary(e),
             Expr::List { items, .. } => {
                 let mut out = Vec::with_capacity(items.len());
                 let mut ok = true;
@@ -91,6 +72,43 @@ impl Resolver<'_> {
             Expr::Member { base, member, span } => self.eval_member(base, member, *span),
             Expr::Call { func, args, span } => self.eval_call(func, args, *span),
         }
+    }
+
+    /// `a + b - c + ...`: a chain is left-deep in the AST, so it is
+    /// evaluated from its innermost operator out, in a loop (a sum of
+    /// thousands of terms must not recurse once per term).
+    fn eval_binary(&mut self, e: &Expr) -> Option<Value> {
+        let mut spine = Vec::new();
+        let mut first = e;
+        while let Expr::Binary {
+            op,
+            lhs,
+            rhs,
+            op_span,
+            ..
+        } = first
+        {
+            spine.push((*op, rhs.as_ref(), *op_span));
+            first = lhs;
+        }
+        let mut value = self.eval(first);
+        for (op, rhs, op_span) in spine.into_iter().rev() {
+            let b = self.eval(rhs);
+            let (Some(a), Some(b)) = (value, b) else {
+                value = None;
+                continue;
+            };
+            let op = match op {
+                BinOp::Add => Op::Add,
+                BinOp::Sub => Op::Sub,
+                BinOp::Mul => Op::Mul,
+                BinOp::Div => Op::Div,
+                BinOp::Pow => Op::Pow,
+            };
+            let r = value::binary(&mut self.sys, op, a, b);
+            value = self.lift(op_span, r);
+        }
+        value
     }
 
     fn lift(&mut self, span: Span, r: Result<Value, String>) -> Option<Value> {
@@ -129,6 +147,21 @@ impl Resolver<'_> {
                 if let Some(&(b, axis)) = self.uv_short.get(&name.text) {
                     return self.sys.unit_vector(b, axis).map(Value::Vector);
                 }
+                // `n4`: a unit vector of a body that has no axis 4.
+                let frame = name.text.trim_end_matches(|c: char| c.is_ascii_digit());
+                if frame.len() < name.text.len() && self.uv_short.contains_key(&format!("{frame}1"))
+                {
+                    self.push(
+                        Diagnostic::error(
+                            name.span,
+                            format!("unknown unit vector `{}`", name.text),
+                        )
+                        .help(format!(
+                            "the axes of a body are 1, 2 and 3: `{frame}1`, `{frame}2`, `{frame}3`"
+                        )),
+                    );
+                    return None;
+                }
                 self.unknown(name, "name");
                 None
             }
@@ -149,9 +182,15 @@ impl Resolver<'_> {
                 None
             }
             Lazy::Pending => {
-                self.lets[i].1 = Lazy::InProgress;
                 let item = self.lets[i].0;
+                if !self.may_wait(&item.name, at) {
+                    self.lets[i].1 = Lazy::Done(None);
+                    return None;
+                }
+                self.lets[i].1 = Lazy::InProgress;
+                self.pending += 1;
                 let v = self.eval(&item.value);
+                self.pending -= 1;
                 self.lets[i].1 = Lazy::Done(v.clone());
                 v
             }
@@ -175,13 +214,41 @@ impl Resolver<'_> {
                 None
             }
             Lazy::Pending => {
-                self.points[i].1 = Lazy::InProgress;
                 let item = self.points[i].0;
+                if !self.may_wait(&item.name, at) {
+                    self.points[i].1 = Lazy::Done(None);
+                    return None;
+                }
+                self.points[i].1 = Lazy::InProgress;
+                self.pending += 1;
                 let p = self.make_point(item);
+                self.pending -= 1;
                 self.points[i].1 = Lazy::Done(p);
                 p
             }
         }
+    }
+
+    /// False (reported at `at`, where `name` is used) when too many `let`s
+    /// and points already wait on one another.
+    fn may_wait(&mut self, name: &ast::Name, at: Span) -> bool {
+        if self.pending < MAX_PENDING {
+            return true;
+        }
+        if std::mem::replace(&mut self.too_many_pending, true) {
+            return false;
+        }
+        self.push(
+            Diagnostic::error(
+                at,
+                format!(
+                    "`{}` is used through more than {MAX_PENDING} `let`s or points that are defined after their first use",
+                    name.text
+                ),
+            )
+            .help("define each `let` and point before the items that use it"),
+        );
+        false
     }
 
     fn make_point(&mut self, item: &ast::Point) -> Option<PointId> {
@@ -282,6 +349,62 @@ impl Resolver<'_> {
             return None;
         }
         Some(s)
+    }
+
+    /// False, with a diagnostic at `span`, when `values` use an
+    /// acceleration (`dxdt` of a speed): `what` is needed to compute them.
+    pub fn without_acceleration(&mut self, values: &[ExprId], span: Span, what: &str) -> bool {
+        let arena = &self.sys.arena;
+        let found = values
+            .iter()
+            .flat_map(|&e| arena.free_symbols(e))
+            .find(|&s| matches!(arena.symbol(s).kind, SymbolKind::SpeedRate { .. }));
+        let Some(s) = found else {
+            return true;
+        };
+        let name = arena.symbol(s).name.clone();
+        self.push(
+            Diagnostic::error(
+                span,
+                format!("{what} cannot use an acceleration (`{name}`, the `dxdt` of a speed)"),
+            )
+            .help("accelerations are solved from the forces and moments; use them only in outputs and state derivatives"),
+        );
+        false
+    }
+
+    /// False, with a diagnostic at `span`, when `x`, an argument of
+    /// subroutine number `sub` (`name`), cannot be computed before the call:
+    /// subroutines are called in declaration order, before the equations.
+    pub fn subroutine_argument(&mut self, x: ExprId, sub: usize, name: &str, span: Span) -> bool {
+        let what = format!("an argument of subroutine `{name}`");
+        if !self.without_acceleration(&[x], span, &what) {
+            return false;
+        }
+        let arena = &self.sys.arena;
+        let later = arena
+            .free_symbols(x)
+            .into_iter()
+            .find_map(|s| match arena.symbol(s).kind {
+                SymbolKind::ExternOutput { sub: other, .. } if other >= sub => Some((s, other)),
+                _ => None,
+            });
+        let Some((s, other)) = later else {
+            return true;
+        };
+        let output = arena.symbol(s).name.clone();
+        let message = if other == sub {
+            format!("subroutine `{name}` cannot take its own output `{output}` as an argument")
+        } else {
+            format!(
+                "{what} uses `{output}`, an output of subroutine `{}` declared after it",
+                self.sys.subroutines()[other].name
+            )
+        };
+        self.push(Diagnostic::error(span, message).help(
+            "subroutines are called in the order they are declared: an argument may only use the outputs of subroutines declared before",
+        ));
+        false
     }
 
     /// A vector, or a diagnostic.
@@ -414,10 +537,14 @@ impl Resolver<'_> {
             } => (true, operand.as_ref()),
             other => (false, other),
         };
-        if let Expr::Number(n) = inner
-            && let Ok(v) = n.text.parse::<i64>()
-        {
-            return Some(if neg { -v } else { v });
+        if let Expr::Number(n) = inner {
+            if let Ok(v) = n.text.parse::<i64>() {
+                return Some(if neg { -v } else { v });
+            }
+            if n.text.chars().all(|c| c.is_ascii_digit()) {
+                self.error(e.span(), format!("`{e}` is too large for {context}"));
+                return None;
+            }
         }
         self.error(e.span(), format!("{context} must be an integer"));
         None
@@ -444,6 +571,22 @@ impl Resolver<'_> {
             return Some(Value::Scalar(self.sys.arena.func(Func::User(f), &xs)));
         }
         let Some(&(_, min, max)) = OPERATIONS.iter().find(|(n, _, _)| *n == name) else {
+            if let Some((kind, _)) = self.names.get(name).cloned() {
+                let help = match kind {
+                    Named::Subroutine => {
+                        "a subroutine is called once per evaluation, not in expressions: use its outputs by name".to_string()
+                    }
+                    _ => format!("to multiply, write `{name}*(...)`"),
+                };
+                self.push(
+                    Diagnostic::error(
+                        func.span,
+                        format!("`{name}` is {}, not a function", describe(&kind)),
+                    )
+                    .help(help),
+                );
+                return None;
+            }
             let mut candidates: Vec<String> =
                 OPERATIONS.iter().map(|(n, _, _)| n.to_string()).collect();
             for f in [
@@ -688,7 +831,8 @@ impl Resolver<'_> {
 
     fn generalized(&mut self, name: &str, args: &[Expr]) -> Option<Value> {
         let b = self.body(&args[0], &format!("`{name}`"))?;
-        let coords = self.sys.body(b).coordinates.clone();
+        // Every declared degree of freedom (a locked one is a parameter).
+        let coords = self.sys.body(b).dofs.clone();
         let k = match args.get(1) {
             Some(e) => {
                 let k = self.integer(e, &format!("the index of `{name}`"))?;
@@ -705,6 +849,21 @@ impl Resolver<'_> {
                     return None;
                 }
                 k as usize - 1
+            }
+            None if coords.is_empty() => {
+                let body = self.sys.body(b).name.clone();
+                self.push(
+                    Diagnostic::error(
+                        args[0].span(),
+                        format!("body `{body}` has no degrees of freedom"),
+                    )
+                    .help(if body == "N" {
+                        "`N` is the inertial frame: it does not move".to_string()
+                    } else {
+                        format!("give `{body}` a `rotate: ...` or `translate: ...` to make it move")
+                    }),
+                );
+                return None;
             }
             None => {
                 if coords.len() != 1 {
@@ -728,8 +887,7 @@ impl Resolver<'_> {
                 0
             }
         };
-        let c = &self.sys.coordinates()[coords[k]];
-        let s = if name == "q" { c.q } else { c.u };
-        Some(Value::Scalar(self.sys.arena.sym(s)))
+        let (q, u) = coords[k];
+        Some(Value::Scalar(if name == "q" { q } else { u }))
     }
 }

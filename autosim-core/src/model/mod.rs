@@ -7,9 +7,13 @@
 
 mod bodies;
 mod exprs;
+mod scene;
 mod scope;
+#[cfg(test)]
+mod tests;
 mod value;
 
+pub use scene::Scene;
 pub use value::Value;
 
 use crate::diag::{Diagnostic, Diagnostics};
@@ -77,7 +81,14 @@ pub struct ResolvedModel {
 
 /// Resolves a parsed model.
 pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
-    let mut r = Resolver::new(&model.name.text);
+    resolve_scene(model, &Scene::default())
+}
+
+/// Resolves a parsed model with the options of a scene.
+pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel, Diagnostics> {
+    let model_name = scene.name.as_ref().unwrap_or(&model.name);
+    let mut r = Resolver::new(&model_name.text);
+    r.scene = scene.clone();
     let mut out = ResolvedModel {
         system: System::default(),
         float: FloatType::F64,
@@ -89,6 +100,10 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
         subroutine_docs: Vec::new(),
         subroutine_params: Vec::new(),
     };
+
+    // Only these outputs are generated, if the settings say so.
+    let mut output_filter: Option<Vec<ast::Name>> = None;
+    check_model_name(&mut r, model_name);
 
     // Settings first: the threshold affects every expression built later.
     for item in &model.items {
@@ -104,6 +119,20 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
                             }
                         }
                     }
+                    SettingKey::Outputs => {
+                        let items: Vec<&ast::Expr> = match &opt.value {
+                            ast::Expr::List { items, .. } => items.iter().collect(),
+                            other => vec![other],
+                        };
+                        let mut names = Vec::new();
+                        for it in items {
+                            match it {
+                                ast::Expr::Name(n) => names.push(n.clone()),
+                                other => r.error(other.span(), "`outputs` takes output names"),
+                            }
+                        }
+                        output_filter = Some(names);
+                    }
                     SettingKey::Float => match &opt.value {
                         ast::Expr::Name(n) if n.text == "f64" => out.float = FloatType::F64,
                         ast::Expr::Name(n) if n.text == "f32" => out.float = FloatType::F32,
@@ -115,6 +144,17 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
                 }
             }
         }
+    }
+
+    // The scene overrides the model's settings.
+    if let Some(f) = scene.float {
+        out.float = f;
+    }
+    if let Some(k) = scene.threshold {
+        r.sys.set_threshold(k);
+    }
+    if let Some(names) = &scene.outputs {
+        output_filter = Some(names.clone());
     }
 
     // Declarations that do not depend on bodies.
@@ -239,7 +279,7 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
                 }
             }
             Item::ExternSub(sub) => {
-                let mut ok = r.declare(&sub.name, Named::Load);
+                let mut ok = r.declare(&sub.name, Named::Subroutine);
                 for o in &sub.outputs {
                     ok &= r.declare(&o.name, Named::Load);
                 }
@@ -282,7 +322,6 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
     }
 
     // Everything that uses expressions.
-    let mut sub_index = 0;
     let mut gravity_seen = false;
     for item in &model.items {
         match item {
@@ -297,18 +336,27 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
                 }
             }
             Item::ExternSub(sub) => {
+                let Some(index) = r
+                    .sys
+                    .subroutines()
+                    .iter()
+                    .position(|s| s.name == sub.name.text)
+                else {
+                    continue; // not declared: already reported
+                };
                 let mut args = Vec::new();
                 let mut ok = true;
                 for a in &sub.args {
                     match r.scalar(a, "an argument of a subroutine") {
-                        Some(x) => args.push(x),
-                        None => ok = false,
+                        Some(x) if r.subroutine_argument(x, index, &sub.name.text, a.span()) => {
+                            args.push(x)
+                        }
+                        _ => ok = false,
                     }
                 }
-                if ok && sub_index < r.sys.subroutines().len() {
-                    let _ = r.sys.set_subroutine_args(sub_index, args);
+                if ok {
+                    let _ = r.sys.set_subroutine_args(index, args);
                 }
-                sub_index += 1;
             }
             Item::State(s) => {
                 let Some((Named::Symbol(sym), _)) = r.names.get(&s.name.text).cloned() else {
@@ -339,7 +387,9 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
                     r.error(g.span, "gravity is set twice");
                 }
                 gravity_seen = true;
-                if let Some(v) = r.vector(&g.value, "gravity") {
+                if let Some(v) = r.vector(&g.value, "gravity")
+                    && r.without_acceleration(&coefficients(&v), g.value.span(), "gravity")
+                {
                     r.sys.set_gravity(v);
                 }
             }
@@ -349,7 +399,16 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
                 if !r.declare(&o.name, Named::Output) {
                     continue;
                 }
-                if let Some(x) = r.scalar(&o.value, "an output") {
+                // Outputs the scene did not ask for are not generated (their
+                // expressions are still checked).
+                let wanted = output_filter
+                    .as_ref()
+                    .is_none_or(|names| names.iter().any(|n| n.text == o.name.text));
+                let value = r.scalar(&o.value, "an output");
+                if !wanted {
+                    continue;
+                }
+                if let Some(x) = value {
                     let unit = o.unit.as_ref().map(|u| u.text.as_str());
                     if let Err(e) = r.sys.add_output(&o.name.text, unit, x) {
                         r.error(o.name.span, e.to_string());
@@ -368,11 +427,100 @@ pub fn resolve(model: &ast::Model) -> Result<ResolvedModel, Diagnostics> {
         }
     }
 
+    // Scene `small`/`lock` names must each match a body or coordinate.
+    for n in scene.small.iter().chain(&scene.lock) {
+        if !r.scene_matched.contains(&n.text) {
+            let mut d = Diagnostic::error(
+                n.span,
+                format!(
+                    "`{}` is neither a body nor a coordinate of this model",
+                    n.text
+                ),
+            );
+            if let Some(s) =
+                crate::diag::did_you_mean(&n.text, r.known_names().iter().map(String::as_str))
+            {
+                d = d.help(format!("did you mean `{s}`?"));
+            }
+            r.push(d);
+        }
+    }
+    if let Some(names) = &output_filter {
+        for n in names {
+            let declared = model
+                .items
+                .iter()
+                .any(|i| matches!(i, Item::Output(o) if o.name.text == n.text));
+            if !declared {
+                let outputs: Vec<&str> = model
+                    .items
+                    .iter()
+                    .filter_map(|i| {
+                        if let Item::Output(o) = i {
+                            Some(o.name.text.as_str())
+                        } else {
+                            None
+                        }
+                    })
+                    .collect();
+                let mut d = Diagnostic::error(
+                    n.span,
+                    format!("`{}` is not an output of this model", n.text),
+                );
+                if let Some(s) = crate::diag::did_you_mean(&n.text, outputs.iter().copied()) {
+                    d = d.help(format!("did you mean `{s}`?"));
+                }
+                r.push(d);
+            }
+        }
+    }
     if !r.diags.is_empty() {
         return Err(r.diags);
     }
     out.system = r.sys;
     Ok(out)
+}
+
+/// Names the generated module defines beside the model type (see
+/// `emit::model`), or uses unqualified.
+const TAKEN_TYPE_NAMES: &[&str] = &["Parameters", "Inputs", "Externs", "Constants", "Default"];
+
+/// The model's name becomes a Rust type: `UpperCamelCase`, and not the name
+/// of another item of the generated module.
+fn check_model_name(r: &mut Resolver<'_>, name: &ast::Name) {
+    let text = name.text.strip_prefix("r#").unwrap_or(&name.text);
+    if !text.starts_with(char::is_uppercase) || text.contains('_') {
+        let camel: String = text
+            .split('_')
+            .filter(|part| !part.is_empty())
+            .map(|part| {
+                let mut chars = part.chars();
+                chars.next().map_or(String::new(), |first| {
+                    first
+                        .to_uppercase()
+                        .chain(chars.map(|c| c.to_ascii_lowercase()))
+                        .collect()
+                })
+            })
+            .collect();
+        let d = Diagnostic::error(
+            name.span,
+            format!("the model's name `{}` is not in UpperCamelCase", name.text),
+        )
+        .note("it names the generated Rust type (and, in snake case, its module)");
+        r.push(match camel.starts_with(char::is_uppercase) {
+            true => d.help(format!("write `model {camel};`")),
+            false => d.help("start it with an upper-case letter"),
+        });
+    } else if TAKEN_TYPE_NAMES.contains(&text) {
+        r.push(
+            Diagnostic::error(
+                name.span,
+                format!("the model cannot be named `{text}`: the generated module has an item of that name"),
+            )
+            .help(format!("choose another name, such as `{text}Model`")),
+        );
+    }
 }
 
 /// The value of a parameter or input default, reported when it does not
@@ -411,25 +559,26 @@ fn force(r: &mut Resolver<'_>, f: &ast::Force) {
     if !r.declare(&f.name, Named::Load) {
         return;
     }
+    // Every option is evaluated even when one fails, so all mistakes of
+    // the item are reported together.
     let o = &f.options;
-    let Some(on) = o.get(ForceKey::On) else {
-        r.push(
-            Diagnostic::error(
-                f.name.span,
-                format!("the force `{}` has no point of application", f.name.text),
-            )
-            .help("add `on: P` (a point, `B.cm`, or a body for its origin)"),
-        );
-        return;
+    let point = match o.get(ForceKey::On) {
+        Some(on) => r.point(&on.value, "`on`"),
+        None => {
+            r.push(
+                Diagnostic::error(
+                    f.name.span,
+                    format!("the force `{}` has no point of application", f.name.text),
+                )
+                .help("add `on: P` (a point, `B.cm`, or a body for its origin)"),
+            );
+            None
+        }
     };
-    let point = r.point(&on.value, "`on`");
-    let reaction = match o.get(ForceKey::Reaction) {
-        Some(x) => match r.point(&x.value, "`reaction`") {
-            Some(p) => Some(p),
-            None => return,
-        },
-        None => None,
-    };
+    // `Some(None)`: a reaction was given but failed (reported).
+    let reaction = o
+        .get(ForceKey::Reaction)
+        .map(|x| r.point(&x.value, "`reaction`"));
     let vector = load_vector(
         r,
         f.name.span,
@@ -440,7 +589,8 @@ fn force(r: &mut Resolver<'_>, f: &ast::Force) {
         o.get(ForceKey::Magnitude).map(|x| &x.value),
         "along",
     );
-    if let (Some(p), Some(v)) = (point, vector)
+    if let (Some(p), Some(v), Some(reaction)) =
+        (point, vector, reaction.map_or(Some(None), |x| x.map(Some)))
         && let Err(e) = r.sys.add_force(&f.name.text, p, reaction, v)
     {
         r.error(f.name.span, e.to_string());
@@ -451,28 +601,28 @@ fn moment(r: &mut Resolver<'_>, m: &ast::Moment) {
     if !r.declare(&m.name, Named::Load) {
         return;
     }
+    // As for forces: every option is evaluated even when one fails.
     let o = &m.options;
-    let Some(on) = o.get(MomentKey::On) else {
-        r.push(
-            Diagnostic::error(
-                m.name.span,
-                format!(
-                    "the moment `{}` does not say which body it acts on",
-                    m.name.text
-                ),
-            )
-            .help("add `on: B`"),
-        );
-        return;
+    let body = match o.get(MomentKey::On) {
+        Some(on) => r.body(&on.value, "`on`"),
+        None => {
+            r.push(
+                Diagnostic::error(
+                    m.name.span,
+                    format!(
+                        "the moment `{}` does not say which body it acts on",
+                        m.name.text
+                    ),
+                )
+                .help("add `on: B`"),
+            );
+            None
+        }
     };
-    let body = r.body(&on.value, "`on`");
-    let reaction = match o.get(MomentKey::Reaction) {
-        Some(x) => match r.body(&x.value, "`reaction`") {
-            Some(b) => Some(b),
-            None => return,
-        },
-        None => None,
-    };
+    // `Some(None)`: a reaction was given but failed (reported).
+    let reaction = o
+        .get(MomentKey::Reaction)
+        .map(|x| r.body(&x.value, "`reaction`"));
     let vector = load_vector(
         r,
         m.name.span,
@@ -483,7 +633,8 @@ fn moment(r: &mut Resolver<'_>, m: &ast::Moment) {
         o.get(MomentKey::Magnitude).map(|x| &x.value),
         "about",
     );
-    if let (Some(b), Some(v)) = (body, vector)
+    if let (Some(b), Some(v), Some(reaction)) =
+        (body, vector, reaction.map_or(Some(None), |x| x.map(Some)))
         && let Err(e) = r.sys.add_moment(&m.name.text, b, reaction, v)
     {
         r.error(m.name.span, e.to_string());
@@ -502,11 +653,21 @@ fn load_vector(
     magnitude: Option<&ast::Expr>,
     dir_key: &str,
 ) -> Option<crate::mech::Vector> {
+    // A load is needed to compute the accelerations, so it cannot use them.
+    let a_load = format!("a {what}");
     match (vector, direction, magnitude) {
-        (Some(v), None, None) => r.vector(v, &format!("the {what} vector")),
-        (None, Some(d), Some(m)) => {
-            let d = r.vector(d, &format!("`{dir_key}`"));
-            let m = r.scalar(m, "`magnitude`");
+        (Some(v), None, None) => {
+            let x = r.vector(v, &format!("the {what} vector"))?;
+            r.without_acceleration(&coefficients(&x), v.span(), &a_load)
+                .then_some(x)
+        }
+        (None, Some(dir), Some(mag)) => {
+            let d = r
+                .vector(dir, &format!("`{dir_key}`"))
+                .filter(|d| r.without_acceleration(&coefficients(d), dir.span(), &a_load));
+            let m = r
+                .scalar(mag, "`magnitude`")
+                .filter(|&m| r.without_acceleration(&[m], mag.span(), &a_load));
             let (d, m) = (d?, m?);
             Some(d.scale(&mut r.sys.arena, m))
         }
@@ -551,4 +712,9 @@ fn load_vector(
             None
         }
     }
+}
+
+/// The scalar coefficients of a vector.
+fn coefficients(v: &crate::mech::Vector) -> Vec<crate::expr::ExprId> {
+    v.terms().iter().map(|&(_, c)| c).collect()
 }

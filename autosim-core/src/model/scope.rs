@@ -26,6 +26,8 @@ pub(crate) enum Named {
     Output,
     /// A force or moment (not referable in expressions).
     Load,
+    /// A user subroutine (its outputs are the names to use).
+    Subroutine,
 }
 
 /// Lazy evaluation state of a `let` or a point.
@@ -45,7 +47,21 @@ pub(crate) struct Resolver<'a> {
     pub points: Vec<(&'a ast::Point, Lazy<PointId>)>,
     /// Unit-vector shorthands like `b1` (lower-case body name and axis).
     pub uv_short: FxHashMap<String, (BodyId, usize)>,
+    /// How many `let`s and points are being evaluated, one inside another
+    /// (each evaluates what it uses first: see [`MAX_PENDING`]).
+    pub pending: usize,
+    /// Whether [`MAX_PENDING`] was reached (reported once).
+    pub too_many_pending: bool,
+    /// The use site's options.
+    pub scene: super::Scene,
+    /// Scene `small`/`lock` names that matched a body or coordinate.
+    pub scene_matched: Vec<String>,
 }
+
+/// How many `let`s and points may wait on one another (a `let` using one
+/// defined later waits for it), before the resolver refuses instead of
+/// overflowing its stack.
+pub(crate) const MAX_PENDING: usize = 200;
 
 impl<'a> Resolver<'a> {
     pub fn new(name: &str) -> Resolver<'a> {
@@ -66,6 +82,10 @@ impl<'a> Resolver<'a> {
             lets: Vec::new(),
             points: Vec::new(),
             uv_short: FxHashMap::default(),
+            pending: 0,
+            too_many_pending: false,
+            scene: super::Scene::default(),
+            scene_matched: Vec::new(),
         }
     }
 
@@ -119,7 +139,7 @@ impl<'a> Resolver<'a> {
         let mut v: Vec<String> = self
             .names
             .iter()
-            .filter(|(_, (k, _))| !matches!(k, Named::Output | Named::Load))
+            .filter(|(_, (k, _))| !matches!(k, Named::Output | Named::Load | Named::Subroutine))
             .map(|(n, _)| n.clone())
             .collect();
         v.extend(self.uv_short.keys().cloned());
@@ -206,5 +226,6 @@ pub(crate) fn describe(n: &Named) -> &'static str {
         Named::Function(_) => "a function",
         Named::Output => "an output",
         Named::Load => "a force or moment",
+        Named::Subroutine => "a subroutine",
     }
 }

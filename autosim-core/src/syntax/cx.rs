@@ -16,6 +16,11 @@ use crate::diag::{Diagnostic, Diagnostics, LineCol, Span};
 /// chains) before the parser refuses, instead of overflowing the stack.
 pub(crate) const MAX_DEPTH: usize = 100;
 
+/// How many binary operators one expression may have. A chain `a + b + ...`
+/// is parsed in a loop but is as deep as it is long in the AST, which is
+/// walked (and dropped) recursively.
+pub(crate) const MAX_OPERATORS: usize = 10_000;
+
 /// Why a parser stopped: a syn error not yet recorded, or a diagnostic
 /// already pushed into the context.
 pub(crate) enum Failed {
@@ -50,6 +55,8 @@ pub(crate) struct Cx {
     mode: Mode,
     diags: RefCell<Diagnostics>,
     depth: Cell<usize>,
+    /// Binary operators in the current top-level expression.
+    operators: Cell<usize>,
 }
 
 impl Cx {
@@ -59,6 +66,7 @@ impl Cx {
             mode: Mode::Tokens,
             diags: RefCell::default(),
             depth: Cell::new(0),
+            operators: Cell::new(0),
         }
     }
 
@@ -68,6 +76,7 @@ impl Cx {
             mode: Mode::File { eof },
             diags: RefCell::default(),
             depth: Cell::new(0),
+            operators: Cell::new(0),
         }
     }
 
@@ -115,6 +124,31 @@ impl Cx {
     /// The diagnostics collected so far.
     pub(crate) fn into_diagnostics(self) -> Diagnostics {
         self.diags.into_inner()
+    }
+
+    /// Marks the start of an expression: one that is not nested in another
+    /// starts a new count of operators.
+    pub(crate) fn begin_expression(&self) {
+        if self.depth.get() == 0 {
+            self.operators.set(0);
+        }
+    }
+
+    /// Counts a binary operator of the current expression, failing past
+    /// [`MAX_OPERATORS`].
+    pub(crate) fn operator(&self, input: ParseStream) -> PResult<()> {
+        let count = self.operators.get() + 1;
+        self.operators.set(count);
+        if count > MAX_OPERATORS {
+            return self.fail(
+                Diagnostic::error(
+                    self.span(input.span()),
+                    format!("expression has more than {MAX_OPERATORS} operators"),
+                )
+                .help("split it into several `let`s"),
+            );
+        }
+        Ok(())
     }
 
     /// Runs `f` one nesting level deeper, failing at [`MAX_DEPTH`].

@@ -54,6 +54,8 @@ option_keys! {
         Rotate = "rotate",
         /// `small: [translations, rotations]` — small-motion assumptions.
         Small = "small",
+        /// `lock: [q9]` — degrees of freedom locked at compile time.
+        Lock = "lock",
         /// `mass: m`
         Mass = "mass",
         /// `inertia: diag(a, b, c)` or a matrix.
@@ -120,6 +122,8 @@ option_keys! {
         Threshold = "threshold",
         /// `float: f64` or `float: f32`.
         Float = "float",
+        /// `outputs: [roll, yaw]` — generate only these outputs.
+        Outputs = "outputs",
     }
 }
 
@@ -133,7 +137,7 @@ mod tests {
             assert_eq!(key.as_str(), text);
             assert_eq!(BodyKey::from_str(text), Some(key));
         }
-        assert_eq!(BodyKey::ALL.len(), 12);
+        assert_eq!(BodyKey::ALL.len(), 13);
         assert_eq!(ForceKey::from_str("along"), Some(ForceKey::Along));
         assert_eq!(MomentKey::from_str("along"), None);
         assert_eq!(SettingKey::Float.as_str(), "float");

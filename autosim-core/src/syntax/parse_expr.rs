@@ -10,13 +10,14 @@ use syn::{Lit, Token};
 
 use super::ast::{BinOp, Expr, Label, Member, Name, Number, UnOp, Unit, Value};
 use super::cx::{Cx, PResult, expected, in_group, peek_group};
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, Span};
 
 /// Binding power of a prefix sign's operand: tighter than `*`, looser than `^`.
 const PREFIX_BP: u8 = 5;
 
 /// Parses one expression.
 pub(crate) fn expr(input: ParseStream, cx: &Cx) -> PResult<Expr> {
+    cx.begin_expression();
     expr_bp(input, cx, 0)
 }
 
@@ -43,6 +44,7 @@ fn expr_bp(input: ParseStream, cx: &Cx, min_bp: u8) -> PResult<Expr> {
             if left_bp < min_bp {
                 break;
             }
+            cx.operator(input)?;
             let op_span = cx.span(input.span());
             match op {
                 BinOp::Add => _ = input.parse::<Token![+]>()?,
@@ -151,26 +153,26 @@ fn primary(input: ParseStream, cx: &Cx) -> PResult<Expr> {
         if !peek_group(input, Delimiter::Parenthesis) {
             return Ok(Expr::Name(func));
         }
-        let (args, group) = in_group(input, cx, Delimiter::Parenthesis, |content| {
+        let group = group_span(input, cx, Delimiter::Parenthesis);
+        let (args, _) = in_group(input, cx, Delimiter::Parenthesis, |content| {
             list(content, cx, "`)`")
         })?;
-        let span = func.span.to(cx.span(group));
+        let span = func.span.to(group);
         return Ok(Expr::Call { func, args, span });
     }
     if input.peek(syn::LitInt) || input.peek(syn::LitFloat) {
         return number(input, cx).map(Expr::Number);
     }
     if peek_group(input, Delimiter::Bracket) {
-        let (items, group) = in_group(input, cx, Delimiter::Bracket, |content| {
+        let span = group_span(input, cx, Delimiter::Bracket);
+        let (items, _) = in_group(input, cx, Delimiter::Bracket, |content| {
             list(content, cx, "`]`")
         })?;
-        return Ok(Expr::List {
-            items,
-            span: cx.span(group),
-        });
+        return Ok(Expr::List { items, span });
     }
     if peek_group(input, Delimiter::Parenthesis) {
-        let (inner, group) = in_group(input, cx, Delimiter::Parenthesis, |content| {
+        let span = group_span(input, cx, Delimiter::Parenthesis);
+        let (inner, _) = in_group(input, cx, Delimiter::Parenthesis, |content| {
             let inner = expr(content, cx)?;
             if content.peek(Token![,]) {
                 return cx.fail(
@@ -182,7 +184,7 @@ fn primary(input: ParseStream, cx: &Cx) -> PResult<Expr> {
         })?;
         return Ok(Expr::Paren {
             inner: Box::new(inner),
-            span: cx.span(group),
+            span,
         });
     }
     let mut diagnostic = expected(cx, input, "an expression");
@@ -194,6 +196,17 @@ fn primary(input: ParseStream, cx: &Cx) -> PResult<Expr> {
         diagnostic = diagnostic.help("powers are written `x^2`");
     }
     cx.fail(diagnostic)
+}
+
+/// The span of the group that comes next, from its opening to its closing
+/// delimiter (so [`Span::after`](crate::diag::Span::after) of an expression
+/// that ends with a group is its closing delimiter, where a missing `;`
+/// belongs, not the whole group).
+fn group_span(input: ParseStream, cx: &Cx, delimiter: Delimiter) -> Span {
+    match input.cursor().group(delimiter) {
+        Some((_, delims, _)) => cx.span(delims.open()).to(cx.span(delims.close())),
+        None => cx.span(input.span()),
+    }
 }
 
 /// Comma-separated expressions up to the end of `input` (a trailing comma

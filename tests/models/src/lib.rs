@@ -25,6 +25,26 @@ pub mod via_macro {
     autosim::model!(file = "../../examples/models/satellite_small.sim");
 }
 
+/// Scenes: one model file tailored at the use site.
+pub mod scenes {
+    autosim::model!(
+        file = "../../examples/models/satellite.sim",
+        name = SatelliteSmallScene,
+        small = [B, E, F]
+    );
+    autosim::model!(
+        file = "../../examples/models/satellite.sim",
+        name = RigidBoom,
+        lock = [q9, q10],
+        outputs = [roll, pitch, yaw]
+    );
+    autosim::model!(
+        file = "../../examples/models/chain_spatial_5.sim",
+        name = ChainSpatial5F32,
+        float = f32
+    );
+}
+
 /// The models written by the build script.
 pub mod via_build {
     autosim::include_model!(chain_planar1);

@@ -9,7 +9,7 @@ use autosim::runtime::Model;
 use autosim_core::diag::SourceFile;
 use autosim_core::expr::Bindings;
 use autosim_core::pipeline::{Compiled, compile_source};
-use autosim_models_check::{via_build, via_macro};
+use autosim_models_check::{scenes, via_build, via_macro};
 use common::*;
 use nalgebra::{DMatrix, DVector};
 
@@ -293,4 +293,75 @@ fn f32_model_matches_f64_model() {
     }
     eprintln!("f32 vs f64: worst relative difference {worst:.2e}");
     assert!(worst < 1e-4, "f32 model differs by {worst:e}");
+}
+
+struct Fixed;
+
+impl scenes::satellite_small_scene::Externs for Fixed {
+    fn thrust(&mut self, _t: f64, axis: f64, _e: f64) -> f64 {
+        0.3 * axis - 0.5
+    }
+    fn cmd(&mut self, _t: f64) -> [f64; 2] {
+        [0.8, -0.45]
+    }
+}
+
+impl via_macro::satellite_small::Externs for Fixed {
+    fn thrust(&mut self, _t: f64, axis: f64, _e: f64) -> f64 {
+        0.3 * axis - 0.5
+    }
+    fn cmd(&mut self, _t: f64) -> [f64; 2] {
+        [0.8, -0.45]
+    }
+}
+
+impl scenes::rigid_boom::Externs for Fixed {
+    fn thrust(&mut self, _t: f64, axis: f64, _e: f64) -> f64 {
+        0.3 * axis - 0.5
+    }
+    fn cmd(&mut self, _t: f64) -> [f64; 2] {
+        [0.8, -0.45]
+    }
+}
+
+/// `small = [B, E, F]` at the use site gives the paper's small-variable
+/// model: the same program as satellite_small.sim.
+#[test]
+fn scene_small_equals_small_model_file() {
+    use scenes::satellite_small_scene::SatelliteSmallScene as Scene;
+    use via_macro::satellite_small::SatelliteSmall as File;
+    assert_eq!(
+        Scene::<Fixed>::DERIVATIVE_OPS,
+        File::<Fixed>::DERIVATIVE_OPS
+    );
+    let (mut a, mut b) = (Scene::new(Fixed), File::new(Fixed));
+    let mut rng = Rng(3);
+    for _ in 0..20 {
+        let mut x = [0.0; 20];
+        for v in x.iter_mut() {
+            *v = rng.uniform(-0.01, 0.01);
+        }
+        let (mut da, mut db) = ([0.0; 20], [0.0; 20]);
+        a.derivatives(0.0, &x, &mut da).unwrap();
+        b.derivatives(0.0, &x, &mut db).unwrap();
+        assert_eq!(da, db);
+    }
+}
+
+/// `lock = [q9, q10], outputs = [roll, pitch, yaw]`: eight speeds, three
+/// outputs, and less work than the full model.
+#[test]
+fn scene_lock_and_outputs() {
+    use scenes::rigid_boom::{N_OUTPUTS, N_SPEEDS, RigidBoom};
+    assert_eq!(N_SPEEDS, 8);
+    assert_eq!(N_OUTPUTS, 3);
+    assert_eq!(
+        <RigidBoom<Fixed> as Model>::OUTPUT_NAMES,
+        ["roll", "pitch", "yaw"]
+    );
+    assert!(<RigidBoom<Fixed> as Model>::PARAMETER_NAMES.contains(&"q9"));
+    let full = via_build::satellite::Satellite::<Recorded>::DERIVATIVE_OPS.total();
+    let rigid = RigidBoom::<Fixed>::DERIVATIVE_OPS.total();
+    eprintln!("satellite derivatives: {full} ops; with the boom locked: {rigid} ops");
+    assert!(rigid < full);
 }

@@ -46,7 +46,7 @@ test.sim:2:29: error: unknown body option `rotat`
 2 | body C "clock" { parent: B, rotat: 3 }
   |                             ^^^^^
   = help: did you mean `rotate`?
-  = note: the body options are: parent, joint, translate, rotate, small, mass, inertia, cm, q, u, initial, initial_speeds
+  = note: the body options are: parent, joint, translate, rotate, small, lock, mass, inertia, cm, q, u, initial, initial_speeds
 "#,
     );
     check(
@@ -74,7 +74,7 @@ test.sim:3:12: error: unknown setting `treshold`
 3 | settings { treshold: 2 }
   |            ^^^^^^^^
   = help: did you mean `threshold`?
-  = note: the settings are: threshold, float
+  = note: the settings are: threshold, float, outputs
 test.sim:4:19: error: unknown moment option `abut`
   |
 4 | moment m { on: B, abut: e3 }
@@ -411,7 +411,7 @@ test.sim:2:10: error: unknown body option `rotat`
 2 | body B { rotat: 1 }
   |          ^^^^^
   = help: did you mean `rotate`?
-  = note: the body options are: parent, joint, translate, rotate, small, mass, inertia, cm, q, u, initial, initial_speeds
+  = note: the body options are: parent, joint, translate, rotate, small, lock, mass, inertia, cm, q, u, initial, initial_speeds
 test.sim:4:1: error: expected `;` after the parameter, found `@`
   |
 4 | @ junk;
@@ -448,7 +448,7 @@ test.sim:3:42: error: unknown body option `bogus`
   |
 3 | body B { parent: , rotate: 3, rotate: 1, bogus: 2 }
   |                                          ^^^^^
-  = note: the body options are: parent, joint, translate, rotate, small, mass, inertia, cm, q, u, initial, initial_speeds
+  = note: the body options are: parent, joint, translate, rotate, small, lock, mass, inertia, cm, q, u, initial, initial_speeds
 "#,
     );
 }
@@ -463,7 +463,7 @@ test.sim:3:3: error: unknown body option `rotat`
 3 |   rotat: 1 }
   |   ^^^^^
   = help: did you mean `rotate`?
-  = note: the body options are: parent, joint, translate, rotate, small, mass, inertia, cm, q, u, initial, initial_speeds
+  = note: the body options are: parent, joint, translate, rotate, small, lock, mass, inertia, cm, q, u, initial, initial_speeds
 "#,
     );
     check("\u{feff}model M;\r\nlet x = é + 1;\r\n", "OK\n");
@@ -502,7 +502,7 @@ fn token_input_reports_through_syn_errors() {
         messages,
         [
             "unknown body option `rotat`\n= help: did you mean `rotate`?\n= note: the body options are: parent, joint, \
-             translate, rotate, small, mass, inertia, cm, q, u, initial, initial_speeds",
+             translate, rotate, small, lock, mass, inertia, cm, q, u, initial, initial_speeds",
             "duplicate body option `rotate`\n= note: `rotate` was already given earlier in this block",
             "expected an expression, found `;`",
         ]
@@ -522,4 +522,23 @@ fn file_spans_never_hold_token_spans() {
         // Safe to use for generated code after the parse: the call site.
         let _ = diagnostic.to_syn_error();
     }
+}
+
+#[test]
+fn overlong_expressions_are_refused_before_they_overflow_the_stack() {
+    let sum = vec!["x"; 200_000].join("+");
+    let rendered = parse_file(&format!("model M;\noutput a = {sum};\nlet b = c d;"))
+        .err()
+        .unwrap_or_default();
+    assert!(
+        rendered.starts_with("test.sim:2:20013: error: expression has more than 10000 operators\n"),
+        "{}",
+        &rendered[..rendered.len().min(300)]
+    );
+    assert!(rendered.contains("= help: split it into several `let`s"));
+    // The parser goes on after it.
+    assert!(rendered.contains("test.sim:3:11: error: expected `;` after the value of `b`"));
+    // Nested expressions count towards the expression they are in.
+    let nested = format!("model M;\noutput a = f({sum});");
+    assert!(parse_file(&nested).is_err_and(|r| r.contains("more than 10000 operators")));
 }

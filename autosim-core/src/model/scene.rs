@@ -1,0 +1,67 @@
+//! Scene options: what one use of a model needs, given where the model is
+//! used (`autosim::model!(file = "...", lock = [q9], outputs = [roll])`, or
+//! the build-script `Config`) rather than in the model file, so one model
+//! serves several scenes. They override the model's `settings` and add to
+//! its bodies' `small` and `lock` options.
+
+use super::FloatType;
+use crate::diag::Span;
+use crate::syntax::ast;
+
+/// Options a use site sets on a model.
+#[derive(Clone, Debug, Default)]
+pub struct Scene {
+    /// A new name for the model (and its module), so one file can be
+    /// compiled several ways in one crate.
+    pub name: Option<ast::Name>,
+    /// The float type of generated code.
+    pub float: Option<FloatType>,
+    /// The small-term threshold.
+    pub threshold: Option<i16>,
+    /// Only these outputs are generated.
+    pub outputs: Option<Vec<ast::Name>>,
+    /// Bodies (all their degrees of freedom) or coordinates made small.
+    pub small: Vec<ast::Name>,
+    /// Bodies (all their degrees of freedom) or coordinates locked.
+    pub lock: Vec<ast::Name>,
+}
+
+impl Scene {
+    /// A name with no source location (for options given from Rust code).
+    pub fn name(text: &str) -> ast::Name {
+        ast::Name {
+            text: text.to_string(),
+            span: Span::unknown(),
+        }
+    }
+
+    /// Flags for `small` or `lock` named in the scene for one body with
+    /// these coordinate names (translations, then rotations; a quaternion's
+    /// `e0` skipped), and the names that matched.
+    pub(crate) fn flags(
+        names: &[ast::Name],
+        body: &str,
+        coordinates: &[String],
+        dofs: usize,
+        quaternion_at: Option<usize>,
+    ) -> (Vec<bool>, Vec<String>) {
+        let mut flags = vec![false; dofs];
+        let mut matched = Vec::new();
+        for n in names {
+            if n.text == body {
+                flags.iter_mut().for_each(|f| *f = true);
+                matched.push(n.text.clone());
+            } else if let Some(k) = coordinates.iter().position(|c| *c == n.text) {
+                let k = match quaternion_at {
+                    Some(e0) if k > e0 => k - 1,
+                    _ => k,
+                };
+                if k < dofs {
+                    flags[k] = true;
+                    matched.push(n.text.clone());
+                }
+            }
+        }
+        (flags, matched)
+    }
+}

@@ -1,0 +1,136 @@
+//! Resolver diagnostics (the file is `test.sim`; the expected text is what
+//! a user sees) and models that must resolve without overflowing the stack.
+
+use super::resolve;
+use crate::diag::SourceFile;
+use crate::syntax::parse_source;
+
+/// The rendered diagnostics of `text`, or `OK`.
+fn resolved(text: &str) -> String {
+    let file = SourceFile::new("test.sim", text);
+    match parse_source(&file).and_then(|model| resolve(&model)) {
+        Ok(_) => "OK\n".to_string(),
+        Err(d) => d.render(&file),
+    }
+}
+
+/// Compares the rendered diagnostics (a leading newline in `expect` is ignored).
+fn check(text: &str, expect: &str) {
+    let got = resolved(text);
+    let expect = expect.strip_prefix('\n').unwrap_or(expect);
+    assert_eq!(got, expect, "\n--- got:\n{got}");
+}
+
+const HEADER: &str = "model M;\nbody B { rotate: 1 }\n";
+
+#[test]
+fn models_without_bodies_or_outputs_resolve() {
+    check("model M;", "OK\n");
+    check("model M;\nparameters { k = 1 }\nbody B {}", "OK\n");
+    check(
+        "model M;\nbody B { rotate: [] }\npoint P in N at [1, 2, 3];",
+        "OK\n",
+    );
+}
+
+#[test]
+fn long_sums_do_not_recurse_per_term() {
+    let sum = vec!["q(B)"; 9_000].join(" + ");
+    check(&format!("{HEADER}output a = {sum};"), "OK\n");
+}
+
+#[test]
+fn lets_used_before_a_long_chain_of_definitions_are_refused_once() {
+    let mut text = HEADER.to_string();
+    for i in 0..1_000 {
+        text.push_str(&format!("let a{i} = a{} + q(B);\n", i + 1));
+    }
+    text.push_str("let a1000 = 1;\noutput o = a0;\n");
+    let got = resolved(&text);
+    assert_eq!(got.matches("error").count(), 1, "{got}");
+    assert!(
+        got.contains("error: `a200` is used through more than 200 `let`s or points that are defined after their first use"),
+        "{got}"
+    );
+    // In source order, a long chain is fine.
+    let mut text = HEADER.to_string();
+    text.push_str("let a0 = q(B);\n");
+    for i in 1..1_000 {
+        text.push_str(&format!("let a{i} = a{} + q(B);\n", i - 1));
+    }
+    text.push_str("output o = a999;\n");
+    check(&text, "OK\n");
+}
+
+#[test]
+fn values_too_large_for_a_float() {
+    check(
+        "model M;\nparameters { k = 1e999 }\ninput w = -1e400;",
+        r#"
+test.sim:2:18: error: `1e999` is too large for a floating-point number
+  |
+2 | parameters { k = 1e999 }
+  |                  ^^^^^
+  = help: values must be finite: at most about 1.8e308
+test.sim:3:11: error: `1e400` is too large for a floating-point number
+  |
+3 | input w = -1e400;
+  |           ^^^^^^
+  = help: values must be finite: at most about 1.8e308
+"#,
+    );
+}
+
+#[test]
+fn loads_cannot_use_accelerations() {
+    check(
+        &format!("{HEADER}moment m {{ on: B, about: b1, magnitude: -dxdt(u(B)) }}"),
+        r#"
+test.sim:3:41: error: a moment cannot use an acceleration (`u1_dot`, the `dxdt` of a speed)
+  |
+3 | moment m { on: B, about: b1, magnitude: -dxdt(u(B)) }
+  |                                         ^^^^^^^^^^^
+  = help: accelerations are solved from the forces and moments; use them only in outputs and state derivatives
+"#,
+    );
+    // Outputs and state derivatives may.
+    check(
+        &format!(
+            "{HEADER}state s {{ initial: 0, derivative: dxdt(u(B)) }}\noutput a = dxdt(u(B)) + s;"
+        ),
+        "OK\n",
+    );
+}
+
+#[test]
+fn subroutine_arguments_use_earlier_subroutines_only() {
+    check(
+        &format!("{HEADER}extern sub s(w) -> (y);\nextern sub r(y) -> (w);"),
+        r#"
+test.sim:3:14: error: an argument of subroutine `s` uses `w`, an output of subroutine `r` declared after it
+  |
+3 | extern sub s(w) -> (y);
+  |              ^
+  = help: subroutines are called in the order they are declared: an argument may only use the outputs of subroutines declared before
+"#,
+    );
+    check(
+        &format!("{HEADER}extern sub s(2*y) -> (y);"),
+        r#"
+test.sim:3:14: error: subroutine `s` cannot take its own output `y` as an argument
+  |
+3 | extern sub s(2*y) -> (y);
+  |              ^^^
+  = help: subroutines are called in the order they are declared: an argument may only use the outputs of subroutines declared before
+"#,
+    );
+}
+
+#[test]
+fn a_failed_reaction_does_not_hide_the_other_mistakes_of_a_load() {
+    let got = resolved(&format!(
+        "{HEADER}moment m {{ on: B, reaction: C, about: b1, magnitude: kk }}"
+    ));
+    assert!(got.contains("error: unknown body `C`"), "{got}");
+    assert!(got.contains("error: unknown name `kk`"), "{got}");
+}

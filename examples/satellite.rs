@@ -1,0 +1,454 @@
+//! The paper's spacecraft slew maneuver, end to end (Sayers, "A Symbolic
+//! Computer Language for Multibody Systems", JGCD 1991, Figures 6-9).
+//!
+//! The clock and camera of the spacecraft slew from (4 - π, -0.5) rad to
+//! (3.75 - π, -0.4) rad over t = 1..11 s while three pairs of bang-bang
+//! thrusters hold the attitude of the bus inside a dead zone of 0.0025 rad.
+//! The model is written twice in the model language: `satellite.sim` (exact)
+//! and `satellite_small.sim` (the paper's small-variable option: the bus
+//! motion and the boom angles are small). The only hand-written part of the
+//! simulation is the paper's Figure 8 (CMD and THRUST), below in Rust.
+//!
+//! ```text
+//! cargo run --release --example satellite [-- OUTPUT_FOLDER]
+//! ```
+//!
+//! Both models are integrated with classic RK4, h = 1 ms, for 15 s. The
+//! program writes into the output folder (default `target/satellite`):
+//! - `satellite_full.csv`, `satellite_small.csv`: time histories of every
+//!   state and output every 10 ms, with names and units in the header;
+//! - `attitude.svg`: the attitude of the bus (q4, q5, q6) of both
+//!   formulations against time, like the paper's Figure 9;
+//! - `clock_camera.svg`: the commanded slew of the clock and the camera;
+//!
+//! and prints how far apart the two formulations are, what each run cost,
+//! and the operation counts of the generated code.
+
+use std::error::Error;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use autosim::runtime::integrate::Rk4;
+use autosim::runtime::io::{CsvWriter, Series, write_svg_plot};
+use autosim::runtime::{Model, Observer, OpCount, Stepper};
+use indicatif::{ProgressBar, ProgressStyle};
+
+mod full {
+    autosim::model!(file = "examples/models/satellite.sim");
+}
+mod small {
+    autosim::model!(file = "examples/models/satellite_small.sim");
+}
+
+use full::satellite::Satellite;
+use small::satellite_small::SatelliteSmall;
+
+/// The paper's Figure 8: the controller commands (SUBROUTINE CMD) and the
+/// thrusters (FUNCTION THRUST) with their saved state, one per axis.
+#[derive(Clone, Debug, Default)]
+struct Figure8 {
+    /// FIRE(axis): the thruster pair's state, -1, 0 or 1.
+    fire: [f64; 3],
+    /// TOFF(axis): the earliest time the pair may switch off.
+    toff: [f64; 3],
+}
+
+impl Figure8 {
+    /// `PARAMETER (PI = 3.1415926)`, exactly as the Fortran (the reference
+    /// data use this value, not `f64::consts::PI`).
+    #[allow(clippy::approx_constant)]
+    const PI: f64 = 3.1415926;
+    /// Dead zone of the attitude error (rad).
+    const DBAND: f64 = 0.0025;
+    /// Shortest burst (s).
+    const TMIN: f64 = 0.02;
+
+    /// SUBROUTINE CMD(T, CLKCMD, CAMCMD).
+    fn cmd(&mut self, t: f64) -> [f64; 2] {
+        let pi = Self::PI;
+        if t < 1.0 {
+            [4.0 - pi, -0.5]
+        } else if t < 11.0 {
+            [4.0 - 0.025 * (t - 1.0) - pi, -0.5 + 0.01 * (t - 1.0)]
+        } else {
+            [3.75 - pi, -0.4]
+        }
+    }
+
+    /// FUNCTION THRUST(T, AXIS, ERROR).
+    fn thrust(&mut self, t: f64, axis: f64, error: f64) -> f64 {
+        let i = axis as usize - 1;
+        if error < -Self::DBAND {
+            if self.fire[i] < 1.0 {
+                self.toff[i] = t + Self::TMIN;
+            }
+            self.fire[i] = 1.0;
+        } else if error > Self::DBAND {
+            if self.fire[i] > -1.0 {
+                self.toff[i] = t + Self::TMIN;
+            }
+            self.fire[i] = -1.0;
+        } else if t >= self.toff[i] {
+            self.fire[i] = 0.0;
+        }
+        self.fire[i]
+    }
+}
+
+// Each generated model declares the user code it calls as a trait; the
+// same Figure 8 serves both.
+impl full::satellite::Externs for Figure8 {
+    fn thrust(&mut self, t: f64, axis: f64, error: f64) -> f64 {
+        Figure8::thrust(self, t, axis, error)
+    }
+    fn cmd(&mut self, t: f64) -> [f64; 2] {
+        Figure8::cmd(self, t)
+    }
+}
+
+impl small::satellite_small::Externs for Figure8 {
+    fn thrust(&mut self, t: f64, axis: f64, error: f64) -> f64 {
+        Figure8::thrust(self, t, axis, error)
+    }
+    fn cmd(&mut self, t: f64) -> [f64; 2] {
+        Figure8::cmd(self, t)
+    }
+}
+
+/// Integration step (s).
+const H: f64 = 0.001;
+/// Steps of the 15 s maneuver.
+const STEPS: usize = 15_000;
+/// Steps between rows of the CSV files and points of the plots (10 ms).
+const OUTPUT_EVERY: usize = 10;
+
+type State = [f64; 20];
+type Outputs = [f64; 6];
+
+/// The operation counts a generated model publishes.
+struct Ops {
+    derivatives: OpCount,
+    outputs: OpCount,
+    constants: OpCount,
+    mass_matrix: OpCount,
+    forcing: OpCount,
+}
+
+/// What one run produced.
+struct Flight {
+    /// Output times with the state and the outputs (every `OUTPUT_EVERY` steps).
+    rows: Vec<(f64, State, Outputs)>,
+    /// q4, q5, q6 after every step (and at t = 0).
+    attitude: Vec<[f64; 3]>,
+    evaluations: u64,
+    wall: Duration,
+    /// Thruster bursts started (a pair switching on or reversing), seen at step ends.
+    firings: usize,
+}
+
+/// Flies the maneuver: RK4 at t_n = n h (stage times t_n, t_n + h/2,
+/// t_n + h/2, t_n + h, as the reference). `fire` reads the thrusters' state.
+fn fly<M>(
+    model: &mut M,
+    fire: impl Fn(&M) -> [f64; 3],
+    bar: &ProgressBar,
+) -> Result<Flight, Box<dyn Error>>
+where
+    M: Model<Float = f64, State = State, Outputs = Outputs>,
+{
+    let mut rows = Vec::with_capacity(STEPS / OUTPUT_EVERY + 1);
+    let mut attitude = Vec::with_capacity(STEPS + 1);
+    let mut rk4 = Rk4::new();
+    let mut x = model.initial_state();
+    let mut y = [0.0; 6];
+    let mut firings = 0;
+    let mut was = fire(model);
+
+    let start = Instant::now();
+    model.outputs(0.0, &x, &mut y)?;
+    rows.push((0.0, x, y));
+    attitude.push([x[3], x[4], x[5]]);
+    for n in 0..STEPS {
+        rk4.step(model, n as f64 * H, &mut x, H)?;
+        let t = (n + 1) as f64 * H;
+        attitude.push([x[3], x[4], x[5]]);
+        let now = fire(model);
+        firings += now
+            .iter()
+            .zip(&was)
+            .filter(|(now, was)| **now != 0.0 && now != was)
+            .count();
+        was = now;
+        if (n + 1) % OUTPUT_EVERY == 0 {
+            model.outputs(t, &x, &mut y)?;
+            rows.push((t, x, y));
+        }
+        if (n + 1) % 100 == 0 {
+            bar.inc(100);
+        }
+    }
+    let wall = start.elapsed();
+    bar.finish();
+    Ok(Flight {
+        rows,
+        attitude,
+        evaluations: rk4.evaluations(),
+        wall,
+        firings,
+    })
+}
+
+/// Writes a run as CSV: `time [s]`, the states, then the outputs, each
+/// headed `name [unit]`.
+fn write_csv<M>(path: &Path, rows: &[(f64, State, Outputs)]) -> Result<(), Box<dyn Error>>
+where
+    M: Model<Float = f64, State = State, Outputs = Outputs>,
+{
+    let mut csv = CsvWriter::<M, _>::create(path)?;
+    for (t, x, y) in rows {
+        csv.observe(*t, x, y)?;
+    }
+    csv.into_inner()?;
+    Ok(())
+}
+
+fn progress_bar(label: &str) -> ProgressBar {
+    let bar = ProgressBar::new(STEPS as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{prefix:>28} [{bar:40}] {pos}/{len} steps")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar.set_prefix(label.to_string());
+    bar
+}
+
+/// The reference trajectory of the full model, if the shared data is there
+/// (`$AUTOSIM_SHARED/reference` or `../shared/reference`).
+fn reference() -> Option<serde_json::Value> {
+    let dir = std::env::var_os("AUTOSIM_SHARED")
+        .map(|d| PathBuf::from(d).join("reference"))
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/reference"));
+    let text = std::fs::read_to_string(dir.join("satellite-slew.json")).ok()?;
+    serde_json::from_str(&text).ok()
+}
+
+fn main() -> Result<(), Box<dyn Error>> {
+    let folder = match std::env::args_os().nth(1) {
+        Some(a) if a == "-h" || a == "--help" => {
+            println!("usage: cargo run --release --example satellite [-- OUTPUT_FOLDER]");
+            println!("writes CSV time histories and SVG plots (default folder: target/satellite)");
+            return Ok(());
+        }
+        Some(a) => PathBuf::from(a),
+        None => PathBuf::from("target/satellite"),
+    };
+    std::fs::create_dir_all(&folder).map_err(|e| format!("{}: {e}", folder.display()))?;
+    let folder = folder.canonicalize()?;
+
+    println!("Slew maneuver of Sayers (1991), Figures 8-9: classic RK4, h = {H} s, t = 0..15 s");
+
+    let mut full_model = Satellite::new(Figure8::default());
+    let full = fly(
+        &mut full_model,
+        |m| m.externs.fire,
+        &progress_bar("satellite.sim (full)"),
+    )?;
+    let mut small_model = SatelliteSmall::new(Figure8::default());
+    let small = fly(
+        &mut small_model,
+        |m| m.externs.fire,
+        &progress_bar("satellite_small.sim (small)"),
+    )?;
+
+    // Files.
+    let full_csv = folder.join("satellite_full.csv");
+    let small_csv = folder.join("satellite_small.csv");
+    write_csv::<Satellite<Figure8>>(&full_csv, &full.rows)?;
+    write_csv::<SatelliteSmall<Figure8>>(&small_csv, &small.rows)?;
+    let time: Vec<f64> = full.rows.iter().map(|r| r.0).collect();
+    let column = |rows: &[(f64, State, Outputs)], i: usize| {
+        rows.iter().map(|r| r.1[i]).collect::<Vec<f64>>()
+    };
+    let names = ["q4 (roll)", "q5 (pitch)", "q6 (yaw)"];
+    let full_att: Vec<Vec<f64>> = (3..6).map(|i| column(&full.rows, i)).collect();
+    let small_att: Vec<Vec<f64>> = (3..6).map(|i| column(&small.rows, i)).collect();
+    let labels: Vec<(String, String)> = names
+        .iter()
+        .map(|n| (format!("{n}, full"), format!("{n}, small")))
+        .collect();
+    let mut series = Vec::new();
+    for k in 0..3 {
+        series.push(Series {
+            name: &labels[k].0,
+            unit: "rad",
+            values: &full_att[k],
+        });
+        series.push(Series {
+            name: &labels[k].1,
+            unit: "rad",
+            values: &small_att[k],
+        });
+    }
+    let attitude_svg = folder.join("attitude.svg");
+    write_svg_plot(
+        &attitude_svg,
+        "Attitude of the spacecraft bus, two formulations (Figure 9)",
+        &time,
+        &series,
+    )?;
+    let clock = column(&full.rows, 6);
+    let camera = column(&full.rows, 7);
+    let clock_camera_svg = folder.join("clock_camera.svg");
+    write_svg_plot(
+        &clock_camera_svg,
+        "Slew of the clock and the camera (full model)",
+        &time,
+        &[
+            Series {
+                name: "q7 (clock)",
+                unit: "rad",
+                values: &clock,
+            },
+            Series {
+                name: "q8 (camera)",
+                unit: "rad",
+                values: &camera,
+            },
+        ],
+    )?;
+
+    println!();
+    println!("Output folder: {}", folder.display());
+    for path in [&full_csv, &small_csv, &attitude_svg, &clock_camera_svg] {
+        println!(
+            "  {}",
+            path.file_name().unwrap_or_default().to_string_lossy()
+        );
+    }
+
+    // How far apart are the two formulations?
+    println!();
+    println!("Max |full - small| over all {} steps:", STEPS);
+    for (k, name) in names.iter().enumerate() {
+        let (mut worst, mut at) = (0.0f64, 0.0);
+        let mut peak = 0.0f64;
+        for (n, (a, b)) in full.attitude.iter().zip(&small.attitude).enumerate() {
+            peak = peak.max(a[k].abs());
+            let d = (a[k] - b[k]).abs();
+            if d > worst {
+                worst = d;
+                at = n as f64 * H;
+            }
+        }
+        println!(
+            "  {name:<11} {worst:.3e} rad at t = {at:.3} s  (largest |angle| {peak:.3e} rad, {:.2} %)",
+            100.0 * worst / peak.max(f64::MIN_POSITIVE)
+        );
+    }
+
+    if let Some(data) = reference() {
+        let mut worst = [0.0f64; 5];
+        let records = data["records"].as_array().map(Vec::as_slice).unwrap_or(&[]);
+        for record in records {
+            let t = record["t"].as_f64().unwrap_or(f64::NAN);
+            let Some(row) = full.rows.iter().find(|r| (r.0 - t).abs() < 1e-9) else {
+                continue;
+            };
+            for (k, w) in worst.iter_mut().enumerate() {
+                let want = record[format!("q{}", k + 4)].as_f64().unwrap_or(f64::NAN);
+                *w = w.max((row.1[3 + k] - want).abs());
+            }
+        }
+        println!(
+            "Full model vs the independent reference ({} records): max |error| q4 {:.1e}, q5 {:.1e}, q6 {:.1e}, q7 {:.1e}, q8 {:.1e} rad",
+            records.len(),
+            worst[0],
+            worst[1],
+            worst[2],
+            worst[3],
+            worst[4]
+        );
+    }
+
+    // What each run cost.
+    println!();
+    println!("{:<34}{:>28}{:>28}", "", "full", "small");
+    let row = |label: &str, a: String, b: String| println!("{label:<34}{a:>28}{b:>28}");
+    row(
+        "derivative evaluations",
+        full.evaluations.to_string(),
+        small.evaluations.to_string(),
+    );
+    row(
+        "wall time",
+        format!("{:.1} ms", ms(full.wall)),
+        format!("{:.1} ms", ms(small.wall)),
+    );
+    row(
+        "per evaluation",
+        format!("{:.0} ns", per_eval(full.wall, full.evaluations)),
+        format!("{:.0} ns", per_eval(small.wall, small.evaluations)),
+    );
+    row(
+        "thruster bursts started",
+        full.firings.to_string(),
+        small.firings.to_string(),
+    );
+    let end = |f: &Flight| {
+        let a = f.attitude.last().copied().unwrap_or_default();
+        format!("{:.2e} {:.2e} {:.2e}", a[0], a[1], a[2])
+    };
+    row("q4 q5 q6 at 15 s [rad]", end(&full), end(&small));
+
+    println!();
+    println!(
+        "Operations of the generated code (adds + multiplies + divides + functions; user calls):"
+    );
+    let full_ops = Ops {
+        derivatives: Satellite::<Figure8>::DERIVATIVE_OPS,
+        outputs: Satellite::<Figure8>::OUTPUT_OPS,
+        constants: Satellite::<Figure8>::CONSTANT_OPS,
+        mass_matrix: Satellite::<Figure8>::MASS_MATRIX_OPS,
+        forcing: Satellite::<Figure8>::FORCING_OPS,
+    };
+    let small_ops = Ops {
+        derivatives: SatelliteSmall::<Figure8>::DERIVATIVE_OPS,
+        outputs: SatelliteSmall::<Figure8>::OUTPUT_OPS,
+        constants: SatelliteSmall::<Figure8>::CONSTANT_OPS,
+        mass_matrix: SatelliteSmall::<Figure8>::MASS_MATRIX_OPS,
+        forcing: SatelliteSmall::<Figure8>::FORCING_OPS,
+    };
+    let ops = |o: OpCount| {
+        format!(
+            "{}+{}+{}+{}; {}",
+            o.adds, o.muls, o.divs, o.funcs, o.user_calls
+        )
+    };
+    for (label, get) in [
+        (
+            "derivatives (one evaluation)",
+            (|o: &Ops| o.derivatives) as fn(&Ops) -> OpCount,
+        ),
+        ("mass_matrix() M(q), alone", |o: &Ops| o.mass_matrix),
+        ("forcing() f(q, u, t), alone", |o: &Ops| o.forcing),
+        ("outputs", |o: &Ops| o.outputs),
+        ("constants (per parameter set)", |o: &Ops| o.constants),
+    ] {
+        row(label, ops(get(&full_ops)), ops(get(&small_ops)));
+    }
+    row(
+        "derivatives, total operations",
+        full_ops.derivatives.total().to_string(),
+        small_ops.derivatives.total().to_string(),
+    );
+    Ok(())
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+fn per_eval(d: Duration, evaluations: u64) -> f64 {
+    d.as_secs_f64() * 1e9 / evaluations.max(1) as f64
+}

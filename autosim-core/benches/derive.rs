@@ -73,6 +73,28 @@ fn derive(c: &mut Criterion) {
             })
         });
     }
+    // The whole compiler on model files, as the macro runs it: parse,
+    // resolve, derive, optimize, emit tokens (build scripts also format the
+    // file with prettyplease, which costs more than all of this).
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/models");
+    for file in [
+        "satellite.sim",
+        "chain_spatial_10.sim",
+        "chain_spatial_20.sim",
+    ] {
+        let text = std::fs::read_to_string(dir.join(file)).expect("model file");
+        let src = autosim_core::diag::SourceFile::new(file, text);
+        group.bench_function(format!("compile {file}"), |b| {
+            b.iter(|| {
+                let c = autosim_core::pipeline::compile_source(black_box(&src)).expect("compiles");
+                let tokens = autosim_core::emit::model_tokens(
+                    &c,
+                    &autosim_core::emit::EmitOptions::default(),
+                );
+                black_box(autosim_core::emit::format_tokens(&tokens).len())
+            })
+        });
+    }
     group.finish();
 }
 

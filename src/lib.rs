@@ -45,3 +45,8 @@ macro_rules! include_model {
         include!(concat!(env!("OUT_DIR"), "/", stringify!($name), ".rs"));
     };
 }
+
+/// The README's example, compiled and run as a doctest.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -162,21 +162,43 @@ fn placeholder(name: Option<String>) -> TokenStream {
     let Some(name) = name else {
         return TokenStream::new();
     };
-    let module = format_ident!("{}", snake_case(&name));
+    // As the generated code names it: a keyword (`model Mod;`) gets a `_`.
+    let mut module = snake_case(&name);
+    if syn::parse_str::<syn::Ident>(&module).is_err() {
+        module.push('_');
+    }
+    let module = format_ident!("{}", module);
     let ty = format_ident!("{}", name);
+    // A model named like one of the other items (an error the resolver
+    // reports) must not make them clash.
+    let parameters = (name != "Parameters").then(|| {
+        quote! {
+            /// Placeholder: the model has errors.
+            #[derive(Default)]
+            pub struct Parameters;
+        }
+    });
+    let inputs = (name != "Inputs").then(|| {
+        quote! {
+            /// Placeholder: the model has errors.
+            #[derive(Default)]
+            pub struct Inputs;
+        }
+    });
+    let externs = (name != "Externs").then(|| {
+        quote! {
+            /// Placeholder: the model has errors.
+            pub trait Externs {}
+        }
+    });
     quote! {
         #[allow(dead_code, non_snake_case)]
         pub mod #module {
             /// Placeholder: the model has errors.
             pub struct #ty<E = ()>(pub E);
-            /// Placeholder: the model has errors.
-            #[derive(Default)]
-            pub struct Parameters;
-            /// Placeholder: the model has errors.
-            #[derive(Default)]
-            pub struct Inputs;
-            /// Placeholder: the model has errors.
-            pub trait Externs {}
+            #parameters
+            #inputs
+            #externs
         }
     }
 }

@@ -1,0 +1,6 @@
+autosim::model! {
+    model Gimbal;
+    body Frame { rotate: [1, 4, 3] }
+}
+
+fn main() {}

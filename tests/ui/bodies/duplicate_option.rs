@@ -1,0 +1,6 @@
+autosim::model! {
+    model Arm;
+    body Upper { rotate: 1, mass: 2, rotate: 3 }
+}
+
+fn main() {}

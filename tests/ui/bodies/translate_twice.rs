@@ -1,0 +1,6 @@
+autosim::model! {
+    model Cart;
+    body Base { translate: [1, 1] }
+}
+
+fn main() {}

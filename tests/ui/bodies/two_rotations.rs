@@ -1,0 +1,6 @@
+autosim::model! {
+    model Gimbal;
+    body Frame { rotate: [1, 2] }
+}
+
+fn main() {}

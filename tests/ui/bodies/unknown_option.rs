@@ -1,0 +1,6 @@
+autosim::model! {
+    model Arm;
+    body Upper { rotat: 1 }
+}
+
+fn main() {}

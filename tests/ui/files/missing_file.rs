@@ -1,0 +1,3 @@
+autosim::model!(file = "tests/ui/files/missing.sim");
+
+fn main() {}

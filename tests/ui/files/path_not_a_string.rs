@@ -1,0 +1,3 @@
+autosim::model!(file = 3);
+
+fn main() {}

@@ -1,0 +1,3 @@
+autosim::model!(file = "tests/ui/files/bad_syntax.sim");
+
+fn main() {}

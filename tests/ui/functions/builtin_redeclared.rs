@@ -1,0 +1,7 @@
+autosim::model! {
+    model Arm;
+    body Upper { rotate: 1 }
+    extern fn sin(x);
+}
+
+fn main() {}

@@ -1,0 +1,8 @@
+autosim::model! {
+    model Arm;
+    body Upper { rotate: 1 }
+    extern fn f(a, b);
+    moment drive { on: Upper, about: n1, magnitude: f(t, q(Upper), u(Upper)) }
+}
+
+fn main() {}

@@ -1,0 +1,6 @@
+autosim::model! {
+    model double_pendulum;
+    body Upper { rotate: 1 }
+}
+
+fn main() {}

@@ -1,0 +1,6 @@
+autosim::model! {
+    model Parameters;
+    body Upper { rotate: 1 }
+}
+
+fn main() {}

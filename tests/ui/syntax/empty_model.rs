@@ -1,0 +1,3 @@
+autosim::model! {}
+
+fn main() {}

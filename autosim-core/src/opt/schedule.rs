@@ -9,6 +9,10 @@ use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::BTreeSet;
 use std::fmt;
 
+/// Expressions nest at most this deep in generated code; deeper values are
+/// named.
+const MAX_INLINE_DEPTH: usize = 24;
+
 /// What a block must produce.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Task {
@@ -134,22 +138,26 @@ impl Sched<'_> {
         }
     }
 
-    fn emit_deps(&mut self, n: Nid) {
-        for c in self.ir.children(n) {
-            self.emit_node(c);
-        }
-    }
-
-    fn emit_node(&mut self, c: Nid) {
-        if self.opaque(c) || self.emitted.contains(&c) {
-            return;
-        }
-        if self.named.contains(&c) {
-            self.emitted.insert(c);
-            self.emit_deps(c);
-            self.block.stmts.push(Stmt::Let(c));
-        } else {
-            self.emit_deps(c);
+    /// Emits `root`'s named dependencies (children first, left to right)
+    /// and `root` itself if it is named. Iterative: dependency chains of
+    /// big models are thousands deep.
+    fn emit_node(&mut self, root: Nid) {
+        let mut stack: Vec<(Nid, bool)> = vec![(root, false)];
+        while let Some((n, expanded)) = stack.pop() {
+            if self.opaque(n) || self.emitted.contains(&n) {
+                continue;
+            }
+            if expanded {
+                if self.named.contains(&n) {
+                    self.emitted.insert(n);
+                    self.block.stmts.push(Stmt::Let(n));
+                }
+                continue;
+            }
+            stack.push((n, true));
+            for c in self.ir.children(n).into_iter().rev() {
+                stack.push((c, false));
+            }
         }
     }
 }
@@ -247,6 +255,24 @@ pub fn schedule(ir: &Ir, tasks: &[Task], opts: &Options<'_>) -> Block {
         {
             s.named.insert(*pivot);
         }
+    }
+    // Bound how deeply expressions nest when printed (and the recursion of
+    // the printers): a value nested deeper than this is named.
+    let mut sorted: Vec<Nid> = order.iter().copied().filter(|n| !s.opaque(*n)).collect();
+    sorted.sort();
+    let mut depth: FxHashMap<Nid, usize> = FxHashMap::default();
+    for &n in &sorted {
+        let d = 1 + ir
+            .children(n)
+            .iter()
+            .filter(|c| !s.opaque(**c) && !s.named.contains(c))
+            .map(|c| depth.get(c).copied().unwrap_or(0))
+            .max()
+            .unwrap_or(0);
+        if d > MAX_INLINE_DEPTH {
+            s.named.insert(n);
+        }
+        depth.insert(n, if s.named.contains(&n) { 0 } else { d });
     }
 
     // Order: subroutines, user functions, then the tasks.

@@ -30,6 +30,7 @@ pub fn compile_scene(model: &ast::Model, scene: &Scene) -> Result<Compiled, Diag
         .system
         .equations()
         .map_err(|e| Diagnostics::from(Diagnostic::error(model.name.span, e.to_string())))?;
+    check_mass_matrix(model, &resolved, &equations)?;
     let program = build(&mut resolved, &equations)
         .map_err(|e| Diagnostics::from(Diagnostic::error(model.name.span, e.to_string())))?;
     Ok(Compiled {
@@ -37,6 +38,46 @@ pub fn compile_scene(model: &ast::Model, scene: &Scene) -> Result<Compiled, Diag
         equations,
         program,
     })
+}
+
+/// A mass matrix with a zero on its diagonal is singular whatever the
+/// state: nothing resists one speed's acceleration. Known at compile time,
+/// so reported here (other singularities are reported at run time by the
+/// generated solve, naming the speed).
+fn check_mass_matrix(
+    model: &ast::Model,
+    resolved: &ResolvedModel,
+    equations: &Equations,
+) -> Result<(), Diagnostics> {
+    let sys = &resolved.system;
+    let mut diags = Diagnostics::new();
+    for (k, c) in sys.coordinates().iter().enumerate() {
+        if !sys.arena.is_zero(equations.mass_matrix[k][k]) {
+            continue;
+        }
+        let body = &sys.body(c.body).name;
+        let span = model
+            .items
+            .iter()
+            .find_map(|i| match i {
+                ast::Item::Body(b) if b.name.text == *body => Some(b.name.span),
+                _ => None,
+            })
+            .unwrap_or(model.name.span);
+        let speed = &sys.arena.symbol(c.u).name;
+        diags.push(
+            Diagnostic::error(
+                span,
+                format!(
+                    "the mass matrix is singular: nothing resists the acceleration of `{speed}` (a degree of freedom of body `{body}`)"
+                ),
+            )
+            .help(format!(
+                "give `{body}` (or a body it carries) mass or inertia that moves with `{speed}`, or lock the coordinate with `lock: [...]`"
+            )),
+        );
+    }
+    diags.finish(())
 }
 
 /// Compiles a model file's text.

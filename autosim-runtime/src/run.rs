@@ -202,6 +202,8 @@ where
         h: settings.step,
         y: M::Outputs::zeros(),
         max_steps: settings.max_steps,
+        start: settings.start,
+        fixed_steps: 0,
     };
     driver.emit(model, x, observer)?;
     let span = settings.stop - settings.start;
@@ -233,6 +235,10 @@ struct Driver<M: Model> {
     h: M::Float,
     y: M::Outputs,
     max_steps: u64,
+    /// Start time of the run.
+    start: M::Float,
+    /// Fixed steps of exactly `step` taken since the start.
+    fixed_steps: u64,
 }
 
 impl<M: Model> Driver<M> {
@@ -296,6 +302,23 @@ impl<M: Model> Driver<M> {
         let t0 = self.t;
         let interval = t_out - t0;
         let n = ceil_count((interval / step).to_f64()).max(1);
+        // When the output interval holds a whole number of steps, step
+        // exactly `step` at the times `start + k step` (k counted from the
+        // start), as a hand-written loop would: user functions that keep
+        // state see the same times.
+        let whole = ((M::Float::from_f64(n as f64) * step - interval).abs()
+            <= M::Float::from_f64(64.0) * M::Float::EPSILON * interval.abs().max(step.abs()))
+            && self.t == self.start + M::Float::from_f64(self.fixed_steps as f64) * step;
+        if whole {
+            for _ in 0..n {
+                self.check_limit()?;
+                stepper.step(model, self.t, x, step)?;
+                self.fixed_steps += 1;
+                self.t = self.start + M::Float::from_f64(self.fixed_steps as f64) * step;
+                self.count_step(step, 0);
+            }
+            return Ok(());
+        }
         let h = interval / M::Float::from_f64(n as f64);
         for j in 1..=n {
             self.check_limit()?;

@@ -165,9 +165,16 @@ impl<'a> Resolver<'a> {
                     .is_some(),
                 BodyKey::Mass => self
                     .constant(v, "the mass")
+                    .filter(|m| self.not_negative(*m, v, "a mass"))
                     .map(|m| spec.mass = Some(m))
                     .is_some(),
-                BodyKey::Inertia => self.inertia(v).map(|m| spec.inertia = Some(m)).is_some(),
+                BodyKey::Inertia => self
+                    .inertia(v)
+                    .filter(|m| {
+                        (0..3).all(|k| self.not_negative(m[k][k], v, "a moment of inertia"))
+                    })
+                    .map(|m| spec.inertia = Some(m))
+                    .is_some(),
                 BodyKey::Rotate => match v {
                     Expr::Name(n) if n.text == "quaternion" => {
                         spec.quaternion = true;
@@ -302,6 +309,20 @@ impl<'a> Resolver<'a> {
             }
         }
         ok.then_some(spec)
+    }
+
+    /// `false` (with a diagnostic) if `x` is a negative number.
+    fn not_negative(&mut self, x: crate::expr::ExprId, at: &Expr, what: &str) -> bool {
+        match self.sys.arena.as_number(x) {
+            Some(n) if n.is_negative() => {
+                self.push(
+                    Diagnostic::error(at.span(), format!("{what} cannot be negative"))
+                        .help("masses and moments of inertia are zero or positive"),
+                );
+                false
+            }
+            _ => true,
+        }
     }
 
     fn axes(&mut self, v: &Expr, what: &str) -> Option<Vec<i64>> {

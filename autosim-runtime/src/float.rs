@@ -41,6 +41,8 @@ pub trait Float:
     fn sin(self) -> Self;
     /// Cosine.
     fn cos(self) -> Self;
+    /// Sine and cosine together (cheaper than both separately).
+    fn sin_cos(self) -> (Self, Self);
     /// Tangent.
     fn tan(self) -> Self;
     /// Arc sine.
@@ -96,6 +98,10 @@ macro_rules! impl_float {
             #[inline(always)]
             fn cos(self) -> Self {
                 imp::$sfx::cos(self)
+            }
+            #[inline(always)]
+            fn sin_cos(self) -> (Self, Self) {
+                imp::$sfx::sin_cos(self)
             }
             #[inline(always)]
             fn tan(self) -> Self {
@@ -162,6 +168,10 @@ mod imp {
                     x.cos()
                 }
                 #[inline(always)]
+                pub fn sin_cos(x: $t) -> ($t, $t) {
+                    x.sin_cos()
+                }
+                #[inline(always)]
                 pub fn tan(x: $t) -> $t {
                     x.tan()
                 }
@@ -203,7 +213,7 @@ mod imp {
 #[cfg(all(not(feature = "std"), feature = "libm"))]
 mod imp {
     macro_rules! libm_math {
-        ($t:ident, $sqrt:ident, $sin:ident, $cos:ident, $tan:ident, $asin:ident, $acos:ident, $atan2:ident, $exp:ident, $ln:ident, $pow:ident) => {
+        ($t:ident, $sqrt:ident, $sin:ident, $cos:ident, $sincos:ident, $tan:ident, $asin:ident, $acos:ident, $atan2:ident, $exp:ident, $ln:ident, $pow:ident) => {
             pub mod $t {
                 #[inline(always)]
                 pub fn sqrt(x: $t) -> $t {
@@ -216,6 +226,10 @@ mod imp {
                 #[inline(always)]
                 pub fn cos(x: $t) -> $t {
                     libm::$cos(x)
+                }
+                #[inline(always)]
+                pub fn sin_cos(x: $t) -> ($t, $t) {
+                    libm::$sincos(x)
                 }
                 #[inline(always)]
                 pub fn tan(x: $t) -> $t {
@@ -264,9 +278,11 @@ mod imp {
             }
         };
     }
-    libm_math!(f64, sqrt, sin, cos, tan, asin, acos, atan2, exp, log, pow);
     libm_math!(
-        f32, sqrtf, sinf, cosf, tanf, asinf, acosf, atan2f, expf, logf, powf
+        f64, sqrt, sin, cos, sincos, tan, asin, acos, atan2, exp, log, pow
+    );
+    libm_math!(
+        f32, sqrtf, sinf, cosf, sincosf, tanf, asinf, acosf, atan2f, expf, logf, powf
     );
 }
 
@@ -287,6 +303,11 @@ pub mod math {
     #[inline(always)]
     pub fn cos<F: Float>(x: F) -> F {
         x.cos()
+    }
+    /// Sine and cosine of the same angle.
+    #[inline(always)]
+    pub fn sin_cos<F: Float>(x: F) -> (F, F) {
+        x.sin_cos()
     }
     /// Tangent.
     #[inline(always)]

@@ -84,6 +84,15 @@ impl BlockEmitter<'_> {
                     let e = printer.definition(*n);
                     out.extend(quote!(let #name = #e;));
                 }
+                Stmt::SinCos { sin, cos } => {
+                    let (s, c) = (ident(&block.names[sin]), ident(&block.names[cos]));
+                    let arg = match self.prog.ir.op(*sin) {
+                        crate::opt::Op::Call(_, args) => printer.expr(args[0]),
+                        _ => printer.definition(*sin),
+                    };
+                    let m = &self.math;
+                    out.extend(quote!(let (#s, #c) = #m::sin_cos(#arg);));
+                }
                 Stmt::CallSub(k) => {
                     let (name, outs) = &self.prog.subroutines[*k];
                     let f = ident(name);

@@ -177,6 +177,10 @@ fn write_block(
             Stmt::Let(n) => {
                 let _ = writeln!(s, "{} = {}", b.names[n], p.def(*n));
             }
+            Stmt::SinCos { sin, cos } => {
+                let _ = writeln!(s, "{} = {}", b.names[sin], p.def(*sin));
+                let _ = writeln!(s, "{} = {}", b.names[cos], p.def(*cos));
+            }
             Stmt::CallSub(k) => {
                 let (name, outs) = &prog.subroutines[*k];
                 let args: Vec<String> = prog.sub_args[*k].iter().map(|a| p.expr(*a, 0)).collect();

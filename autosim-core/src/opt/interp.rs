@@ -196,6 +196,12 @@ impl<'a> Interpreter<'a> {
                     let v = self.eval(*n, &mut env, user);
                     env.values.insert(*n, v);
                 }
+                Stmt::SinCos { sin, cos } => {
+                    for n in [*sin, *cos] {
+                        let v = self.eval(n, &mut env, user);
+                        env.values.insert(n, v);
+                    }
+                }
                 Stmt::CallSub(k) => {
                     let args: Vec<f64> = self.prog.sub_args[*k]
                         .iter()

@@ -138,6 +138,11 @@ impl Ir {
         Nid(idx as u32)
     }
 
+    /// The node of an operation, if it exists (never creates one).
+    pub fn find(&self, op: &Op) -> Option<Nid> {
+        self.nodes.get_index_of(op).map(|i| Nid(i as u32))
+    }
+
     /// A literal (`-0.0` becomes `0.0`).
     pub fn num(&mut self, x: f64) -> Nid {
         let x = if x == 0.0 { 0.0 } else { x };

@@ -39,6 +39,14 @@ pub enum Stmt {
     Let(Nid),
     /// Call user subroutine `sub` (its outputs become available).
     CallSub(usize),
+    /// `let (<sin name>, <cos name>) = sin_cos(x);` for a `sin(x)` and a
+    /// `cos(x)` of the same block.
+    SinCos {
+        /// The `sin(x)` node.
+        sin: Nid,
+        /// The `cos(x)` node.
+        cos: Nid,
+    },
     /// The pivot check.
     Check {
         /// The pivot.
@@ -124,6 +132,8 @@ pub struct Options<'a> {
 struct Sched<'a> {
     ir: &'a Ir,
     opts: &'a Options<'a>,
+    /// `sin(x)` ↔ `cos(x)` pairs computed together.
+    partner: FxHashMap<Nid, Nid>,
     named: FxHashSet<Nid>,
     emitted: FxHashSet<Nid>,
     block: Block,
@@ -150,7 +160,18 @@ impl Sched<'_> {
             if expanded {
                 if self.named.contains(&n) {
                     self.emitted.insert(n);
-                    self.block.stmts.push(Stmt::Let(n));
+                    match self.partner.get(&n).copied() {
+                        Some(other) => {
+                            // Both share the argument, already computed.
+                            self.emitted.insert(other);
+                            let (sin, cos) = match self.ir.op(n) {
+                                Op::Call(Func::Sin, _) => (n, other),
+                                _ => (other, n),
+                            };
+                            self.block.stmts.push(Stmt::SinCos { sin, cos });
+                        }
+                        None => self.block.stmts.push(Stmt::Let(n)),
+                    }
                 }
                 continue;
             }
@@ -167,6 +188,7 @@ pub fn schedule(ir: &Ir, tasks: &[Task], opts: &Options<'_>) -> Block {
     let mut s = Sched {
         ir,
         opts,
+        partner: FxHashMap::default(),
         named: FxHashSet::default(),
         emitted: FxHashSet::default(),
         block: Block::default(),
@@ -275,6 +297,23 @@ pub fn schedule(ir: &Ir, tasks: &[Task], opts: &Options<'_>) -> Block {
         depth.insert(n, if s.named.contains(&n) { 0 } else { d });
     }
 
+    // Sine and cosine of the same argument are computed together.
+    for &n in &order {
+        if s.opaque(n) {
+            continue;
+        }
+        if let Op::Call(Func::Sin, args) = ir.op(n)
+            && let Some(c) = ir.find(&Op::Call(Func::Cos, args.clone()))
+            && reach.contains(&c)
+            && !s.opaque(c)
+        {
+            s.named.insert(n);
+            s.named.insert(c);
+            s.partner.insert(n, c);
+            s.partner.insert(c, n);
+        }
+    }
+
     // Order: subroutines, user functions, then the tasks.
     for &sub in &subs_used {
         for a in opts.sub_args.get(sub).map(Vec::as_slice).unwrap_or(&[]) {
@@ -307,12 +346,10 @@ pub fn schedule(ir: &Ir, tasks: &[Task], opts: &Options<'_>) -> Block {
         .block
         .stmts
         .iter()
-        .filter_map(|st| {
-            if let Stmt::Let(n) = st {
-                Some(*n)
-            } else {
-                None
-            }
+        .flat_map(|st| match st {
+            Stmt::Let(n) => vec![*n],
+            Stmt::SinCos { sin, cos } => vec![*sin, *cos],
+            _ => Vec::new(),
         })
         .collect();
     for n in lets {
@@ -350,6 +387,8 @@ pub fn schedule(ir: &Ir, tasks: &[Task], opts: &Options<'_>) -> Block {
             Op::Neg(_) | Op::Num(_) | Op::Leaf(_) => {}
         }
     }
+    // A sine-cosine pair is one call.
+    ops.funcs -= s.partner.len() / 2;
     s.block.ops = ops;
     s.block
 }

@@ -614,6 +614,15 @@ impl System {
         }
     }
 
+    /// Forces and moments share one namespace.
+    fn check_load_name(&self, name: &str) -> Result<(), ModelError> {
+        if self.forces.iter().any(|f| f.name == name) || self.moments.iter().any(|m| m.name == name)
+        {
+            return Err(ModelError::DuplicateName(name.to_string()));
+        }
+        Ok(())
+    }
+
     /// Adds a force `vector` at `point`, with `-vector` at `reaction`.
     pub fn add_force(
         &mut self,
@@ -622,10 +631,7 @@ impl System {
         reaction: Option<PointId>,
         vector: Vector,
     ) -> Result<(), ModelError> {
-        if self.forces.iter().any(|f| f.name == name) || self.moments.iter().any(|m| m.name == name)
-        {
-            return Err(ModelError::DuplicateName(name.to_string()));
-        }
+        self.check_load_name(name)?;
         for p in std::iter::once(point).chain(reaction) {
             if p.index() >= self.points.len() {
                 return Err(ModelError::Invalid("unknown point id".to_string()));
@@ -648,10 +654,7 @@ impl System {
         reaction: Option<BodyId>,
         vector: Vector,
     ) -> Result<(), ModelError> {
-        if self.forces.iter().any(|f| f.name == name) || self.moments.iter().any(|m| m.name == name)
-        {
-            return Err(ModelError::DuplicateName(name.to_string()));
-        }
+        self.check_load_name(name)?;
         for b in std::iter::once(body).chain(reaction) {
             if b.index() >= self.bodies.len() {
                 return Err(ModelError::Invalid("unknown body id".to_string()));

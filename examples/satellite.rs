@@ -7,7 +7,8 @@
 //! The model is written twice in the model language: `satellite.sim` (exact)
 //! and `satellite_small.sim` (the paper's small-variable option: the bus
 //! motion and the boom angles are small). The only hand-written part of the
-//! simulation is the paper's Figure 8 (CMD and THRUST), below in Rust.
+//! simulation is the paper's Figure 8 (CMD and THRUST), in Rust in
+//! `common/figure8.rs`.
 //!
 //! ```text
 //! cargo run --release --example satellite [-- OUTPUT_FOLDER]
@@ -43,77 +44,14 @@ mod small {
 use full::satellite::Satellite;
 use small::satellite_small::SatelliteSmall;
 
-/// The paper's Figure 8: the controller commands (SUBROUTINE CMD) and the
-/// thrusters (FUNCTION THRUST) with their saved state, one per axis.
-#[derive(Clone, Debug, Default)]
-struct Figure8 {
-    /// FIRE(axis): the thruster pair's state, -1, 0 or 1.
-    fire: [f64; 3],
-    /// TOFF(axis): the earliest time the pair may switch off.
-    toff: [f64; 3],
-}
+// The paper's Figure 8 (CMD and THRUST), shared with `tradeoff.rs`; the
+// same user code serves both generated models.
+#[macro_use]
+#[path = "common/figure8.rs"]
+mod figure8;
+use figure8::Figure8;
 
-impl Figure8 {
-    /// `PARAMETER (PI = 3.1415926)`, exactly as the Fortran (the reference
-    /// data use this value, not `f64::consts::PI`).
-    #[allow(clippy::approx_constant)]
-    const PI: f64 = 3.1415926;
-    /// Dead zone of the attitude error (rad).
-    const DBAND: f64 = 0.0025;
-    /// Shortest burst (s).
-    const TMIN: f64 = 0.02;
-
-    /// SUBROUTINE CMD(T, CLKCMD, CAMCMD).
-    fn cmd(&mut self, t: f64) -> [f64; 2] {
-        let pi = Self::PI;
-        if t < 1.0 {
-            [4.0 - pi, -0.5]
-        } else if t < 11.0 {
-            [4.0 - 0.025 * (t - 1.0) - pi, -0.5 + 0.01 * (t - 1.0)]
-        } else {
-            [3.75 - pi, -0.4]
-        }
-    }
-
-    /// FUNCTION THRUST(T, AXIS, ERROR).
-    fn thrust(&mut self, t: f64, axis: f64, error: f64) -> f64 {
-        let i = axis as usize - 1;
-        if error < -Self::DBAND {
-            if self.fire[i] < 1.0 {
-                self.toff[i] = t + Self::TMIN;
-            }
-            self.fire[i] = 1.0;
-        } else if error > Self::DBAND {
-            if self.fire[i] > -1.0 {
-                self.toff[i] = t + Self::TMIN;
-            }
-            self.fire[i] = -1.0;
-        } else if t >= self.toff[i] {
-            self.fire[i] = 0.0;
-        }
-        self.fire[i]
-    }
-}
-
-// Each generated model declares the user code it calls as a trait; the
-// same Figure 8 serves both.
-impl full::satellite::Externs for Figure8 {
-    fn thrust(&mut self, t: f64, axis: f64, error: f64) -> f64 {
-        Figure8::thrust(self, t, axis, error)
-    }
-    fn cmd(&mut self, t: f64) -> [f64; 2] {
-        Figure8::cmd(self, t)
-    }
-}
-
-impl small::satellite_small::Externs for Figure8 {
-    fn thrust(&mut self, t: f64, axis: f64, error: f64) -> f64 {
-        Figure8::thrust(self, t, axis, error)
-    }
-    fn cmd(&mut self, t: f64) -> [f64; 2] {
-        Figure8::cmd(self, t)
-    }
-}
+figure8_externs!(full::satellite => f64, small::satellite_small => f64);
 
 /// Integration step (s).
 const H: f64 = 0.001;

@@ -14,9 +14,12 @@ use crate::ModelError;
 pub enum IntegrationError {
     /// A state became NaN or infinite. `index` and `name` identify the first
     /// such state (in [`Model::STATE_NAMES`](crate::Model::STATE_NAMES)
-    /// order); `t` is the time the step would have reached.
+    /// order); `t` is the time the step would have reached, or the time of
+    /// the stage whose state overflowed (the model cannot evaluate a
+    /// non-finite state; a generated model would report a singular mass
+    /// matrix, which is not the cause).
     NonFinite {
-        /// Time at the end of the step that produced the value.
+        /// Time at the end of the step (or of the stage) that produced the value.
         t: f64,
         /// Index of the first non-finite state.
         index: usize,

@@ -98,7 +98,7 @@
 //! | `std` | yes | std math; the `io` module with TOML parameter files |
 //! | `libm` | no | math from `libm` for `no_std` targets (use with `default-features = false`) |
 //! | `csv` | yes | `io::CsvWriter`, an observer that writes one flushed CSV row per output |
-//! | `plot` | yes | `io::svg_plot` and `io::Recording::plot_svg` (SVG, no system fonts needed) |
+//! | `plot` | yes | `io::svg_plot`, `io::Recording::plot_svg` and `io::xy_svg_plot` (SVG line plots, linear or log axes, no system fonts needed) |
 //! | `serde` | no | `Serialize`/`Deserialize` for settings, summaries and step reports |
 //!
 //! Everything outside `io` works with `default-features = false, features = ["libm"]`.

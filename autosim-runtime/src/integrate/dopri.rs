@@ -143,7 +143,10 @@ const D7: f64 = 69997945.0 / 29380423.0;
 /// non-stiff models. `step(t, x, h)` tries `h` (capped at
 /// [`DopriSettings::max_step`]), shrinks it until the error is within
 /// tolerance, and returns the step taken and the suggested next step.
-/// Integrates forward in time only (`h > 0`).
+/// A trial whose stages overflow, or that the model cannot evaluate (a
+/// [`ModelError`](crate::ModelError) such as a singular mass matrix far from
+/// the solution), is retried smaller too; that failure is returned if the
+/// step underflows. Integrates forward in time only (`h > 0`).
 pub struct DormandPrince<M: Model> {
     settings: DopriSettings<M::Float>,
     k: [M::State; 7],
@@ -424,11 +427,16 @@ impl<M: Model> Stepper<M> for DormandPrince<M> {
         let mut h = h.min(s.max_step);
         let mut rejected = 0u32;
         let mut last_trial_t = None;
+        // Why the model could not evaluate a stage of the last trial.
+        let mut stage_failure = None;
         loop {
             let floor = s
                 .min_step
                 .max(M::Float::from_f64(4.0) * M::Float::EPSILON * t.abs());
             if h < floor || t + h == t {
+                if let Some(e) = stage_failure {
+                    return Err(e);
+                }
                 if let Some(t_bad) = last_trial_t {
                     // The step shrank because the values were not finite:
                     // name the state, it says more than the step size.
@@ -439,7 +447,23 @@ impl<M: Model> Stepper<M> for DormandPrince<M> {
                     h: h.to_f64(),
                 });
             }
-            self.stages(model, t, x, h)?;
+            match self.stages(model, t, x, h) {
+                Ok(()) => stage_failure = None,
+                Err(e @ (IntegrationError::NonFinite { .. } | IntegrationError::Model { .. })) => {
+                    // The model could not evaluate a stage of this trial (it
+                    // overflowed, or left the states where the model is
+                    // valid, e.g. a singular mass matrix far from the
+                    // solution): retry much smaller, as for a non-finite
+                    // result; report the failure if the step underflows.
+                    stage_failure = Some(e);
+                    last_trial_t = None;
+                    h *= s.min_factor;
+                    rejected += 1;
+                    self.rejected += 1;
+                    continue;
+                }
+                Err(e) => return Err(e),
+            }
             let err = weighted_rms(&self.err, x, &self.x_new, s.rtol, s.atol);
             let finite = err.is_finite()
                 && self.x_new.as_ref().iter().all(|v| v.is_finite())

@@ -144,7 +144,12 @@ where
         let mut previous = F::from_f64(f64::INFINITY);
         for iteration in 1..=self.settings.max_newton_iterations {
             self.newton_iterations += 1;
-            eval(model, t_stage, &self.z, &mut self.r, &mut self.evals)?;
+            match eval(model, t_stage, &self.z, &mut self.r, &mut self.evals) {
+                Ok(()) => {}
+                // The iterate overflowed: Newton diverged.
+                Err(IntegrationError::NonFinite { .. }) => return Err(fail(iteration)),
+                Err(e) => return Err(e),
+            }
             // Residual g = z − s − hγ·f(z); Newton update Δ = −(I − hγJ)⁻¹·g.
             for ((r, z), s) in self.r.iter_mut().zip(self.z.iter()).zip(self.s.iter()) {
                 *r = *s + hg * *r - *z;

@@ -2,7 +2,7 @@
 //!
 //! All of them work in place on fixed arrays and never allocate.
 
-use crate::{Float, IntegrationError, Model, StateArray};
+use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 
 /// `out = x + h · Σ cᵢ·kᵢ`.
 #[inline]
@@ -46,6 +46,11 @@ pub(crate) fn same<F: Float, S: StateArray<F>>(a: &S, b: &S) -> bool {
 
 /// Evaluates the model's derivatives, counting the call and turning a
 /// [`ModelError`](crate::ModelError) into an [`IntegrationError`].
+///
+/// A model that fails at a state holding a NaN or an infinity (a stage of a
+/// step that overflowed: a generated model then sees a NaN pivot and reports
+/// a singular mass matrix) is reported as [`IntegrationError::NonFinite`]
+/// naming that state: the overflow is the cause, not the mass matrix.
 #[inline]
 pub(crate) fn eval<M: Model>(
     model: &mut M,
@@ -55,12 +60,14 @@ pub(crate) fn eval<M: Model>(
     evaluations: &mut u64,
 ) -> Result<(), IntegrationError> {
     *evaluations += 1;
-    model
-        .derivatives(t, x, dx)
-        .map_err(|error| IntegrationError::Model {
-            t: t.to_f64(),
-            error,
-        })
+    model.derivatives(t, x, dx).map_err(|error| {
+        check_finite::<M>(t, x)
+            .err()
+            .unwrap_or(IntegrationError::Model {
+                t: t.to_f64(),
+                error,
+            })
+    })
 }
 
 /// Rejects a step that is zero, NaN or infinite.

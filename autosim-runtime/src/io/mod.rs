@@ -15,5 +15,7 @@ pub use self::csv::CsvWriter;
 pub use error::{OutputError, ParameterError};
 pub use params::{load_parameters, parameters_to_string, read_parameters, save_parameters};
 #[cfg(feature = "plot")]
-pub use plot::{Series, svg_plot, write_svg_plot};
+pub use plot::{
+    Axes, Corner, Scale, Series, XySeries, svg_plot, write_svg_plot, write_xy_svg_plot, xy_svg_plot,
+};
 pub use record::{Column, Recording};

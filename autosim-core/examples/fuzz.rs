@@ -1,27 +1,39 @@
 //! Fuzzes the whole compiler: `cargo run --release -p autosim-core --example
 //! fuzz -- <cases> [seed] [first]` runs cases `first..first + cases` of the
-//! seeded generators (random models, mutated example models, character
-//! soups: see `tests/support/fuzz_gen.rs`) through parse, resolve, Kane's
-//! equations, the program, token emission, formatting and Markdown, and
-//! counts how each ended. No input may panic, and generated code must parse.
+//! seeded generators (random models, mutated example models, soups,
+//! pathological shapes; some with use-site options: see
+//! `tests/support/fuzz/`) through parse, resolve, Kane's equations,
+//! the program, token emission, formatting and Markdown (and, for one case
+//! in four, the macro's token front end), and counts how each ended. No
+//! input may panic, and generated code must parse as Rust.
 //!
 //! Panicking inputs are written to `<target>/fuzz-failures/<case>.sim`
-//! (`<target>` is `$CARGO_TARGET_DIR` or the workspace's `target`), and the
-//! run exits non-zero. Cases slower than 2 s are reported (and saved as
-//! `slow-<case>.sim`); one still running after 60 s is saved as
-//! `hang-<case>.sim` while the run waits for it. The input being run is
-//! always in `in-progress.sim`, for crashes that cannot be caught (stack
-//! overflow, abort). `fuzz -- show <case> [seed]` prints one case's input.
+//! (`<target>` is `$CARGO_TARGET_DIR` or the workspace's `target`; a scene
+//! goes to `<case>.scene.txt`), and the run exits non-zero. Cases slower
+//! than 2 s are reported (and saved as `slow-<case>.sim`); one still running
+//! after 60 s is saved as `hang-<case>.sim` while the run waits for it. The
+//! input being run is always in `in-progress.sim`, for crashes that cannot
+//! be caught (stack overflow, abort).
+//!
+//! `fuzz -- show <case> [seed]` prints one case's input; `fuzz -- write
+//! <dir> <cases> [seed]` writes the generated Rust of every case that
+//! compiles, to check with rustc (include the files from a crate that
+//! depends on `autosim`, under `#![deny(warnings)]`).
+//!
+//! Integer overflow panics only with overflow checks, as in the debug build
+//! a proc macro runs in: for long runs, add
+//! `CARGO_PROFILE_RELEASE_OVERFLOW_CHECKS=true
+//! CARGO_PROFILE_RELEASE_DEBUG_ASSERTIONS=true`.
 
-#[path = "../tests/support/fuzz_gen.rs"]
+#[path = "../tests/support/fuzz/mod.rs"]
 mod fuzz_gen;
 
 use std::collections::BTreeMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use fuzz_gen::{Kind, Outcome, generate, run, silence_panics};
+use fuzz_gen::{Case, Kind, Outcome, generate, generated_code, run, silence_panics};
 
 const SLOW: Duration = Duration::from_secs(2);
 const HANG: Duration = Duration::from_secs(60);
@@ -33,8 +45,30 @@ fn failures_dir() -> PathBuf {
     }
 }
 
+/// Writes a case's text to `<stem>.sim` (and its scene, if any, to
+/// `<stem>.scene.txt`); returns the text's path.
+fn save(dir: &Path, stem: &str, case: &Case) -> PathBuf {
+    write_input(
+        dir,
+        stem,
+        &case.text,
+        case.scene.as_ref().map(|s| format!("{s:#?}\n")),
+    )
+}
+
+fn write_input(dir: &Path, stem: &str, text: &str, scene: Option<String>) -> PathBuf {
+    let path = dir.join(format!("{stem}.sim"));
+    let _ = std::fs::write(&path, text);
+    if let Some(scene) = scene {
+        let _ = std::fs::write(dir.join(format!("{stem}.scene.txt")), scene);
+    }
+    path
+}
+
 fn usage() -> ! {
-    eprintln!("usage: fuzz <cases> [seed] [first]   or   fuzz show <case> [seed]");
+    eprintln!(
+        "usage: fuzz <cases> [seed] [first]  |  fuzz show <case> [seed]  |  fuzz write <dir> <cases> [seed]"
+    );
     std::process::exit(2);
 }
 
@@ -45,11 +79,12 @@ fn arg(args: &[String], i: usize, default: u64) -> u64 {
     }
 }
 
-/// The case being run, for the watchdog.
+/// The case being run, for the watchdog (text and scene as written).
 struct Current {
     case: u64,
     started: Instant,
     text: String,
+    scene: Option<String>,
     reported: bool,
 }
 
@@ -57,9 +92,33 @@ fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if args.first().map(String::as_str) == Some("show") {
         let (case, seed) = (arg(&args, 1, 0), arg(&args, 2, 1));
-        let (kind, text) = generate(seed, case);
-        eprintln!("case {case} (seed {seed}): {kind:?}");
-        print!("{text}");
+        let input = generate(seed, case);
+        eprintln!("case {case} (seed {seed}): {:?}", input.kind);
+        if let Some(scene) = &input.scene {
+            eprintln!("{scene:#?}");
+        }
+        print!("{}", input.text);
+        return;
+    }
+    if args.first().map(String::as_str) == Some("write") {
+        // The generated Rust of every case that compiles, one file each, for
+        // checking with rustc (`case_<n>.rs`, runtime at `::autosim::runtime`).
+        let Some(dir) = args.get(1) else { usage() };
+        let (cases, seed) = (arg(&args, 2, 100), arg(&args, 3, 1));
+        let _ = std::fs::create_dir_all(dir);
+        silence_panics();
+        let mut written = 0;
+        for case in 0..cases {
+            let input = generate(seed, case);
+            if !matches!(run(&input, false), Outcome::Ok) {
+                continue;
+            }
+            if let Some(code) = generated_code(&input) {
+                let _ = std::fs::write(Path::new(dir).join(format!("case_{case}.rs")), code);
+                written += 1;
+            }
+        }
+        println!("fuzz: wrote {written} generated files of {cases} cases (seed {seed}) to {dir}");
         return;
     }
     if args.is_empty() {
@@ -78,6 +137,7 @@ fn main() {
         case: 0,
         started: Instant::now(),
         text: String::new(),
+        scene: None,
         reported: true,
     }));
     {
@@ -89,8 +149,8 @@ fn main() {
                 let mut c = current.lock().unwrap_or_else(|e| e.into_inner());
                 if !c.reported && c.started.elapsed() > HANG {
                     c.reported = true;
-                    let path = dir.join(format!("hang-{}.sim", c.case));
-                    let _ = std::fs::write(&path, &c.text);
+                    let stem = format!("hang-{}", c.case);
+                    let path = write_input(&dir, &stem, &c.text, c.scene.clone());
                     eprintln!(
                         "case {} still running after {} s: input in {}",
                         c.case,
@@ -117,19 +177,21 @@ fn main() {
         dir.display()
     );
     for case in first..first + cases {
-        let (kind, text) = generate(seed, case);
-        let _ = std::fs::write(&in_progress, &text);
+        let input = generate(seed, case);
+        let kind = input.kind;
+        save(&dir, "in-progress", &input);
         {
             let mut c = current.lock().unwrap_or_else(|e| e.into_inner());
             *c = Current {
                 case,
                 started: Instant::now(),
-                text: text.clone(),
+                text: input.text.clone(),
+                scene: input.scene.as_ref().map(|s| format!("{s:#?}\n")),
                 reported: false,
             };
         }
         let t0 = Instant::now();
-        let outcome = run(&text, case % 4 == 0);
+        let outcome = run(&input, case % 4 == 0);
         let took = t0.elapsed();
         current.lock().unwrap_or_else(|e| e.into_inner()).reported = true;
 
@@ -137,6 +199,7 @@ fn main() {
             Kind::Grammar => "grammar",
             Kind::Mutation => "mutation",
             Kind::Soup => "soup",
+            Kind::Deep => "deep",
         };
         let slot = counts.entry(kind_name).or_default();
         match &outcome {
@@ -157,13 +220,12 @@ fn main() {
                     bad_emits += 1;
                     slot[3] += 1;
                 }
-                let path = dir.join(format!("{case}.sim"));
-                let _ = std::fs::write(&path, &text);
+                let path = save(&dir, &case.to_string(), &input);
                 // Group by the first line (message and location).
                 let key = format!(
                     "{}: {}",
                     if is_panic { "panic" } else { "bad emit" },
-                    message.lines().next().unwrap_or("")
+                    message.replace('\n', " ")
                 );
                 let entry = distinct.entry(key.clone()).or_insert((case, 0));
                 entry.1 += 1;
@@ -180,8 +242,7 @@ fn main() {
         }
         if took > SLOW {
             slow.push((case, kind, took));
-            let path = dir.join(format!("slow-{case}.sim"));
-            let _ = std::fs::write(&path, &text);
+            let path = save(&dir, &format!("slow-{case}"), &input);
             eprintln!(
                 "case {case} ({kind_name}) took {:.2} s: input in {}",
                 took.as_secs_f64(),
@@ -197,6 +258,7 @@ fn main() {
         }
     }
     let _ = std::fs::remove_file(&in_progress);
+    let _ = std::fs::remove_file(dir.join("in-progress.scene.txt"));
 
     for (kind, [k_ok, k_diag, k_panic, k_bad]) in &counts {
         eprintln!(

@@ -108,6 +108,11 @@ fn is_keyword(s: &str) -> bool {
 /// A float literal in the model's type (non-finite values as constants).
 pub fn literal(x: f64, float: FloatType) -> TokenStream {
     let ty = float_type(float);
+    // An `f32` model holds the value `x as f32`, infinite beyond its range.
+    let x = match float {
+        FloatType::F64 => x,
+        FloatType::F32 => f64::from(x as f32),
+    };
     if x.is_nan() {
         return quote!(#ty::NAN);
     }
@@ -381,5 +386,19 @@ impl ExprPrinter<'_> {
                 quote!(#id)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn f32_literal_beyond_f32_range_is_infinity_not_a_panic() {
+        let big = literal(3.4e153, FloatType::F32).to_string();
+        assert_eq!(big.replace(' ', ""), "f32::INFINITY");
+        let small = literal(-1e300, FloatType::F32).to_string();
+        assert_eq!(small.replace(' ', ""), "f32::NEG_INFINITY");
+        assert_eq!(literal(0.5, FloatType::F32).to_string(), "0.5");
     }
 }

@@ -371,6 +371,12 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
         quote!(_)
     };
     let out_y = if n_out == 0 { quote!(_) } else { quote!(#ly) };
+    // A model without states writes no derivative (an unused `dx` warned).
+    let d_arg = if n_states == 0 {
+        quote!(_)
+    } else {
+        quote!(#ldx)
+    };
     let (mt, mx) = (t_arg(&prog.mass_matrix), x_arg(&prog.mass_matrix));
     let (ft, fx) = (t_arg(&prog.forcing), x_arg(&prog.forcing));
     let m_arg = if n == 0 { quote!(_) } else { quote!(#lm) };
@@ -600,7 +606,7 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
                 const OUTPUT_NAMES: &'static [&'static str] = &[#(#out_names),*];
                 const OUTPUT_UNITS: &'static [&'static str] = &[#(#out_units),*];
 
-                fn derivatives(&mut self, #dt: #ty, #dxx: &[#ty; #n_states_lit], #ldx: &mut [#ty; #n_states_lit]) -> Result<(), #rt::ModelError> {
+                fn derivatives(&mut self, #dt: #ty, #dxx: &[#ty; #n_states_lit], #d_arg: &mut [#ty; #n_states_lit]) -> Result<(), #rt::ModelError> {
                     #deriv
                     Ok(())
                 }
@@ -649,4 +655,22 @@ pub fn ops_summary(p: &Program) -> [(String, Ops); 3] {
         ("outputs".to_string(), p.outputs.ops),
         ("constants".to_string(), p.constants.ops),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diag::SourceFile;
+    use crate::pipeline::compile_source;
+
+    #[test]
+    fn model_without_states_has_no_unused_dx() {
+        let c = compile_source(&SourceFile::new("m.sim", "model M;\nparameter k = 1;")).unwrap();
+        let code = crate::emit::format_tokens(&model_tokens(&c, &EmitOptions::default()));
+        let code: String = code.split_whitespace().collect();
+        assert!(
+            code.contains("fnderivatives(&mutself,_:f64,_:&[f64;0],_:&mut[f64;0],)"),
+            "{code}"
+        );
+    }
 }

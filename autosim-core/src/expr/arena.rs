@@ -246,6 +246,8 @@ pub enum ExprError {
     NoDerivative(String),
     /// This function has no symbolic derivative.
     NotDifferentiable(String),
+    /// A derivative would create more than this many nodes.
+    TooLarge(usize),
 }
 
 impl core::fmt::Display for ExprError {
@@ -272,6 +274,10 @@ impl core::fmt::Display for ExprError {
             ExprError::NotDifferentiable(n) => {
                 write!(f, "`{n}` has no symbolic derivative")
             }
+            ExprError::TooLarge(n) => write!(
+                f,
+                "this derivative would take more than {n} expression nodes (each `partial` or `dxdt` of a derivative multiplies its size)"
+            ),
         }
     }
 }
@@ -286,12 +292,17 @@ impl std::error::Error for ExprError {}
 pub struct Arena {
     pub(crate) nodes: IndexSet<Node, FxBuildHasher>,
     pub(crate) meta: Vec<Meta>,
+    /// Nesting depth of each node (a number or symbol is 1).
+    pub(crate) depth: Vec<u32>,
     pub(crate) symbols: Vec<Symbol>,
     pub(crate) sym_nodes: Vec<ExprId>,
     pub(crate) sym_by_name: FxHashMap<String, SymId>,
     pub(crate) sym_dxdt: Vec<Option<ExprId>>,
     pub(crate) user_fns: Vec<UserFn>,
     pub(crate) threshold: i16,
+    /// How many new nodes one derivative may create (see
+    /// [`super::calculus::MAX_DERIVATIVE_NODES`]).
+    pub(crate) derivative_limit: usize,
 }
 
 impl Default for Arena {
@@ -306,12 +317,14 @@ impl Arena {
         let mut arena = Arena {
             nodes: IndexSet::default(),
             meta: Vec::new(),
+            depth: Vec::new(),
             symbols: Vec::new(),
             sym_nodes: Vec::new(),
             sym_by_name: FxHashMap::default(),
             sym_dxdt: Vec::new(),
             user_fns: Vec::new(),
             threshold: 2,
+            derivative_limit: super::calculus::MAX_DERIVATIVE_NODES,
         };
         // Ids 0 and 1 are always 0 and 1.
         arena.num(Number::ZERO);
@@ -352,6 +365,13 @@ impl Arena {
         self.meta[e.index()].order
     }
 
+    /// Nesting depth of an expression: 1 for a number or a symbol, one more
+    /// than its deepest child otherwise. The passes over expressions recurse
+    /// this deep, so the resolver bounds it.
+    pub fn depth(&self, e: ExprId) -> u32 {
+        self.depth[e.index()]
+    }
+
     /// Number of nodes.
     pub fn len(&self) -> usize {
         self.nodes.len()
@@ -387,9 +407,17 @@ impl Arena {
 
     /// Interns a node with precomputed facts. Children must already exist.
     pub(crate) fn intern(&mut self, node: Node, meta: Meta) -> ExprId {
+        let depth = 1 + match &node {
+            Node::Num(_) | Node::Sym(_) => 0,
+            Node::Pow(b, x) => self.depth(*b).max(self.depth(*x)),
+            Node::Sum(cs) | Node::Prod(_, cs) | Node::Func(_, cs) => {
+                cs.iter().map(|c| self.depth(*c)).max().unwrap_or(0)
+            }
+        };
         let (index, inserted) = self.nodes.insert_full(node);
         if inserted {
             self.meta.push(meta);
+            self.depth.push(depth);
         }
         ExprId(index as u32)
     }

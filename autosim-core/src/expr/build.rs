@@ -101,7 +101,7 @@ impl Arena {
         for &it in items {
             self.collect_term(it, Number::ONE, &mut constant, &mut terms);
         }
-        self.finish_sum(constant, terms)
+        self.finish_sum(constant, terms, None)
     }
 
     /// The product of any number of expressions.
@@ -197,7 +197,14 @@ impl Arena {
         self.intern(Node::Prod(c, factors.into()), meta)
     }
 
-    fn finish_sum(&mut self, mut constant: Number, mut terms: Vec<(ExprId, Number)>) -> ExprId {
+    /// The canonical sum of `constant` and `terms`, the quotient of a sum by
+    /// its common factor `pulled` if any.
+    fn finish_sum(
+        &mut self,
+        mut constant: Number,
+        mut terms: Vec<(ExprId, Number)>,
+        pulled: Option<ExprId>,
+    ) -> ExprId {
         // Combine like terms.
         terms.sort_by_key(|t| t.0);
         let mut merged: Vec<(ExprId, Number)> = Vec::with_capacity(terms.len());
@@ -217,7 +224,7 @@ impl Arena {
 
         if !merged.is_empty() && self.apply_trig_identity(&mut merged, &mut constant) {
             let terms = merged;
-            return self.finish_sum(constant, terms);
+            return self.finish_sum(constant, terms, pulled);
         }
 
         // Drop terms that are small relative to the rest.
@@ -235,16 +242,24 @@ impl Arena {
         }
 
         // Pull out a symbolic factor common to every term.
+        // Never the factor just pulled out again: that is a division that did
+        // not cancel, and pulling it forever overflowed the stack.
         if constant.is_zero()
             && merged.len() >= 2
             && let Some(g) = self.common_factor(&merged)
+            && Some(g) != pulled
         {
             let inv = self.inv(g);
             let parts: Vec<ExprId> = merged
                 .iter()
                 .map(|&(m, c)| self.product_with(c, &[m, inv]))
                 .collect();
-            let inner = self.sum(&parts);
+            let mut inner_terms = Vec::with_capacity(parts.len());
+            let mut inner_constant = Number::ZERO;
+            for part in parts {
+                self.collect_term(part, Number::ONE, &mut inner_constant, &mut inner_terms);
+            }
+            let inner = self.finish_sum(inner_constant, inner_terms, Some(g));
             return self.mul(g, inner);
         }
 
@@ -523,10 +538,13 @@ impl Arena {
                         if let Some(v) = b.powi(n) {
                             return self.num(v);
                         }
-                    } else if e == Number::rational(1, 2).unwrap_or(Number::ZERO)
-                        && let Some(r) = b.exact_sqrt()
+                    } else if let Some(k) = e.mul(Number::int(2)).as_integer()
+                        && let Some(v) = b.exact_sqrt().and_then(|r| r.powi(k))
                     {
-                        return self.num(r);
+                        // `b^(k/2)` of a perfect square, for every odd `k`: a
+                        // power whose inverse is a number would never cancel
+                        // against it (common factors of sums recursed forever).
+                        return self.num(v);
                     }
                     if !b.is_exact() || !e.is_exact() {
                         let v = b.to_f64().powf(e.to_f64());
@@ -538,6 +556,12 @@ impl Arena {
                     }
                 }
                 Node::Pow(b2, e2) => {
+                    if integer.is_some() && self.as_number(e2).is_none() {
+                        // (b^x)^n = b^(x n): `1/m^q` is `m^(-q)`, which cancels
+                        // against `m^q` in a product.
+                        let ne = self.scale(e, e2);
+                        return self.pow(b2, ne);
+                    }
                     if let Some(e2n) = self.as_number(e2) {
                         if integer.is_some() {
                             let ne = self.num(e2n.mul(e));

@@ -4,6 +4,12 @@ use super::arena::{Arena, ExprError, ExprId, Func, Node, SymId};
 use super::number::Number;
 use rustc_hash::FxHashMap;
 
+/// How many new nodes one derivative may create. Each `partial` of a
+/// derivative multiplies its size, so a chain of them grows exponentially;
+/// past this (50 times the whole arena of a 20-body spatial chain) the
+/// derivative is refused instead of filling the memory.
+pub(crate) const MAX_DERIVATIVE_NODES: usize = 500_000;
+
 impl Arena {
     /// The partial derivative `∂e/∂x` (the paper's `partial`).
     pub fn partial(&mut self, e: ExprId, x: SymId) -> Result<ExprId, ExprError> {
@@ -32,6 +38,7 @@ impl Arena {
             },
             Some(target),
             skip_constants,
+            self.len() + self.derivative_limit,
         )
     }
 
@@ -58,12 +65,13 @@ impl Arena {
             },
             None,
             true,
+            self.len() + self.derivative_limit,
         )
     }
 
     /// Derivative by the chain rule; `leaf` gives the derivative of each
     /// symbol. With `only`, subtrees with ids below that symbol's node (which
-    /// cannot contain it) are skipped.
+    /// cannot contain it) are skipped. Fails once the arena has `limit` nodes.
     fn differentiate(
         &mut self,
         e: ExprId,
@@ -71,6 +79,7 @@ impl Arena {
         leaf: &mut dyn FnMut(&mut Arena, SymId) -> Result<ExprId, ExprError>,
         only: Option<ExprId>,
         skip_constants: bool,
+        limit: usize,
     ) -> Result<ExprId, ExprError> {
         if let Some(t) = only
             && e < t
@@ -83,6 +92,9 @@ impl Arena {
         if let Some(r) = memo.get(&e) {
             return Ok(*r);
         }
+        if self.len() >= limit {
+            return Err(ExprError::TooLarge(self.derivative_limit));
+        }
         let node = self.node(e).clone();
         let r = match node {
             Node::Num(_) => self.zero(),
@@ -90,14 +102,14 @@ impl Arena {
             Node::Sum(ts) => {
                 let mut parts = Vec::with_capacity(ts.len());
                 for t in ts.iter() {
-                    parts.push(self.differentiate(*t, memo, leaf, only, skip_constants)?);
+                    parts.push(self.differentiate(*t, memo, leaf, only, skip_constants, limit)?);
                 }
                 self.sum(&parts)
             }
             Node::Prod(c, fs) => {
                 let mut parts = Vec::with_capacity(fs.len());
                 for i in 0..fs.len() {
-                    let d = self.differentiate(fs[i], memo, leaf, only, skip_constants)?;
+                    let d = self.differentiate(fs[i], memo, leaf, only, skip_constants, limit)?;
                     if self.is_zero(d) {
                         continue;
                     }
@@ -114,7 +126,7 @@ impl Arena {
                 self.sum(&parts)
             }
             Node::Pow(b, x) => {
-                let db = self.differentiate(b, memo, leaf, only, skip_constants)?;
+                let db = self.differentiate(b, memo, leaf, only, skip_constants, limit)?;
                 if let Some(n) = self.as_number(x) {
                     // n b^(n-1) db
                     let nm1 = self.num(n.sub(Number::ONE));
@@ -123,7 +135,7 @@ impl Arena {
                     self.scale(n, t)
                 } else {
                     // b^x (dx ln b + x db / b)
-                    let dx = self.differentiate(x, memo, leaf, only, skip_constants)?;
+                    let dx = self.differentiate(x, memo, leaf, only, skip_constants, limit)?;
                     let lnb = self.func(Func::Ln, &[b]);
                     let t1 = self.mul(dx, lnb);
                     let t2 = self.product(&[x, db]);
@@ -135,7 +147,7 @@ impl Arena {
             Node::Func(f, args) => {
                 let mut dargs = Vec::with_capacity(args.len());
                 for a in args.iter() {
-                    dargs.push(self.differentiate(*a, memo, leaf, only, skip_constants)?);
+                    dargs.push(self.differentiate(*a, memo, leaf, only, skip_constants, limit)?);
                 }
                 if dargs.iter().all(|d| self.is_zero(*d)) {
                     self.zero()

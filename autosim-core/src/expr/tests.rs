@@ -106,3 +106,67 @@ fn derivatives() {
     let d = a.partial(e, x).unwrap();
     assert_eq!(a.to_text(d), "3*x^2 + y*cos(x)");
 }
+
+#[test]
+fn half_integer_power_of_a_perfect_square_is_a_number() {
+    check("65536^(-1/2)", "1/256");
+    check("4^(3/2)", "8");
+    check("(9/4)^(-3/2)", "8/27");
+    check("2^(-1/2)*2^(1/2)", "1");
+    // A sum whose terms share such a factor used to overflow the stack.
+    let mut a = Arena::new();
+    let e = a.parse_text("65536^(-1/2)*x + 65536^(-1/2)*y").unwrap();
+    assert_eq!(a.to_text(e), "x/256 + y/256");
+}
+
+#[test]
+fn depth_is_one_more_than_the_deepest_child() {
+    let mut a = Arena::new();
+    let x = a.parse_text("x").unwrap();
+    assert_eq!(a.depth(x), 1);
+    let e = a.parse_text("sin(x) + 2*y").unwrap();
+    assert_eq!(a.depth(e), 3);
+    let e = a.parse_text("sin(sin(sin(x)))").unwrap();
+    assert_eq!(a.depth(e), 4);
+}
+
+#[test]
+fn common_factor_with_a_symbolic_exponent_does_not_recurse_forever() {
+    // `1/m^q` stayed a power of `m^q`, which never cancelled against the
+    // `m^q` of each term: pulling it out of the sum recursed until the stack
+    // overflowed.
+    check("(m^q)^-1", "m^(-q)");
+    check("m^q*x + m^q*y", "m^q*(x + y)");
+    check("(m^q)^2/m^q", "m^q");
+}
+
+#[test]
+fn repeated_partials_stop_at_a_size_limit_instead_of_filling_the_memory() {
+    // Each derivative of a derivative of a deep composition multiplies its
+    // size: a chain of `let`s alternating `partial` with other functions
+    // took seconds and gigabytes, and one link more ran out of memory.
+    let mut a = Arena::new();
+    a.derivative_limit = 20_000; // 500 000 in a model: seconds in a debug build
+    let x = a.add_symbol("x", SymbolKind::Free).unwrap();
+    let xs = a.sym(x);
+    let mut e = a.parse_text("sqrt(x^2 + 1)").unwrap();
+    for _ in 0..8 {
+        let t = a.func(Func::Atan2, &[e, xs]);
+        let one = a.one();
+        let d = a.add(one, e);
+        e = a.div(t, d);
+    }
+    let mut refused = None;
+    for k in 0..30 {
+        match a.partial(e, x) {
+            Ok(d) => e = a.add(d, e),
+            Err(err) => {
+                refused = Some((k, err));
+                break;
+            }
+        }
+    }
+    let (k, err) = refused.expect("the derivatives grow past the limit");
+    assert_eq!(err, ExprError::TooLarge(20_000), "after {k} derivatives");
+    assert!(a.len() < 80_000, "{} nodes", a.len());
+}

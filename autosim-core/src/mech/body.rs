@@ -606,20 +606,24 @@ impl System {
             .filter(|k| **k < nt)
             .map(|k| spec.translations[*k].clone())
             .collect();
+        // A quaternion has no rotation axes (and its rotation is never locked).
         let rotations: Vec<i64> = keep
             .iter()
-            .filter(|k| **k >= nt)
+            .filter(|k| **k >= nt && !spec.quaternion)
             .map(|k| spec.rotations[*k - nt])
             .collect();
         spec.translations = translations;
         spec.rotations = rotations;
+        let quaternion = spec.quaternion;
         spec.coordinate_names = spec
             .coordinate_names
-            .map(|v| keep.iter().map(|k| v[*k].clone()).collect());
+            .map(|v| kept_coordinates(&v, &keep, nt, quaternion));
         spec.speed_names = spec
             .speed_names
             .map(|v| keep.iter().map(|k| v[*k].clone()).collect());
-        spec.initial_coordinates = spec.initial_coordinates.map(|v| pick(&v));
+        spec.initial_coordinates = spec
+            .initial_coordinates
+            .map(|v| kept_coordinates(&v, &keep, nt, quaternion));
         spec.initial_speeds = spec.initial_speeds.map(|v| pick(&v));
         if !spec.small.is_empty() {
             spec.small = keep.iter().map(|k| spec.small[*k]).collect();
@@ -887,5 +891,18 @@ impl System {
             out[k] = self.arena.div(n, det);
         }
         Ok(out)
+    }
+}
+
+/// The entries of a per-coordinate list (names, initial values) for the
+/// kept degrees of freedom `keep`: a quaternion's four coordinates (after
+/// the `nt` translations, one more than its speeds) stay whole, as its
+/// rotation is never locked.
+fn kept_coordinates<T: Clone>(v: &[T], keep: &[usize], nt: usize, quaternion: bool) -> Vec<T> {
+    if quaternion {
+        let translations = keep.iter().filter(|k| **k < nt).map(|k| v[*k].clone());
+        translations.chain(v[nt..].iter().cloned()).collect()
+    } else {
+        keep.iter().map(|k| v[*k].clone()).collect()
     }
 }

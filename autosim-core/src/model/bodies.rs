@@ -245,15 +245,25 @@ impl<'a> Resolver<'a> {
                 spec.initial_speeds.as_ref().map(Vec::len),
             ),
         ] {
+            // A quaternion has one coordinate more than its speeds (`e0`).
+            let expected = match key {
+                BodyKey::Q | BodyKey::Initial => spec.coordinate_count(),
+                _ => dofs,
+            };
             if let (Some(len), Some(opt)) = (len, b.options.get(key))
-                && len != dofs
+                && len != expected
             {
+                let has = if expected == dofs {
+                    format!(
+                        "{dofs} degree{} of freedom",
+                        if dofs == 1 { "" } else { "s" }
+                    )
+                } else {
+                    format!("{expected} coordinates (a quaternion has e0 to e3)")
+                };
                 self.error(
                     opt.value.span(),
-                    format!(
-                        "body `{name}` has {dofs} degree{} of freedom, but {len} {what} were given",
-                        if dofs == 1 { "" } else { "s" }
-                    ),
+                    format!("body `{name}` has {has}, but {len} {what} were given"),
                 );
                 ok = false;
             }

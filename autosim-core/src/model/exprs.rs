@@ -1,7 +1,7 @@
 //! Evaluation of model expressions into values: names, members, operators
 //! and the operations of the paper's Tables 6 and 12.
 
-use super::scope::{Lazy, MAX_PENDING, Named, Resolver, describe};
+use super::scope::{Lazy, MAX_NESTING, MAX_PENDING, Named, Resolver, describe};
 use super::value::{self, Op, Value};
 use crate::diag::{Diagnostic, Span};
 use crate::expr::{ExprId, Func, Number, SymbolKind};
@@ -191,6 +191,10 @@ impl Resolver<'_> {
                 self.pending += 1;
                 let v = self.eval(&item.value);
                 self.pending -= 1;
+                let v = v.filter(|v| {
+                    let depth = value_depth(&self.sys.arena, v);
+                    self.shallow_enough(depth, &item.name)
+                });
                 self.lets[i].1 = Lazy::Done(v.clone());
                 v
             }
@@ -251,10 +255,33 @@ impl Resolver<'_> {
         false
     }
 
+    /// False (reported at `name`) when the value of `name` nests deeper
+    /// than [`MAX_NESTING`].
+    fn shallow_enough(&mut self, depth: u32, name: &ast::Name) -> bool {
+        if depth <= MAX_NESTING {
+            return true;
+        }
+        self.push(
+            Diagnostic::error(
+                name.span,
+                format!(
+                    "`{}` nests operations more than {MAX_NESTING} deep, through the `let`s and points it uses",
+                    name.text
+                ),
+            )
+            .help("shorten the chain of `let`s and points that defines it, or compute it in user code (`extern fn`)"),
+        );
+        false
+    }
+
     fn make_point(&mut self, item: &ast::Point) -> Option<PointId> {
         let body = self.body_by_name(&item.body);
         let coords = self.list3(&item.at, "the coordinates of a point", false);
         let (body, coords) = (body?, coords?);
+        let depth = coords.iter().map(|c| self.sys.arena.depth(*c)).max();
+        if !self.shallow_enough(depth.unwrap_or(0), &item.name) {
+            return None;
+        }
         match self.sys.add_point(&item.name.text, body, coords) {
             Ok(p) => {
                 if let Some(label) = &item.label {
@@ -889,5 +916,30 @@ impl Resolver<'_> {
         };
         let (q, u) = coords[k];
         Some(Value::Scalar(if name == "q" { q } else { u }))
+    }
+}
+
+/// The deepest expression in a value (see `Arena::depth`).
+fn value_depth(arena: &crate::expr::Arena, v: &Value) -> u32 {
+    match v {
+        Value::Scalar(s) => arena.depth(*s),
+        Value::Vector(v) => v
+            .terms()
+            .iter()
+            .map(|(_, c)| arena.depth(*c))
+            .max()
+            .unwrap_or(0),
+        Value::Dyadic(d) => d
+            .terms()
+            .iter()
+            .map(|(_, c)| arena.depth(*c))
+            .max()
+            .unwrap_or(0),
+        Value::List(items) => items
+            .iter()
+            .map(|x| value_depth(arena, x))
+            .max()
+            .unwrap_or(0),
+        Value::Point(_) | Value::Body(_) => 0,
     }
 }

@@ -63,6 +63,11 @@ pub(crate) struct Resolver<'a> {
 /// overflowing its stack.
 pub(crate) const MAX_PENDING: usize = 200;
 
+/// How deep the value of a `let` or the coordinates of a point may nest
+/// (see `Arena::depth`): every later pass recurses that deep, and a chain
+/// of thousands of `let`s each wrapping the one before overflowed the stack.
+pub(crate) const MAX_NESTING: u32 = 500;
+
 impl<'a> Resolver<'a> {
     pub fn new(name: &str) -> Resolver<'a> {
         let sys = System::new(name);

@@ -134,3 +134,72 @@ fn a_failed_reaction_does_not_hide_the_other_mistakes_of_a_load() {
     assert!(got.contains("error: unknown body `C`"), "{got}");
     assert!(got.contains("error: unknown name `kk`"), "{got}");
 }
+
+#[test]
+fn quaternion_body_with_a_locked_translation_does_not_panic() {
+    // Locking a translation of a quaternion body indexed its (absent)
+    // rotation axes.
+    check(
+        "model M;\nbody B { translate: [1, 2], rotate: quaternion, lock: [q1], mass: 1, inertia: diag(1, 2, 3) }",
+        "OK\n",
+    );
+    check(
+        "model M;\nbody B { translate: [1, 2], rotate: quaternion, q: [x, y, e0, e1, e2, e3], initial: [0, 1, 1, 0, 0, 0], lock: [x] }",
+        "OK\n",
+    );
+}
+
+#[test]
+fn quaternion_body_takes_four_coordinate_names() {
+    // The names and initial values of a quaternion's coordinates were
+    // checked against its three speeds here and against four coordinates
+    // in the system: no count satisfied both.
+    check(
+        "model M;\nbody B { rotate: quaternion, q: [e0, e1, e2, e3], u: [w1, w2, w3], initial: [1, 0, 0, 0] }",
+        "OK\n",
+    );
+    let got = resolved("model M;\nbody B { rotate: quaternion, q: [e1, e2, e3] }");
+    assert!(
+        got.contains("error: body `B` has 4 coordinates (a quaternion has e0 to e3), but 3 coordinate names were given"),
+        "{got}"
+    );
+}
+
+#[test]
+fn long_chains_of_lets_and_points_are_refused_not_a_stack_overflow() {
+    // Each `let` wraps the one before: 2000 levels of `sin` overflowed the
+    // stack of every pass after the resolver.
+    let mut text = HEADER.to_string();
+    text.push_str("let r0 = q(B);\n");
+    for i in 1..=2_000 {
+        text.push_str(&format!("let r{i} = sin(r{});\n", i - 1));
+    }
+    text.push_str("output y = r2000;\n");
+    let got = resolved(&text);
+    assert_eq!(got.matches("error").count(), 1, "{got}");
+    assert!(
+        got.contains("error: `r500` nests operations more than 500 deep, through the `let`s and points it uses"),
+        "{got}"
+    );
+    // The same through points.
+    let mut text = HEADER.to_string();
+    text.push_str("point P0 in B at [1, 0, 0];\n");
+    for i in 1..=1_000 {
+        text.push_str(&format!(
+            "point P{i} in B at [sin(dot(pos(P{}), b1)), 0, 0];\n",
+            i - 1
+        ));
+    }
+    text.push_str("output y = mag(pos(P1000));\n");
+    let got = resolved(&text);
+    assert_eq!(got.matches("error").count(), 1, "{got}");
+    assert!(got.contains("nests operations more than 500 deep"), "{got}");
+    // Shorter chains are fine.
+    let mut text = HEADER.to_string();
+    text.push_str("let r0 = q(B);\n");
+    for i in 1..=400 {
+        text.push_str(&format!("let r{i} = sin(r{});\n", i - 1));
+    }
+    text.push_str("output y = r400;\n");
+    check(&text, "OK\n");
+}

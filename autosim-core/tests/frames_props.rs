@@ -284,6 +284,11 @@ proptest! {
         u in prop::collection::vec(-2.0f64..2.0, 5),
     ) {
         let seq = SEQUENCES[which];
+        // Stay away from the sequence's singularity (sin q_b = 0 for i-j-i
+        // sequences, cos q_b = 0 for i-j-k), where the angle rates blow up
+        // and central differences lose their accuracy.
+        let conditioning = if seq[0] == seq[2] { q[2].sin() } else { q[2].cos() };
+        prop_assume!(conditioning.abs() > 0.2);
         let mut sys = body_system(seq, a_axis);
         let bid = sys.body_named("B").unwrap();
         let aid = sys.body_named("A").unwrap();

@@ -172,6 +172,23 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
         p_set.push(quote!(#k => #lp.#id = *v,));
     }
     let p_names: Vec<&String> = prog.parameter_names.iter().collect();
+    let params_zero = param_syms.iter().all(|s| {
+        matches!(sys.arena.symbol(*s).kind, crate::expr::SymbolKind::Parameter { default } if default == 0.0)
+    });
+    let (params_derive_default, params_default_impl) = if params_zero {
+        (quote!(, Default), quote!())
+    } else {
+        (
+            quote!(),
+            quote! {
+                impl Default for Parameters {
+                    fn default() -> Self {
+                        Parameters { #(#p_defaults,)* }
+                    }
+                }
+            },
+        )
+    };
     let (p_get_body, p_set_body) = if p_get.is_empty() {
         (quote!(let _ = values;), quote!(let _ = values;))
     } else {
@@ -498,22 +515,30 @@ pub fn model_tokens(c: &Compiled, options: &EmitOptions) -> TokenStream {
 
     quote! {
         #module_doc
-        #[allow(non_snake_case, clippy::approx_constant, clippy::too_many_arguments, clippy::excessive_precision, clippy::unreadable_literal)]
+        // Names come from the model (`KB`, `IB11`); literals are the model's
+        // values; numerically equal but symbolically distinct terms can
+        // print alike (`a - a` after rounding) or as `x * -1.0`.
+        #[allow(
+            non_snake_case,
+            clippy::approx_constant,
+            clippy::too_many_arguments,
+            clippy::excessive_precision,
+            clippy::unreadable_literal,
+            clippy::single_match,
+            clippy::eq_op,
+            clippy::neg_multiply
+        )]
         pub mod #module {
             #[allow(unused_imports)]
             use #rt::__private::math;
 
             /// Parameters of the model, with their defaults.
-            #[derive(Clone, Copy, Debug, PartialEq)]
+            #[derive(Clone, Copy, Debug, PartialEq #params_derive_default)]
             pub struct Parameters {
                 #(#p_fields,)*
             }
 
-            impl Default for Parameters {
-                fn default() -> Self {
-                    Parameters { #(#p_defaults,)* }
-                }
-            }
+            #params_default_impl
 
             /// Inputs of the model, supplied by the caller at run time.
             #[derive(Clone, Copy, Debug, PartialEq #inputs_derive_default)]

@@ -243,7 +243,13 @@ fn y_label(series: &[Series<'_>]) -> String {
     let first_unit = series.first().map(|s| s.unit).unwrap_or("");
     if series.iter().all(|s| s.unit == first_unit) {
         let names: Vec<&str> = series.iter().map(|s| s.name).collect();
-        format!("{} [{first_unit}]", names.join(", "))
+        let joined = names.join(", ");
+        // Many lines: the legend names them, the axis gives the unit.
+        if joined.chars().count() > 40 {
+            format!("value [{first_unit}]")
+        } else {
+            format!("{joined} [{first_unit}]")
+        }
     } else {
         let parts: Vec<String> = series
             .iter()
@@ -307,7 +313,7 @@ fn draw(
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
         .label_font(("sans-serif", 14))
-        .position(SeriesLabelPosition::UpperRight)
+        .position(SeriesLabelPosition::UpperLeft)
         .draw()?;
     root.present()?;
     Ok(())
@@ -476,6 +482,12 @@ mod tests {
         };
         assert_eq!(y_label(&[a, b]), "x, y [m]");
         assert_eq!(y_label(&[a, c]), "x [m], v [m/s]");
+        let long = Series {
+            name: "a rather long series name",
+            unit: "rad",
+            values: &v,
+        };
+        assert_eq!(y_label(&[long, long]), "value [rad]");
     }
 
     #[test]

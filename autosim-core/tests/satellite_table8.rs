@@ -135,3 +135,37 @@ proptest! {
         assert_vec(w_in_body(&mut sys, d, &bnd), wd, "abs-w of D in d");
     }
 }
+
+/// The paper's `convert-coordinates`: D's mass center coordinates in C's
+/// axes equal the camera's cosine matrix applied to them (C_ij = d_i · c_j,
+/// so c-components are Cᵀ times d-components).
+#[test]
+fn convert_coordinates_uses_the_cosine_matrix() {
+    let mut sys = satellite();
+    let d = sys.body_named("D").unwrap();
+    let c = sys.body_named("C").unwrap();
+    let coords = sys.body(d).cm;
+    let conv = sys.convert_coordinates(coords, d, c);
+    let q8 = sys.arena.symbol_named("q8").unwrap();
+    let mut b = Bindings::with_defaults(&sys.arena);
+    let angle = 0.7_f64;
+    b.set(q8, angle);
+    let ev = |sys: &System, e| sys.arena.eval(e, &b, &mut NoUserFunctions);
+    let (l5, l6) = (0.22, 0.2);
+    let d_comp = [0.0, -l5, -l6];
+    // Camera: d1 = c1, d2 = cos c2 + sin c3, d3 = -sin c2 + cos c3.
+    let (s, co) = angle.sin_cos();
+    let want = [
+        d_comp[0],
+        co * d_comp[1] - s * d_comp[2],
+        s * d_comp[1] + co * d_comp[2],
+    ];
+    for k in 0..3 {
+        let got = ev(&sys, conv[k]);
+        assert!(
+            (got - want[k]).abs() < 1e-14,
+            "component {k}: {got} vs {}",
+            want[k]
+        );
+    }
+}

@@ -179,6 +179,21 @@ impl System {
         self.frames.cosine_matrix(&mut self.arena, fb, fa)
     }
 
+    /// The paper's `convert-coordinates`: components `coordinates` along the
+    /// axes of body `from` converted to components along the axes of `to`.
+    pub fn convert_coordinates(
+        &mut self,
+        coordinates: [ExprId; 3],
+        from: BodyId,
+        to: BodyId,
+    ) -> [ExprId; 3] {
+        let ff = self.bodies[from.index()].frame;
+        let ft = self.bodies[to.index()].frame;
+        Fv::new(ff, coordinates)
+            .reexpress(&mut self.arena, &mut self.frames, ft)
+            .c
+    }
+
     /// A unit vector of a body: axis 1, 2 or 3.
     pub fn unit_vector(&mut self, b: BodyId, axis: usize) -> Option<Vector> {
         if !(1..=3).contains(&axis) {

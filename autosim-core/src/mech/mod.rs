@@ -9,6 +9,7 @@ mod kane;
 mod kinematics;
 mod system;
 mod vector;
+mod vector_ops;
 
 pub use error::ModelError;
 pub use frames::{Frame, FrameId, Frames, Uv, UvId};

@@ -710,17 +710,17 @@ impl Resolver<'_> {
             }
             "mag" => {
                 let v = self.vector(&args[0], &ctx)?;
-                Some(Value::Scalar(self.magnitude(&v)))
+                Some(Value::Scalar(self.sys.frames.mag(&mut self.sys.arena, &v)))
             }
             "dir" => {
                 let v = self.vector(&args[0], &ctx)?;
-                if v.is_zero() {
-                    self.error(args[0].span(), "`dir` of the zero vector is undefined");
-                    return None;
+                match self.sys.frames.dir(&mut self.sys.arena, &v) {
+                    Some(d) => Some(Value::Vector(d)),
+                    None => {
+                        self.error(args[0].span(), "`dir` of the zero vector is undefined");
+                        None
+                    }
                 }
-                let m = self.magnitude(&v);
-                let inv = self.sys.arena.inv(m);
-                Some(Value::Vector(v.scale(&mut self.sys.arena, inv)))
             }
             "angle" => {
                 let a = self.vector(&args[0], &ctx);
@@ -730,36 +730,21 @@ impl Resolver<'_> {
                     None => None,
                 };
                 let (a, b) = (a?, b?);
-                let ar = &mut self.sys.arena;
-                let fr = &mut self.sys.frames;
-                let cosine = fr.dot_vec(ar, &a, &b);
-                let axb = fr.cross_vec(ar, &a, &b);
-                let sine = match c {
-                    // Signed by the third vector (the paper's Figure 3).
-                    Some(c) => {
-                        let s = fr.dot_vec(ar, &axb, &c);
-                        let cc = fr.dot_vec(ar, &c, &c);
-                        let m = ar.sqrt(cc);
-                        ar.div(s, m)
-                    }
-                    None => {
-                        let s = fr.dot_vec(ar, &axb, &axb);
-                        ar.sqrt(s)
-                    }
-                };
-                Some(Value::Scalar(ar.func(Func::Atan2, &[sine, cosine])))
+                let angle = self
+                    .sys
+                    .frames
+                    .angle(&mut self.sys.arena, &a, &b, c.as_ref());
+                Some(Value::Scalar(angle))
             }
             "dot_plane" => {
                 let a = self.vector(&args[0], &ctx);
                 let b = self.vector(&args[1], &ctx);
                 let (a, b) = (a?, b?);
-                let ar = &mut self.sys.arena;
-                let fr = &mut self.sys.frames;
-                let ab = fr.dot_vec(ar, &a, &b);
-                let bb = fr.dot_vec(ar, &b, &b);
-                let k = ar.div(ab, bb);
-                let proj = b.scale(ar, k);
-                Some(Value::Vector(a.sub(ar, &proj)))
+                Some(Value::Vector(self.sys.frames.dot_plane(
+                    &mut self.sys.arena,
+                    &a,
+                    &b,
+                )))
             }
             "pos" | "vel" => {
                 let p1 = self.point(&args[0], &ctx);
@@ -848,12 +833,6 @@ impl Resolver<'_> {
             }
             _ => None,
         }
-    }
-
-    fn magnitude(&mut self, v: &Vector) -> ExprId {
-        let ar = &mut self.sys.arena;
-        let vv = self.sys.frames.dot_vec(ar, v, v);
-        ar.sqrt(vv)
     }
 
     fn generalized(&mut self, name: &str, args: &[Expr]) -> Option<Value> {

@@ -4,6 +4,7 @@
 //! `cargo run --release --example perf`
 
 use autosim::runtime::{Model, OpCount};
+use autosim_test_support::Rng;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -18,18 +19,6 @@ mod models {
     autosim::model!(file = "examples/models/chain_planar_10.sim");
     autosim::model!(file = "examples/models/satellite.sim");
     autosim::model!(file = "examples/models/satellite_small.sim");
-}
-
-/// Deterministic uniform numbers (xorshift).
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        lo + (hi - lo) * ((self.0 >> 11) as f64 / (1u64 << 53) as f64)
-    }
 }
 
 /// Thrusters off, fixed commands: the cost of the model, not of user code.
@@ -135,7 +124,7 @@ fn report<M: Model<Float = f64, State = [f64; N]>, const N: usize>(
 
 fn main() {
     use models::*;
-    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let mut rng = Rng::new(0x2545_f491_4f6c_dd1d);
     macro_rules! chain {
         ($name:literal, $m:ident :: $t:ident) => {
             report($name, $m::$t::new(), $m::$t::DERIVATIVE_OPS, &mut rng, None)

@@ -161,13 +161,12 @@ fn progress_bar(label: &str) -> ProgressBar {
     bar
 }
 
-/// The reference trajectory of the full model, if the shared data is there
-/// (`$AUTOSIM_SHARED/reference` or `../shared/reference`).
+/// The independent reference trajectory of the full model
+/// (`tests/reference/satellite-slew.json`).
 fn reference() -> Option<serde_json::Value> {
-    let dir = std::env::var_os("AUTOSIM_SHARED")
-        .map(|d| PathBuf::from(d).join("reference"))
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/reference"));
-    let text = std::fs::read_to_string(dir.join("satellite-slew.json")).ok()?;
+    let path =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/reference/satellite-slew.json");
+    let text = std::fs::read_to_string(path).ok()?;
     serde_json::from_str(&text).ok()
 }
 

@@ -22,15 +22,14 @@
 //! | very large speeds | 10³ rad/s: passes (Dormand–Prince), energy within 1e-7; 10⁸ rad/s: `TooManySteps` at the step limit (never a hang); 10¹⁶⁰ rad/s (u² overflows): `NonFinite` naming a state |
 //! | a step far beyond the stability limit | explicit: `NonFinite`; Dormand–Prince: passes (the step is only a first trial); SDIRK3: `NewtonFailed` at t = 0, state untouched |
 
-mod common;
-
 use autosim::runtime::integrate::{
     AbmOrder, AdamsBashforthMoulton, DormandPrince, Euler, Heun, Rk4, Sdirk3, SdirkSettings,
 };
 use autosim::runtime::{
     IntegrationError, Model, ModelError, RunSettings, RunSummary, Stepper, run,
 };
-use common::{floats, load, rel_err};
+use autosim_test_support::quaternion::{distance as orientation_distance, from_123, rates_123};
+use autosim_test_support::{floats, load, rel_err};
 
 mod models {
     autosim::model!(file = "tests/models/extremes/two_link.sim");
@@ -357,43 +356,6 @@ fn a_singular_matrix_with_a_non_zero_diagonal_is_found_at_run_time() {
 }
 
 // ------------------------------------------------------------------ rotations
-
-/// Hamilton product.
-fn qmul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
-    [
-        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
-    ]
-}
-
-/// The Euler parameters (e0, e1, e2, e3) of body-fixed 1-2-3 rotations.
-fn from_123(a: f64, b: f64, c: f64) -> [f64; 4] {
-    let qx = [(a / 2.0).cos(), (a / 2.0).sin(), 0.0, 0.0];
-    let qy = [(b / 2.0).cos(), 0.0, (b / 2.0).sin(), 0.0];
-    let qz = [(c / 2.0).cos(), 0.0, 0.0, (c / 2.0).sin()];
-    qmul(qmul(qx, qy), qz)
-}
-
-/// 1-2-3 angle rates from the body's angular velocity in its own axes.
-fn rates_123(q: [f64; 3], w: [f64; 3]) -> [f64; 3] {
-    let (s2, c2, s3, c3) = (q[1].sin(), q[1].cos(), q[2].sin(), q[2].cos());
-    let a = (c3 * w[0] - s3 * w[1]) / c2;
-    [a, s3 * w[0] + c3 * w[1], w[2] - s2 * a]
-}
-
-/// Distance between two orientations given as Euler parameters (q and -q
-/// are the same orientation).
-fn orientation_distance(a: [f64; 4], b: [f64; 4]) -> f64 {
-    let d = |s: f64| {
-        (0..4)
-            .map(|i| (a[i] - s * b[i]).powi(2))
-            .sum::<f64>()
-            .sqrt()
-    };
-    d(1.0).min(d(-1.0))
-}
 
 /// A free body spun about its major axis (ω = (0.002, 1, 0.003) rad/s):
 /// the spin carries the second 1-2-3 angle to within about 1e-3 rad of π/2

@@ -1,9 +1,8 @@
 //! Every reference model, written in the language and compiled through the
 //! macro, matches the independent reference data in ../shared/reference.
 
-mod common;
 use autosim::runtime::Model;
-use common::*;
+use autosim_test_support::*;
 
 macro_rules! chain_test {
     ($test:ident, $module:ident, $ty:ident, $file:literal, $reference:literal) => {

@@ -9,11 +9,9 @@
 //! stage times t_n, t_n + h/2, t_n + h/2, t_n + h with t_n = n h, and in
 //! every evaluation `cmd` first, then `thrust` for axes 1, 2, 3.
 
-mod common;
-
 use autosim::runtime::integrate::Rk4;
 use autosim::runtime::{Model, Stepper};
-use common::{floats, load};
+use autosim_test_support::{floats, load};
 
 mod model {
     autosim::model!(file = "examples/models/satellite.sim");

@@ -7,11 +7,9 @@
 //! generated mass matrix) + gravitational (Σ m_i g z_i of the mass centers,
 //! computed here from the chain's geometry) + Σ ½ k q_i².
 
-mod common;
-
 use autosim::runtime::integrate::DormandPrince;
 use autosim::runtime::{Model, RunSettings, run};
-use common::{floats, load};
+use autosim_test_support::{floats, load};
 use serde_json::Value;
 
 mod planar {

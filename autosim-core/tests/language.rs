@@ -1,11 +1,10 @@
 //! Models written in the language, compiled to programs, match the
 //! reference data; the optimized program matches the unoptimized equations.
 
-mod common;
 use autosim_core::diag::SourceFile;
 use autosim_core::opt::Interpreter;
 use autosim_core::pipeline::{Compiled, compile_source};
-use common::*;
+use autosim_test_support::*;
 use std::path::PathBuf;
 
 fn models_dir() -> PathBuf {

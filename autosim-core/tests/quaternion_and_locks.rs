@@ -2,35 +2,11 @@
 //! matrix as the 1-2-3 angles it converts from, and the satellite with a
 //! quaternion bus reproduces the reference data after converting states.
 
-mod common;
 use autosim_core::expr::Bindings;
 use autosim_core::mech::BodyId;
-use common::*;
-
-/// Hamilton product.
-fn qmul(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
-    [
-        a[0] * b[0] - a[1] * b[1] - a[2] * b[2] - a[3] * b[3],
-        a[0] * b[1] + a[1] * b[0] + a[2] * b[3] - a[3] * b[2],
-        a[0] * b[2] - a[1] * b[3] + a[2] * b[0] + a[3] * b[1],
-        a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0],
-    ]
-}
-
-/// The quaternion of body-fixed 1-2-3 rotations by `a`, `b`, `c`.
-fn from_123(a: f64, b: f64, c: f64) -> [f64; 4] {
-    let qx = [(a / 2.0).cos(), (a / 2.0).sin(), 0.0, 0.0];
-    let qy = [(b / 2.0).cos(), 0.0, (b / 2.0).sin(), 0.0];
-    let qz = [(c / 2.0).cos(), 0.0, 0.0, (c / 2.0).sin()];
-    qmul(qmul(qx, qy), qz)
-}
-
-/// 1-2-3 angle rates from body angular velocity (reference-models.md).
-fn rates_123(q: [f64; 3], w: [f64; 3]) -> [f64; 3] {
-    let (s2, c2, s3, c3) = (q[1].sin(), q[1].cos(), q[2].sin(), q[2].cos());
-    let a = (c3 * w[0] - s3 * w[1]) / c2;
-    [a, s3 * w[0] + c3 * w[1], w[2] - s2 * a]
-}
+use autosim_test_support::api::*;
+use autosim_test_support::quaternion::{from_123, rates_123};
+use autosim_test_support::*;
 
 #[test]
 fn satellite_with_quaternion_bus_matches_reference() {

@@ -1,8 +1,8 @@
 //! The reference models built through the API match the independent
 //! reference data in ../shared/reference to 1e-9.
 
-mod common;
-use common::*;
+use autosim_test_support::api::*;
+use autosim_test_support::*;
 
 fn check_chain(n: usize, spatial: bool) {
     let name = format!("chain-{}-{n}", if spatial { "spatial" } else { "planar" });

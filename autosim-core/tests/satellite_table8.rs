@@ -4,15 +4,13 @@
 //! absolute angular velocities, at random states. The printed formulas are
 //! transcribed here and evaluated in f64.
 
-mod common;
-
 use autosim_core::expr::{Bindings, NoUserFunctions};
 use autosim_core::mech::{BodyId, System};
 use proptest::prelude::*;
 
 fn satellite() -> System {
-    let data = common::load("satellite");
-    common::satellite(&data["parameters"], false)
+    let data = autosim_test_support::load("satellite");
+    autosim_test_support::api::satellite(&data["parameters"], false)
 }
 
 fn bind(sys: &System, q: &[f64], u: &[f64]) -> Bindings {

@@ -3,7 +3,7 @@
 //! model, at states where the small variables are of size ε, and the sizes
 //! of the two sets of equations.
 
-mod common;
+use autosim_test_support::Rng;
 
 use autosim_core::expr::{Bindings, ExprId, NoUserFunctions, OpCount};
 use autosim_core::mech::{Equations, System};
@@ -11,20 +11,6 @@ use nalgebra::{DMatrix, DVector};
 
 /// Small coordinates and speeds (0-based): q1..q6, q9, q10.
 const SMALL: [usize; 8] = [0, 1, 2, 3, 4, 5, 8, 9];
-
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next()
-    }
-}
 
 struct State {
     q: Vec<f64>,
@@ -35,14 +21,14 @@ struct State {
 /// q7, q8, u7, u8 and the inputs ordinary random values; the small
 /// variables random values of size `eps` (the same draw for every `eps`).
 fn state(rng: &mut Rng) -> State {
-    let q = (0..10).map(|_| rng.range(-1.0, 1.0)).collect();
-    let u = (0..10).map(|_| rng.range(-1.0, 1.0)).collect();
+    let q = (0..10).map(|_| rng.uniform(-1.0, 1.0)).collect();
+    let u = (0..10).map(|_| rng.uniform(-1.0, 1.0)).collect();
     let inputs = vec![
-        ("clkcmd", rng.range(-1.0, 1.0)),
-        ("camcmd", rng.range(-1.0, 1.0)),
-        ("thr1", rng.range(-1.0, 1.0)),
-        ("thr2", rng.range(-1.0, 1.0)),
-        ("thr3", rng.range(-1.0, 1.0)),
+        ("clkcmd", rng.uniform(-1.0, 1.0)),
+        ("camcmd", rng.uniform(-1.0, 1.0)),
+        ("thr1", rng.uniform(-1.0, 1.0)),
+        ("thr2", rng.uniform(-1.0, 1.0)),
+        ("thr3", rng.uniform(-1.0, 1.0)),
     ];
     State { q, u, inputs }
 }
@@ -75,9 +61,9 @@ fn du(sys: &System, eqs: &Equations, b: &Bindings) -> Vec<f64> {
 }
 
 fn models() -> (System, Equations, System, Equations) {
-    let data = common::load("satellite");
-    let mut full = common::satellite(&data["parameters"], false);
-    let mut small = common::satellite(&data["parameters"], true);
+    let data = autosim_test_support::load("satellite");
+    let mut full = autosim_test_support::api::satellite(&data["parameters"], false);
+    let mut small = autosim_test_support::api::satellite(&data["parameters"], true);
     let ef = full.equations().unwrap();
     let es = small.equations().unwrap();
     (full, ef, small, es)
@@ -103,7 +89,7 @@ fn rel_diff(a: &[f64], b: &[f64]) -> f64 {
 #[test]
 fn small_model_agrees_to_second_order() {
     let (full, ef, small, es) = models();
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
     let mut worst = [0.0f64; 2];
     for sample in 0..20 {
         let s = state(&mut rng);
@@ -137,7 +123,7 @@ fn small_model_agrees_to_second_order() {
 #[test]
 fn small_model_differs_at_ordinary_values() {
     let (full, ef, small, es) = models();
-    let mut rng = Rng(17);
+    let mut rng = Rng::new(17);
     let s = state(&mut rng);
     let d_full = du(&full, &ef, &bind(&full, &ef, &s, 0.5));
     let d_small = du(&small, &es, &bind(&small, &es, &s, 0.5));

@@ -2,28 +2,13 @@
 //! model (both paths) matches the core's evaluation of its unoptimized
 //! equations at random states (a differential test of the optimizer).
 
-#[path = "../../common/mod.rs"]
-mod common;
-
 use autosim::runtime::Model;
 use autosim_core::diag::SourceFile;
 use autosim_core::expr::Bindings;
 use autosim_core::pipeline::{Compiled, compile_source};
 use autosim_models_check::{scenes, via_build, via_macro};
-use common::*;
+use autosim_test_support::*;
 use nalgebra::{DMatrix, DVector};
-
-/// A small deterministic generator (xorshift), so failures reproduce.
-struct Rng(u64);
-
-impl Rng {
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        lo + (hi - lo) * ((self.0 >> 11) as f64 / (1u64 << 53) as f64)
-    }
-}
 
 fn compile(file: &str) -> Compiled {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -83,7 +68,7 @@ macro_rules! differential {
         #[test]
         fn $test() {
             let c = compile($file);
-            let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+            let mut rng = Rng::new(0x9e37_79b9_7f4a_7c15);
             let mut worst: f64 = 0.0;
             let mut model = $($path)::+::new();
             let mut params = vec![0.0; <$($path)::+ as Model>::PARAMETER_NAMES.len()];
@@ -277,7 +262,7 @@ fn markdown_documentation_is_written() {
 fn f32_model_matches_f64_model() {
     let mut m64 = via_macro::chain_planar2::ChainPlanar2::new();
     let mut m32 = via_build::chain_planar2_f32::ChainPlanar2F32::new();
-    let mut rng = Rng(7);
+    let mut rng = Rng::new(7);
     let mut worst: f64 = 0.0;
     for _ in 0..100 {
         let mut x = [0.0f64; 4];
@@ -335,7 +320,7 @@ fn scene_small_equals_small_model_file() {
         File::<Fixed>::DERIVATIVE_OPS
     );
     let (mut a, mut b) = (Scene::new(Fixed), File::new(Fixed));
-    let mut rng = Rng(3);
+    let mut rng = Rng::new(3);
     for _ in 0..20 {
         let mut x = [0.0; 20];
         for v in x.iter_mut() {

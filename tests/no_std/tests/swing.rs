@@ -1,39 +1,16 @@
 //! The no_std model and integrator (built with `libm`), called from a std
 //! test: the undamped 3-link chain reproduces the independent reference
-//! trajectory `../shared/reference/chain-planar-3-trajectory.json` and
+//! trajectory `tests/reference/chain-planar-3-trajectory.json` and
 //! conserves its energy.
 
 use autosim::runtime::Model;
 use autosim_no_std_check::{ChainPlanar3, swing};
+use autosim_test_support::floats;
 use serde_json::Value;
-use std::path::PathBuf;
-
-fn reference() -> Value {
-    let dir = match std::env::var_os("AUTOSIM_SHARED") {
-        Some(d) => PathBuf::from(d).join("reference"),
-        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../../shared/reference"),
-    };
-    let path = dir.join("chain-planar-3-trajectory.json");
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| {
-        panic!(
-            "{}: {e} (set AUTOSIM_SHARED to the shared folder)",
-            path.display()
-        )
-    });
-    serde_json::from_str(&text).unwrap()
-}
-
-fn floats(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect()
-}
 
 #[test]
 fn no_std_rk4_reproduces_the_reference_trajectory() {
-    let data = reference();
+    let data = autosim_test_support::load("chain-planar-3-trajectory");
     let p = |name: &str| data["parameters"][name].as_f64().unwrap();
     let parameters: Vec<f64> = ChainPlanar3::PARAMETER_NAMES.iter().map(|n| p(n)).collect();
     assert_eq!(p("c"), 0.0);

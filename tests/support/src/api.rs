@@ -1,43 +1,12 @@
-//! Shared helpers for the reference-data tests: locating ../shared, reading
-//! the JSON files, building the reference models through the API and
-//! evaluating their equations.
+//! The reference models of `tests/reference/models.md` built through the
+//! core API (independently of the model language), and their equations
+//! evaluated and solved numerically.
 
-#![allow(dead_code)]
-
-use autosim_core::expr::{Bindings, ExprId, SymId};
+use crate::reference::floats;
+use autosim_core::expr::{Bindings, ExprId};
 use autosim_core::mech::{BodySpec, Direction, Equations, System, Vector};
 use nalgebra::{DMatrix, DVector};
 use serde_json::Value;
-use std::path::PathBuf;
-
-/// The `shared/reference` folder: `$AUTOSIM_SHARED/reference`, or
-/// `../shared/reference` beside the repository.
-pub fn reference_dir() -> PathBuf {
-    if let Ok(dir) = std::env::var("AUTOSIM_SHARED") {
-        return PathBuf::from(dir).join("reference");
-    }
-    let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    for up in [manifest.join("../../shared"), manifest.join("../shared")] {
-        if up.join("reference").is_dir() {
-            return up.join("reference");
-        }
-    }
-    panic!("cannot find shared/reference: set AUTOSIM_SHARED");
-}
-
-pub fn load(name: &str) -> Value {
-    let path = reference_dir().join(format!("{name}.json"));
-    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path:?}: {e}"));
-    serde_json::from_str(&text).expect("valid JSON")
-}
-
-pub fn floats(v: &Value) -> Vec<f64> {
-    v.as_array()
-        .expect("array")
-        .iter()
-        .map(|x| x.as_f64().expect("number"))
-        .collect()
-}
 
 /// chain-planar-n or chain-spatial-n of reference-models.md, with the
 /// parameter values of the reference file.
@@ -274,11 +243,11 @@ pub fn bind(sys: &System, eqs: &Equations, sample: &Value, params: &Value) -> Bi
         }
     }
     b.set(sys.time(), sample["t"].as_f64().unwrap_or(0.0));
-    let _ = SymId::clone;
     b
 }
 
-/// Evaluates dq/dt and solves M du/dt = f numerically.
+/// Evaluates dq/dt and solves M du/dt = f numerically (Cholesky, or LU
+/// where M is not positive definite).
 pub fn derivatives(sys: &System, eqs: &Equations, b: &Bindings) -> (Vec<f64>, Vec<f64>) {
     let n = eqs.coordinates.len();
     let mut roots = eqs.kinematics.clone();
@@ -300,15 +269,7 @@ pub fn derivatives(sys: &System, eqs: &Equations, b: &Bindings) -> (Vec<f64>, Ve
     (dq, du.iter().copied().collect())
 }
 
-/// Normwise relative error of `got` against `want`, relative to max |want|.
-pub fn rel_err(got: &[f64], want: &[f64]) -> f64 {
-    let scale = want.iter().fold(0.0f64, |a, x| a.max(x.abs())).max(1e-300);
-    got.iter()
-        .zip(want)
-        .fold(0.0f64, |a, (g, w)| a.max((g - w).abs()))
-        / scale
-}
-
+/// The component of `v` along `n3`.
 pub fn vector_dot_n3(sys: &mut System, v: &Vector) -> ExprId {
     let n3 = sys.unit_vector(autosim_core::mech::BodyId::N, 3).unwrap();
     sys.frames.dot_vec(&mut sys.arena, v, &n3)

@@ -88,7 +88,7 @@ fn derive(c: &mut Criterion) {
             b.iter(|| {
                 let c = autosim_core::pipeline::compile_source(black_box(&src)).expect("compiles");
                 let tokens = autosim_core::emit::model_tokens(
-                    &c,
+                    &c.program,
                     &autosim_core::emit::EmitOptions::default(),
                 );
                 black_box(autosim_core::emit::format_tokens(&tokens).len())

@@ -21,7 +21,7 @@ fn main() {
     match compile_source(&file) {
         Ok(c) => print!(
             "{}",
-            format_tokens(&model_tokens(&c, &EmitOptions::default()))
+            format_tokens(&model_tokens(&c.program, &EmitOptions::default()))
         ),
         Err(d) => {
             eprint!("{}", d.render(&file));

@@ -44,7 +44,8 @@ fn main() {
         program,
     };
     let t = Instant::now();
-    let tokens = autosim_core::emit::model_tokens(&c, &autosim_core::emit::EmitOptions::default());
+    let tokens =
+        autosim_core::emit::model_tokens(&c.program, &autosim_core::emit::EmitOptions::default());
     let t_emit = t.elapsed();
     let t = Instant::now();
     let text = autosim_core::emit::format_tokens(&tokens);

@@ -10,6 +10,7 @@
 // Index loops over 3×3 components read like the mathematics they implement.
 #![allow(clippy::needless_range_loop)]
 
+pub mod build;
 pub mod diag;
 pub mod emit;
 pub mod expr;

@@ -2,7 +2,7 @@
 //! its equations of motion and its scheduled program out.
 
 use crate::diag::{Diagnostic, Diagnostics, SourceFile};
-use crate::mech::Equations;
+use crate::mech::{Equations, ItemRef};
 use crate::model::{ResolvedModel, Scene, resolve_scene};
 use crate::opt::{Program, build};
 use crate::syntax::{self, ast};
@@ -26,13 +26,18 @@ pub fn compile(model: &ast::Model) -> Result<Compiled, Diagnostics> {
 /// Like [`compile`], with the options of a use site.
 pub fn compile_scene(model: &ast::Model, scene: &Scene) -> Result<Compiled, Diagnostics> {
     let mut resolved = resolve_scene(model, scene)?;
-    let equations = resolved
-        .system
-        .equations()
-        .map_err(|e| Diagnostics::from(Diagnostic::error(model.name.span, e.to_string())))?;
-    check_mass_matrix(model, &resolved, &equations)?;
-    let program = build(&mut resolved, &equations)
-        .map_err(|e| Diagnostics::from(Diagnostic::error(model.name.span, e.to_string())))?;
+    let at = |r: &ResolvedModel, item, message: String| {
+        Diagnostics::from(Diagnostic::error(r.spans.item(&r.system, item), message))
+    };
+    let equations = match resolved.system.equations() {
+        Ok(e) => e,
+        Err(e) => return Err(at(&resolved, e.item, e.to_string())),
+    };
+    check_mass_matrix(&resolved, &equations)?;
+    let program = match build(&mut resolved, &equations) {
+        Ok(p) => p,
+        Err(e) => return Err(at(&resolved, e.item(), e.to_string())),
+    };
     Ok(Compiled {
         model: resolved,
         equations,
@@ -44,11 +49,7 @@ pub fn compile_scene(model: &ast::Model, scene: &Scene) -> Result<Compiled, Diag
 /// state: nothing resists one speed's acceleration. Known at compile time,
 /// so reported here (other singularities are reported at run time by the
 /// generated solve, naming the speed).
-fn check_mass_matrix(
-    model: &ast::Model,
-    resolved: &ResolvedModel,
-    equations: &Equations,
-) -> Result<(), Diagnostics> {
+fn check_mass_matrix(resolved: &ResolvedModel, equations: &Equations) -> Result<(), Diagnostics> {
     let sys = &resolved.system;
     let mut diags = Diagnostics::new();
     for (k, c) in sys.coordinates().iter().enumerate() {
@@ -56,14 +57,7 @@ fn check_mass_matrix(
             continue;
         }
         let body = &sys.body(c.body).name;
-        let span = model
-            .items
-            .iter()
-            .find_map(|i| match i {
-                ast::Item::Body(b) if b.name.text == *body => Some(b.name.span),
-                _ => None,
-            })
-            .unwrap_or(model.name.span);
+        let span = resolved.spans.item(sys, ItemRef::Body(c.body));
         let speed = &sys.arena.symbol(c.u).name;
         diags.push(
             Diagnostic::error(

@@ -14,7 +14,7 @@ fn generate(file: &str) -> String {
     let text = std::fs::read_to_string(models_dir().join(file)).expect("model file");
     let src = SourceFile::new(file, text);
     let c = compile_source(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)));
-    format_tokens(&model_tokens(&c, &EmitOptions::default()))
+    format_tokens(&model_tokens(&c.program, &EmitOptions::default()))
 }
 
 #[test]
@@ -35,7 +35,7 @@ fn snapshot_markdown() {
     let c = compile_source(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)));
     insta::assert_snapshot!(
         "chain_planar_2_markdown",
-        markdown(&c, "chain_planar_2.sim")
+        markdown(&c.program, "chain_planar_2.sim")
     );
 }
 

@@ -23,9 +23,11 @@ fn compile_file(name: &str) -> Compiled {
 
 fn params_from(c: &Compiled, data: &serde_json::Value) -> Vec<f64> {
     c.program
-        .parameter_names
+        .interface
+        .parameters
         .iter()
-        .map(|n| {
+        .map(|p| {
+            let n = &p.name;
             data["parameters"][n]
                 .as_f64()
                 .unwrap_or_else(|| panic!("no parameter {n}"))
@@ -39,7 +41,7 @@ fn satellite_program_matches_reference() {
     let data = load("satellite");
     let params = params_from(&c, &data);
     let it = Interpreter::new(&c.program, &params);
-    let n = c.program.n;
+    let n = c.program.n();
     let mut worst: f64 = 0.0;
     for s in data["samples"].as_array().unwrap() {
         let mut x = floats(&s["q"]);
@@ -65,7 +67,12 @@ fn satellite_program_matches_reference() {
         assert!(e_dq < 1e-9 && e_du < 1e-9, "dq {e_dq:e} du {e_du:e}");
     }
     eprintln!("satellite.sim program: worst relative error {worst:.2e}");
-    eprintln!("derivatives: {}", c.program.derivatives.ops);
+    eprintln!(
+        "derivatives: {}",
+        c.program
+            .block(autosim_core::opt::BlockKind::Derivatives)
+            .ops
+    );
 }
 
 /// Scene options: locking the boom at the use site.
@@ -83,5 +90,5 @@ fn scene_lock_boom() {
         Ok(c) => c,
         Err(d) => panic!("{}", d.render(&file)),
     };
-    assert_eq!(c.program.n, 8);
+    assert_eq!(c.program.n(), 8);
 }

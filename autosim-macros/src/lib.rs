@@ -34,7 +34,7 @@ fn expand(input: TokenStream) -> TokenStream {
         None => {
             let name = model_name(&input);
             match compile_tokens(input) {
-                Ok(c) => model_tokens(&c, &EmitOptions::default()),
+                Ok(c) => model_tokens(&c.program, &EmitOptions::default()),
                 Err(d) => errors(&d, name),
             }
         }
@@ -134,7 +134,7 @@ fn expand_file(path: &str, span: proc_macro2::Span, scene: &Scene) -> TokenStrea
     let track = quote_spanned!(span=> const _: &str = include_str!(#full_str););
     match compile_source_scene(&file, scene) {
         Ok(c) => {
-            let module = model_tokens(&c, &EmitOptions::default());
+            let module = model_tokens(&c.program, &EmitOptions::default());
             quote!(#module #track)
         }
         Err(d) => {

@@ -60,17 +60,17 @@ impl BlockEmitter<'_> {
         for l in &block.leaves {
             match *l {
                 Leaf::State(i) => {
-                    let id = ident(&self.prog.state_names[i]);
+                    let id = ident(&self.prog.states().state(i).name);
                     let k = Literal::usize_unsuffixed(i);
                     out.extend(quote!(let #id = #x[#k];));
                 }
                 Leaf::Input(i) => {
-                    let id = ident(&self.prog.input_names[i]);
+                    let id = ident(&self.prog.interface.inputs[i].name);
                     out.extend(quote!(let #id = self.inputs.#id;));
                 }
                 Leaf::Accel(i) => {
-                    let id = ident(&format!("{}_dot", self.prog.state_names[self.prog.n + i]));
-                    let k = Literal::usize_unsuffixed(self.prog.n + i);
+                    let id = ident(&self.prog.states().speed_rate_name(i));
+                    let k = Literal::usize_unsuffixed(self.prog.states().speed_slot(i));
                     out.extend(quote!(let #id = #dx[#k];));
                 }
                 Leaf::Param(_) | Leaf::Time | Leaf::SubOut(..) => {}
@@ -94,9 +94,10 @@ impl BlockEmitter<'_> {
                     out.extend(quote!(let (#s, #c) = #m::sin_cos(#arg);));
                 }
                 Stmt::CallSub(k) => {
-                    let (name, outs) = &self.prog.subroutines[*k];
-                    let f = ident(name);
-                    let pats: Vec<TokenStream> = outs
+                    let sub = &self.prog.interface.subroutines[*k];
+                    let f = ident(&sub.name);
+                    let pats: Vec<TokenStream> = sub
+                        .outputs
                         .iter()
                         .enumerate()
                         .map(|(j, o)| {
@@ -119,7 +120,7 @@ impl BlockEmitter<'_> {
                     let m = &self.math;
                     let rt = &self.rt;
                     let k = Literal::usize_unsuffixed(*speed);
-                    let name = &self.prog.state_names[self.prog.n + speed];
+                    let name = &self.prog.states().speeds[*speed].name;
                     out.extend(quote! {
                         if !#m::is_positive(#e) {
                             return Err(#rt::ModelError::SingularMassMatrix { speed: #k, name: #name });

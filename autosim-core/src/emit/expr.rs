@@ -163,23 +163,18 @@ pub struct Locals {
 impl Locals {
     /// Locals that avoid every name the program binds.
     pub fn new(prog: &Program) -> Locals {
-        let mut taken: rustc_hash::FxHashSet<String> = prog.state_names.iter().cloned().collect();
-        taken.extend(prog.input_names.iter().cloned());
-        for (_, outs) in &prog.subroutines {
-            taken.extend(outs.iter().cloned());
+        let i = &prog.interface;
+        let mut taken: rustc_hash::FxHashSet<String> =
+            i.states.states().map(|s| s.name.clone()).collect();
+        taken.extend(i.inputs.iter().map(|x| x.name.clone()));
+        for sub in &i.subroutines {
+            taken.extend(sub.outputs.iter().cloned());
         }
-        for b in [
-            &prog.derivatives,
-            &prog.outputs,
-            &prog.mass_matrix,
-            &prog.forcing,
-            &prog.constants,
-            &prog.initial,
-        ] {
+        for (_, b) in &prog.blocks {
             taken.extend(b.names.values().cloned());
         }
-        for i in 0..prog.n {
-            taken.insert(format!("{}_dot", prog.state_names[prog.n + i]));
+        for k in 0..prog.n() {
+            taken.insert(i.states.speed_rate_name(k));
         }
         let mut pick = |base: &str| {
             let mut name = base.to_string();
@@ -348,7 +343,7 @@ impl ExprPrinter<'_> {
                 let xs: Vec<TokenStream> = args.iter().map(|a| self.expr(*a)).collect();
                 match f {
                     Func::User(u) => {
-                        let name = ident(&self.prog.user_fn_names[u.index()]);
+                        let name = ident(&self.prog.interface.extern_fns[u.index()].name);
                         quote!(self.externs.#name(#(#xs),*))
                     }
                     other => {
@@ -362,27 +357,28 @@ impl ExprPrinter<'_> {
     }
 
     fn leaf(&self, l: Leaf) -> TokenStream {
+        let i = &self.prog.interface;
         match l {
-            Leaf::Param(i) => {
-                let id = ident(&self.prog.parameter_names[i]);
+            Leaf::Param(k) => {
+                let id = ident(&i.parameters[k].name);
                 let p = &self.locals.p;
                 quote!(#p.#id)
             }
-            Leaf::State(i) => {
-                let id = ident(&self.prog.state_names[i]);
+            Leaf::State(k) => {
+                let id = ident(&i.states.state(k).name);
                 quote!(#id)
             }
-            Leaf::Input(i) => {
-                let id = ident(&self.prog.input_names[i]);
+            Leaf::Input(k) => {
+                let id = ident(&i.inputs[k].name);
                 quote!(#id)
             }
             Leaf::Time => quote!(t),
             Leaf::SubOut(s, k) => {
-                let id = ident(&self.prog.subroutines[s].1[k]);
+                let id = ident(&i.subroutines[s].outputs[k]);
                 quote!(#id)
             }
-            Leaf::Accel(i) => {
-                let id = ident(&format!("{}_dot", self.prog.state_names[self.prog.n + i]));
+            Leaf::Accel(k) => {
+                let id = ident(&i.states.speed_rate_name(k));
                 quote!(#id)
             }
         }

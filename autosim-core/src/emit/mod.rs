@@ -1,8 +1,7 @@
 //! Emission: Rust tokens for the macro, formatted files and Markdown
-//! documentation for build scripts.
+//! documentation, from the program and its interface alone.
 
 mod block;
-pub mod build;
 mod expr;
 mod file;
 mod markdown;
@@ -10,4 +9,4 @@ mod model;
 
 pub use file::{format_tokens, header, source_hash};
 pub use markdown::markdown;
-pub use model::{EmitOptions, model_tokens, ops_summary, snake_case};
+pub use model::{EmitOptions, model_tokens, snake_case};

@@ -121,6 +121,39 @@ impl Func {
             Func::User(_) => return None,
         })
     }
+
+    /// The numeric value of a built-in function at `args` (`None` for a
+    /// user function, which only the caller can evaluate). The one
+    /// numeric meaning of each function: the evaluator and the program
+    /// interpreter both use it, and generated code calls the same `libm`/
+    /// `std` functions.
+    pub fn eval_builtin(self, args: &[f64]) -> Option<f64> {
+        let x = args.first().copied().unwrap_or(f64::NAN);
+        let y = args.get(1).copied().unwrap_or(f64::NAN);
+        Some(match self {
+            Func::Sin => x.sin(),
+            Func::Cos => x.cos(),
+            Func::Tan => x.tan(),
+            Func::Asin => x.asin(),
+            Func::Acos => x.acos(),
+            Func::Atan2 => x.atan2(y),
+            Func::Exp => x.exp(),
+            Func::Ln => x.ln(),
+            Func::Abs => x.abs(),
+            Func::Sign => {
+                if x > 0.0 {
+                    1.0
+                } else if x < 0.0 {
+                    -1.0
+                } else {
+                    0.0
+                }
+            }
+            Func::Min => x.min(y),
+            Func::Max => x.max(y),
+            Func::User(_) => return None,
+        })
+    }
 }
 
 /// One node of the expression DAG (the paper's Table 1, scalars only).

@@ -113,29 +113,8 @@ impl Arena {
 }
 
 fn apply(arena: &Arena, f: Func, a: &[f64], user: &mut dyn UserFunctions) -> f64 {
-    let x = a.first().copied().unwrap_or(f64::NAN);
-    let y = a.get(1).copied().unwrap_or(f64::NAN);
     match f {
-        Func::Sin => x.sin(),
-        Func::Cos => x.cos(),
-        Func::Tan => x.tan(),
-        Func::Asin => x.asin(),
-        Func::Acos => x.acos(),
-        Func::Atan2 => x.atan2(y),
-        Func::Exp => x.exp(),
-        Func::Ln => x.ln(),
-        Func::Abs => x.abs(),
-        Func::Sign => {
-            if x > 0.0 {
-                1.0
-            } else if x < 0.0 {
-                -1.0
-            } else {
-                0.0
-            }
-        }
-        Func::Min => x.min(y),
-        Func::Max => x.max(y),
         Func::User(u) => user.call(u, &arena.user_fn(u).name, a),
+        builtin => builtin.eval_builtin(a).unwrap_or(f64::NAN),
     }
 }

@@ -1,6 +1,7 @@
 //! Errors of the multibody API: each says what is wrong and how to fix it.
 
-use crate::expr::ExprError;
+use super::system::BodyId;
+use crate::expr::{ExprError, SymId};
 use std::fmt;
 
 /// A mistake in a model built through the API.
@@ -146,3 +147,50 @@ impl fmt::Display for ModelError {
 }
 
 impl std::error::Error for ModelError {}
+
+/// The item of a system a problem is about, so that a front end can point
+/// at the text that declared it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ItemRef {
+    /// The model as a whole.
+    Model,
+    /// A body (its degrees of freedom, frames, mass properties).
+    Body(BodyId),
+    /// A force, by index in [`System::forces`](super::System::forces).
+    Force(usize),
+    /// A moment, by index in [`System::moments`](super::System::moments).
+    Moment(usize),
+    /// An added state variable.
+    State(SymId),
+    /// An output, by index.
+    Output(usize),
+    /// A user subroutine, by index.
+    Subroutine(usize),
+}
+
+/// An error of an analysis of the system, with the item that caused it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LocatedError {
+    /// The item.
+    pub item: ItemRef,
+    /// The error.
+    pub error: ModelError,
+}
+
+impl LocatedError {
+    /// `error`, caused by `item`.
+    pub fn new(item: ItemRef, error: impl Into<ModelError>) -> LocatedError {
+        LocatedError {
+            item,
+            error: error.into(),
+        }
+    }
+}
+
+impl fmt::Display for LocatedError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.error.fmt(f)
+    }
+}
+
+impl std::error::Error for LocatedError {}

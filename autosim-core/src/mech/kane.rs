@@ -15,7 +15,7 @@
 //! an acceleration `-g` of N. The mass matrix is never inverted: the
 //! accelerations are solved numerically by the caller.
 
-use super::error::ModelError;
+use super::error::{ItemRef, LocatedError, ModelError};
 use super::frames::FrameId;
 use super::framevec::{
     Fv, Mat3, mat_add, mat_rotate_symmetric, mat_vec, point_inertia, shift_cross_term,
@@ -87,7 +87,7 @@ impl System {
     }
 
     /// Derives the equations of motion (Kane's method, composite-body form).
-    pub fn equations(&mut self) -> Result<Equations, ModelError> {
+    pub fn equations(&mut self) -> Result<Equations, LocatedError> {
         let n = self.coordinates.len();
         let nb = self.bodies.len();
         let zero = self.arena.zero();
@@ -267,7 +267,8 @@ impl System {
         // on the state) has, besides the rigid-body part projected above,
         // the partial velocities of that motion: Σ_s (F · ∂r/∂s) ∂ṡ/∂u_k
         // over the symbols s of the coordinates that have a derivative.
-        for force in self.forces.clone() {
+        for (index, force) in self.forces.clone().into_iter().enumerate() {
+            let at = |e| LocatedError::new(ItemRef::Force(index), e);
             for (p, negate) in [(Some(force.point), false), (force.reaction, true)] {
                 let Some(p) = p else { continue };
                 let point = self.points[p.index()].clone();
@@ -293,7 +294,7 @@ impl System {
                 for (s, d) in &rates {
                     let mut t = Vec::with_capacity(3);
                     for i in 0..3 {
-                        let dr = self.arena.partial(point.coordinates[i], *s)?;
+                        let dr = self.arena.partial(point.coordinates[i], *s).map_err(at)?;
                         t.push(self.arena.mul(dr, f.c[i]));
                     }
                     f_dr.push((self.arena.sum(&t), *d));
@@ -302,7 +303,7 @@ impl System {
                     let u = self.coordinates[k].u;
                     let mut terms = Vec::new();
                     for (fd, d) in &f_dr {
-                        let du = self.arena.partial(*d, u)?;
+                        let du = self.arena.partial(*d, u).map_err(at)?;
                         if !self.arena.is_zero(du) {
                             terms.push(self.arena.mul(*fd, du));
                         }
@@ -365,10 +366,13 @@ impl System {
             match st.derivative {
                 Some(d) => state_derivatives.push(d),
                 None => {
-                    return Err(ModelError::Invalid(format!(
-                        "the added state `{}` has no derivative",
-                        self.arena.symbol(st.sym).name
-                    )));
+                    return Err(LocatedError::new(
+                        ItemRef::State(st.sym),
+                        ModelError::Invalid(format!(
+                            "the added state `{}` has no derivative",
+                            self.arena.symbol(st.sym).name
+                        )),
+                    ));
                 }
             }
         }

@@ -11,7 +11,7 @@ mod system;
 mod vector;
 mod vector_ops;
 
-pub use error::ModelError;
+pub use error::{ItemRef, LocatedError, ModelError};
 pub use frames::{Frame, FrameId, Frames, Uv, UvId};
 pub use framevec::{Fv, Mat3};
 pub use kane::Equations;

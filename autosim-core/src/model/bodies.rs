@@ -111,8 +111,13 @@ impl<'a> Resolver<'a> {
             let Some(spec) = self.body_spec(b, parent) else {
                 continue;
             };
+            let parameters_before = self.sys.parameters().len();
             match self.sys.add_body(spec) {
                 Ok(id) => {
+                    for &p in &self.sys.parameters()[parameters_before..] {
+                        let name = self.sys.arena.symbol(p).name.clone();
+                        self.implicit_parameters.push((name, b.name.span));
+                    }
                     self.names
                         .insert(b.name.text.clone(), (Named::Body(Some(id)), b.name.span));
                     for (k, c) in self

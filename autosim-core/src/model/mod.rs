@@ -9,11 +9,13 @@ mod bodies;
 mod exprs;
 mod scene;
 mod scope;
+mod spans;
 #[cfg(test)]
 mod tests;
 mod value;
 
 pub use scene::Scene;
+pub use spans::ItemSpans;
 pub use value::Value;
 
 use crate::diag::{Diagnostic, Diagnostics};
@@ -77,6 +79,8 @@ pub struct ResolvedModel {
     /// Parameter names of user subroutines (an argument written as a plain
     /// name gives its name, others are `arg1`, `arg2`, ...).
     pub subroutine_params: Vec<Vec<String>>,
+    /// Where each item is declared, for diagnostics of later phases.
+    pub spans: ItemSpans,
 }
 
 /// Resolves a parsed model.
@@ -99,6 +103,7 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
         extern_fns: Vec::new(),
         subroutine_docs: Vec::new(),
         subroutine_params: Vec::new(),
+        spans: ItemSpans::new(model_name.span),
     };
 
     // Only these outputs are generated, if the settings say so.
@@ -476,6 +481,12 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
     }
     if !r.diags.is_empty() {
         return Err(r.diags);
+    }
+    for (name, (_, span)) in &r.names {
+        out.spans.insert(name, *span);
+    }
+    for (name, span) in &r.implicit_parameters {
+        out.spans.insert(name, *span);
     }
     out.system = r.sys;
     Ok(out)

@@ -56,6 +56,9 @@ pub(crate) struct Resolver<'a> {
     pub scene: super::Scene,
     /// Scene `small`/`lock` names that matched a body or coordinate.
     pub scene_matched: Vec<String>,
+    /// Parameters declared by the compiler (a body's default mass and
+    /// inertia), with the span of the body that needs them.
+    pub implicit_parameters: Vec<(String, Span)>,
 }
 
 /// How many `let`s and points may wait on one another (a `let` using one
@@ -91,6 +94,7 @@ impl<'a> Resolver<'a> {
             too_many_pending: false,
             scene: super::Scene::default(),
             scene_matched: Vec::new(),
+            implicit_parameters: Vec::new(),
         }
     }
 

@@ -3,7 +3,7 @@
 //! symbolic equations without compiling anything.
 
 use super::ir::{Leaf, Nid, Op};
-use super::program::Program;
+use super::program::{BlockKind, Program};
 use super::schedule::{Block, Stmt};
 use crate::expr::Func;
 use rustc_hash::FxHashMap;
@@ -41,7 +41,7 @@ impl<'a> Interpreter<'a> {
         let mut sub = |_: usize, _: &[f64]| Vec::new();
         let c = it
             .run(
-                &prog.constants,
+                prog.block(BlockKind::Constants),
                 0.0,
                 &[],
                 &[],
@@ -60,9 +60,9 @@ impl<'a> Interpreter<'a> {
     pub fn initial_state(&self) -> Vec<f64> {
         let mut user = |_: usize, _: &[f64]| f64::NAN;
         let mut sub = |_: usize, _: &[f64]| Vec::new();
-        let len = 2 * self.prog.n + self.prog.n_extra;
+        let len = self.prog.states().len();
         self.run(
-            &self.prog.initial,
+            self.prog.block(BlockKind::Initial),
             0.0,
             &[],
             &[],
@@ -85,9 +85,9 @@ impl<'a> Interpreter<'a> {
         user: &mut dyn FnMut(usize, &[f64]) -> f64,
         sub: &mut dyn FnMut(usize, &[f64]) -> Vec<f64>,
     ) -> Result<Vec<f64>, SolveError> {
-        let len = 2 * self.prog.n + self.prog.n_extra;
+        let len = self.prog.states().len();
         self.run(
-            &self.prog.derivatives,
+            self.prog.block(BlockKind::Derivatives),
             t,
             x,
             inputs,
@@ -110,13 +110,14 @@ impl<'a> Interpreter<'a> {
     ) -> Result<Vec<f64>, SolveError> {
         let accel = if self.prog.outputs_need_derivatives {
             let dx = self.derivatives(t, x, inputs, user, sub)?;
-            dx[self.prog.n..2 * self.prog.n].to_vec()
+            let n = self.prog.n();
+            dx[n..2 * n].to_vec()
         } else {
             Vec::new()
         };
-        let len = self.prog.output_names.len();
+        let len = self.prog.interface.outputs.len();
         self.run(
-            &self.prog.outputs,
+            self.prog.block(BlockKind::Outputs),
             t,
             x,
             inputs,
@@ -137,10 +138,10 @@ impl<'a> Interpreter<'a> {
         user: &mut dyn FnMut(usize, &[f64]) -> f64,
         sub: &mut dyn FnMut(usize, &[f64]) -> Vec<f64>,
     ) -> (Vec<f64>, Vec<f64>) {
-        let n = self.prog.n;
+        let n = self.prog.n();
         let m = self
             .run(
-                &self.prog.mass_matrix,
+                self.prog.block(BlockKind::MassMatrix),
                 t,
                 x,
                 inputs,
@@ -152,7 +153,17 @@ impl<'a> Interpreter<'a> {
             )
             .unwrap_or_default();
         let f = self
-            .run(&self.prog.forcing, t, x, inputs, &[], n, true, user, sub)
+            .run(
+                self.prog.block(BlockKind::Forcing),
+                t,
+                x,
+                inputs,
+                &[],
+                n,
+                true,
+                user,
+                sub,
+            )
             .unwrap_or_default();
         (m, f)
     }
@@ -258,30 +269,9 @@ impl<'a> Interpreter<'a> {
             Op::Powf(a, b) => self.eval(a, env, user).powf(self.eval(b, env, user)),
             Op::Call(f, args) => {
                 let xs: Vec<f64> = args.iter().map(|k| self.eval(*k, env, user)).collect();
-                let x = xs.first().copied().unwrap_or(f64::NAN);
-                let y = xs.get(1).copied().unwrap_or(f64::NAN);
                 match f {
-                    Func::Sin => x.sin(),
-                    Func::Cos => x.cos(),
-                    Func::Tan => x.tan(),
-                    Func::Asin => x.asin(),
-                    Func::Acos => x.acos(),
-                    Func::Atan2 => x.atan2(y),
-                    Func::Exp => x.exp(),
-                    Func::Ln => x.ln(),
-                    Func::Abs => x.abs(),
-                    Func::Sign => {
-                        if x > 0.0 {
-                            1.0
-                        } else if x < 0.0 {
-                            -1.0
-                        } else {
-                            0.0
-                        }
-                    }
-                    Func::Min => x.min(y),
-                    Func::Max => x.max(y),
                     Func::User(u) => user(u.index(), &xs),
+                    builtin => builtin.eval_builtin(&xs).unwrap_or(f64::NAN),
                 }
             }
         }

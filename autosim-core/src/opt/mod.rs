@@ -1,16 +1,24 @@
 //! The equation program: lowering to an operation IR, the unrolled solve of
 //! the mass matrix, scheduling (named intermediates, hoisted constants,
-//! call order) and operation counts (the paper's Eqs. 12-23).
+//! call order) and operation counts (the paper's Eqs. 12-23), with the
+//! interface generated code exposes, a text form and a verifier.
 
+mod interface;
 mod interp;
 mod ir;
 mod lower;
 mod program;
 mod schedule;
 mod solve;
+mod text;
+mod verify;
 
+pub use interface::{
+    ExternFnInfo, InputInfo, Interface, OutputInfo, ParameterInfo, StateLayout, StateVar,
+    SubroutineInfo,
+};
 pub use interp::{Interpreter, SolveError};
 pub use ir::{Ir, Leaf, Nid, Op};
 pub use lower::{Lowering, UnboundSymbol};
-pub use program::{Program, ProgramError, build};
+pub use program::{BlockKind, Program, ProgramError, build};
 pub use schedule::{Block, Ops, Stmt, Task};

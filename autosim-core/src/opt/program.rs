@@ -1,195 +1,278 @@
-//! The equation program of a model: the blocks generated code runs
-//! (constants once per parameter set; derivatives, with the unrolled solve
-//! of the mass matrix; outputs; the mass matrix and forcing alone; the
-//! initial state), all over one shared IR.
+//! The equation program of a model: one IR shared by a list of scheduled
+//! blocks (constants once per parameter set; derivatives, with the
+//! unrolled solve of the mass matrix; outputs; the mass matrix and forcing
+//! alone; the initial state), plus the interface generated code exposes.
 
+use super::interface::{Interface, StateLayout};
 use super::ir::{Ir, Leaf, Nid, Op};
 use super::lower::{Lowering, UnboundSymbol};
 use super::schedule::{Block, Options, Task, schedule};
-use super::solve::ldlt_solve;
+use super::solve::{Solve, ldlt_solve};
 use crate::expr::{ExprId, Func, SymId};
-use crate::mech::Equations;
+use crate::mech::{Equations, ItemRef};
 use crate::model::ResolvedModel;
 use rustc_hash::{FxHashMap, FxHashSet};
 
-/// The scheduled program of a model.
+/// What a block computes; each kind is one function of generated code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum BlockKind {
+    /// dx/dt: slots `0..n` dq/dt, `n..2n` du/dt, then the extra states.
+    Derivatives,
+    /// The outputs; reads `Leaf::Accel` if it needs du/dt.
+    Outputs,
+    /// Constants computed once per parameter set: slot `k` is `hoisted[k]`.
+    Constants,
+    /// The mass matrix, slot `i*n + j`.
+    MassMatrix,
+    /// The forcing vector.
+    Forcing,
+    /// The initial state from the parameters.
+    Initial,
+}
+
+impl BlockKind {
+    /// The name used in reports, documentation and the program's text form.
+    pub fn name(self) -> &'static str {
+        match self {
+            BlockKind::Derivatives => "derivatives",
+            BlockKind::Outputs => "outputs",
+            BlockKind::Constants => "constants",
+            BlockKind::MassMatrix => "mass_matrix",
+            BlockKind::Forcing => "forcing",
+            BlockKind::Initial => "initial",
+        }
+    }
+
+    /// Whether the block reads the hoisted constants (all but the blocks
+    /// that compute from the parameters alone).
+    pub fn reads_constants(self) -> bool {
+        !matches!(self, BlockKind::Constants | BlockKind::Initial)
+    }
+}
+
+/// The scheduled program of a model: everything code generation needs.
 #[derive(Clone, Debug)]
 pub struct Program {
     /// All operations.
     pub ir: Ir,
-    /// Number of generalized coordinates (= speeds).
-    pub n: usize,
-    /// Number of added state variables.
-    pub n_extra: usize,
-    /// Names of the states: coordinates, speeds, added states.
-    pub state_names: Vec<String>,
-    /// Units of the states.
-    pub state_units: Vec<String>,
-    /// Names of the parameters (declaration order).
-    pub parameter_names: Vec<String>,
-    /// Names of the inputs.
-    pub input_names: Vec<String>,
-    /// Names of user functions, by `UserFnId` index.
-    pub user_fn_names: Vec<String>,
-    /// User subroutines: name and output names.
-    pub subroutines: Vec<(String, Vec<String>)>,
-    /// Output names.
-    pub output_names: Vec<String>,
-    /// dx/dt: slots `0..n` dq/dt, `n..2n` du/dt, then added states.
-    pub derivatives: Block,
-    /// Outputs; reads `Leaf::Accel` if it needs du/dt.
-    pub outputs: Block,
+    /// The blocks, in the order generated code lists their costs.
+    pub blocks: Vec<(BlockKind, Block)>,
+    /// The constant nodes the other blocks read (sorted; slot `k` of the
+    /// constants block computes `hoisted[k]`).
+    pub hoisted: Vec<Nid>,
+    /// Arguments of each user subroutine (declaration order).
+    pub sub_args: Vec<Vec<Nid>>,
     /// `true` if the outputs need du/dt (generated code computes the
     /// derivatives first).
     pub outputs_need_derivatives: bool,
-    /// The mass matrix, slot `i*n + j`.
-    pub mass_matrix: Block,
-    /// The forcing vector.
-    pub forcing: Block,
-    /// Constants computed once per parameter set: slot `k` is `hoisted[k]`.
-    pub constants: Block,
-    /// The constant nodes the other blocks read.
-    pub hoisted: Vec<Nid>,
-    /// Initial state from the parameters.
-    pub initial: Block,
-    /// Arguments of each subroutine (declaration order).
-    pub sub_args: Vec<Vec<Nid>>,
+    /// Names, units, defaults and docs of everything generated code exposes.
+    pub interface: Interface,
+}
+
+impl Program {
+    /// The block of a kind (every program has one of each).
+    pub fn block(&self, kind: BlockKind) -> &Block {
+        self.blocks
+            .iter()
+            .find(|(k, _)| *k == kind)
+            .map(|(_, b)| b)
+            .unwrap_or_else(|| unreachable!("every program has a {} block", kind.name()))
+    }
+
+    /// The state vector's layout.
+    pub fn states(&self) -> &StateLayout {
+        &self.interface.states
+    }
+
+    /// Number of generalized speeds.
+    pub fn n(&self) -> usize {
+        self.interface.states.n_speeds()
+    }
+
+    /// The number of values a block of this kind writes.
+    pub fn slots(&self, kind: BlockKind) -> usize {
+        let n = self.n();
+        match kind {
+            BlockKind::Derivatives | BlockKind::Initial => self.states().len(),
+            BlockKind::Outputs => self.interface.outputs.len(),
+            BlockKind::Constants => self.hoisted.len(),
+            BlockKind::MassMatrix => n * n,
+            BlockKind::Forcing => n,
+        }
+    }
 }
 
 /// Why a program could not be built.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ProgramError {
-    /// An expression uses a symbol that has no value at run time.
-    Unbound(String),
+    /// An expression of `item` uses a symbol that has no value at run time.
+    Unbound {
+        /// The symbol's name.
+        name: String,
+        /// The item whose expression uses it.
+        item: ItemRef,
+    },
+}
+
+impl ProgramError {
+    /// The item whose expression caused the error.
+    pub fn item(&self) -> ItemRef {
+        match self {
+            ProgramError::Unbound { item, .. } => *item,
+        }
+    }
 }
 
 impl std::fmt::Display for ProgramError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            ProgramError::Unbound(n) => write!(f, "`{n}` has no value in the generated program"),
+            ProgramError::Unbound { name, .. } => {
+                write!(f, "`{name}` has no value in the generated program")
+            }
         }
-    }
-}
-
-impl From<UnboundSymbol> for ProgramError {
-    fn from(u: UnboundSymbol) -> Self {
-        ProgramError::Unbound(u.0)
     }
 }
 
 /// Builds the program of a resolved model from its equations.
 pub fn build(model: &mut ResolvedModel, eqs: &Equations) -> Result<Program, ProgramError> {
-    let sys = &mut model.system;
-    let n = eqs.coordinates.len();
-    let n_extra = eqs.states.len();
+    let interface = Interface::new(model, eqs);
     let mut ir = Ir::new();
+    let leaves = leaves(model, eqs, &mut ir);
+    let lowered = lower(model, eqs, &mut ir, &leaves)?;
+    let names = Naming::new(&ir, &interface, &lowered);
+    let program = schedule_blocks(ir, lowered, &names, interface);
+    debug_assert_eq!(program.verify(), Ok(()));
+    Ok(program)
+}
 
-    // Leaves.
+/// The IR leaf of every symbol with a value at run time.
+fn leaves(model: &ResolvedModel, eqs: &Equations, ir: &mut Ir) -> FxHashMap<SymId, Nid> {
+    let sys = &model.system;
     let mut leaves: FxHashMap<SymId, Nid> = FxHashMap::default();
-    let params: Vec<SymId> = sys.parameters().to_vec();
-    for (i, s) in params.iter().enumerate() {
+    for (i, s) in sys.parameters().iter().enumerate() {
         leaves.insert(*s, ir.leaf(Leaf::Param(i)));
     }
-    for (i, s) in eqs
-        .coordinates
-        .iter()
-        .chain(&eqs.speeds)
-        .chain(&eqs.states)
-        .enumerate()
-    {
+    let states = eqs.coordinates.iter().chain(&eqs.speeds).chain(&eqs.states);
+    for (i, s) in states.enumerate() {
         leaves.insert(*s, ir.leaf(Leaf::State(i)));
     }
-    let inputs: Vec<SymId> = sys.inputs().to_vec();
-    for (i, s) in inputs.iter().enumerate() {
+    for (i, s) in sys.inputs().iter().enumerate() {
         leaves.insert(*s, ir.leaf(Leaf::Input(i)));
     }
     leaves.insert(sys.time(), ir.leaf(Leaf::Time));
-    let subs = sys.subroutines().to_vec();
-    for (k, sub) in subs.iter().enumerate() {
+    for (k, sub) in sys.subroutines().iter().enumerate() {
         for (j, o) in sub.outputs.iter().enumerate() {
             leaves.insert(*o, ir.leaf(Leaf::SubOut(k, j)));
         }
     }
+    leaves
+}
 
+/// The equations lowered to IR nodes.
+struct Lowered {
+    /// dq/dt.
+    kinematics: Vec<Nid>,
+    /// Lower triangle of the mass matrix (`None`: structurally zero).
+    mass: Vec<Vec<Option<Nid>>>,
+    /// The forcing vector.
+    forcing: Vec<Nid>,
+    /// The solve of `M du/dt = f`.
+    solve: Solve,
+    /// d/dt of the extra states.
+    extra: Vec<Nid>,
+    /// The outputs.
+    outputs: Vec<Nid>,
+    /// The initial state.
+    initial: Vec<Nid>,
+    /// Subroutine arguments.
+    sub_args: Vec<Vec<Nid>>,
+    /// User-function calls in model order.
+    call_order: Vec<Nid>,
+}
+
+/// Lowers `exprs` of `item` (errors name the item).
+fn lower_all(
+    lw: &mut Lowering<'_>,
+    exprs: &[ExprId],
+    item: impl Fn(usize) -> ItemRef,
+) -> Result<Vec<Nid>, ProgramError> {
+    exprs
+        .iter()
+        .enumerate()
+        .map(|(k, e)| {
+            lw.lower(*e)
+                .map_err(|UnboundSymbol(name)| ProgramError::Unbound {
+                    name,
+                    item: item(k),
+                })
+        })
+        .collect()
+}
+
+/// Lowers every equation, in the order that numbers the IR (and so the
+/// generated constants): kinematics, mass matrix, forcing, subroutine
+/// arguments, the solve, extra states, outputs, initial values.
+fn lower(
+    model: &mut ResolvedModel,
+    eqs: &Equations,
+    ir: &mut Ir,
+    leaves: &FxHashMap<SymId, Nid>,
+) -> Result<Lowered, ProgramError> {
+    let sys = &mut model.system;
+    let n = eqs.coordinates.len();
+    let coordinate_bodies: Vec<ItemRef> = sys
+        .coordinates()
+        .iter()
+        .map(|c| ItemRef::Body(c.body))
+        .collect();
+    let subs = sys.subroutines().to_vec();
     let mut user_calls: Vec<(ExprId, Nid)> = Vec::new();
 
-    // Derivatives: kinematics, mass matrix, forcing, solve.
-    let (kin, mass, forcing, sub_args) = {
-        let mut lw = Lowering::new(&mut sys.arena, &mut ir, &leaves);
-        let kin: Vec<Nid> = eqs
-            .kinematics
-            .iter()
-            .map(|e| lw.lower(*e))
-            .collect::<Result<_, _>>()?;
-        let mut mass: Vec<Vec<Option<Nid>>> = vec![vec![None; n]; n];
-        for i in 0..n {
-            for j in 0..=i {
-                let e = eqs.mass_matrix[i][j];
-                if !lw.is_zero(e) {
-                    mass[i][j] = Some(lw.lower(e)?);
-                }
+    let mut lw = Lowering::new(&mut sys.arena, ir, leaves);
+    let kinematics = lower_all(&mut lw, &eqs.kinematics, |k| coordinate_bodies[k])?;
+    let mut mass: Vec<Vec<Option<Nid>>> = vec![vec![None; n]; n];
+    for i in 0..n {
+        for j in 0..=i {
+            let e = eqs.mass_matrix[i][j];
+            if !lw.is_zero(e) {
+                mass[i][j] = Some(lower_all(&mut lw, &[e], |_| coordinate_bodies[i])?[0]);
             }
         }
-        let forcing: Vec<Nid> = eqs
-            .forcing
-            .iter()
-            .map(|e| lw.lower(*e))
-            .collect::<Result<_, _>>()?;
-        let sub_args: Vec<Vec<Nid>> = subs
-            .iter()
-            .map(|s| {
-                s.args
-                    .iter()
-                    .map(|a| lw.lower(*a))
-                    .collect::<Result<Vec<_>, _>>()
-            })
-            .collect::<Result<_, _>>()?;
-        user_calls.extend(lw.user_calls());
-        (kin, mass, forcing, sub_args)
-    };
-    let solve = ldlt_solve(&mut ir, &mass, &forcing);
+    }
+    let forcing = lower_all(&mut lw, &eqs.forcing, |_| ItemRef::Model)?;
+    let mut sub_args = Vec::with_capacity(subs.len());
+    for (k, s) in subs.iter().enumerate() {
+        sub_args.push(lower_all(&mut lw, &s.args, |_| ItemRef::Subroutine(k))?);
+    }
+    user_calls.extend(lw.user_calls());
+
+    let solve = ldlt_solve(ir, &mass, &forcing);
     let mut with_du = leaves.clone();
     for (i, s) in eqs.speed_rates.iter().enumerate() {
         with_du.insert(*s, solve.du[i]);
     }
-    let extra: Vec<Nid> = {
-        let mut lw = Lowering::new(&mut sys.arena, &mut ir, &with_du);
-        let v: Vec<Nid> = eqs
-            .state_derivatives
-            .iter()
-            .map(|e| lw.lower(*e))
-            .collect::<Result<_, _>>()?;
-        user_calls.extend(lw.user_calls());
-        v
-    };
+    let mut lw = Lowering::new(&mut sys.arena, ir, &with_du);
+    let state_syms = eqs.states.clone();
+    let extra = lower_all(&mut lw, &eqs.state_derivatives, |k| {
+        ItemRef::State(state_syms[k])
+    })?;
+    user_calls.extend(lw.user_calls());
 
-    // Outputs (du/dt read from the derivatives).
+    // Outputs read du/dt from the derivatives.
     let mut with_accel = leaves.clone();
     for (i, s) in eqs.speed_rates.iter().enumerate() {
         with_accel.insert(*s, ir.leaf(Leaf::Accel(i)));
     }
-    let outputs_exprs: Vec<ExprId> = sys.outputs().iter().map(|o| o.expr).collect();
-    let outs: Vec<Nid> = {
-        let mut lw = Lowering::new(&mut sys.arena, &mut ir, &with_accel);
-        let v: Vec<Nid> = outputs_exprs
-            .iter()
-            .map(|e| lw.lower(*e))
-            .collect::<Result<_, _>>()?;
-        user_calls.extend(lw.user_calls());
-        v
-    };
+    let output_exprs: Vec<ExprId> = sys.outputs().iter().map(|o| o.expr).collect();
+    let mut lw = Lowering::new(&mut sys.arena, ir, &with_accel);
+    let outputs = lower_all(&mut lw, &output_exprs, ItemRef::Output)?;
+    user_calls.extend(lw.user_calls());
 
-    // Initial state.
     let mut initial_exprs: Vec<ExprId> = sys.coordinates().iter().map(|c| c.initial_q).collect();
     initial_exprs.extend(sys.coordinates().iter().map(|c| c.initial_u));
     initial_exprs.extend(sys.states().iter().map(|s| s.initial));
-    let initial: Vec<Nid> = {
-        let mut lw = Lowering::new(&mut sys.arena, &mut ir, &leaves);
-        initial_exprs
-            .iter()
-            .map(|e| lw.lower(*e))
-            .collect::<Result<_, _>>()?
-    };
+    let mut lw = Lowering::new(&mut sys.arena, ir, leaves);
+    let initial = lower_all(&mut lw, &initial_exprs, |_| ItemRef::Model)?;
 
     // User-function calls in model order (their creation order).
     user_calls.sort();
@@ -199,37 +282,56 @@ pub fn build(model: &mut ResolvedModel, eqs: &Equations) -> Result<Program, Prog
             call_order.push(nid);
         }
     }
+    Ok(Lowered {
+        kinematics,
+        mass,
+        forcing,
+        solve,
+        extra,
+        outputs,
+        initial,
+        sub_args,
+        call_order,
+    })
+}
 
-    // Names.
-    let state_names: Vec<String> = eqs
-        .coordinates
-        .iter()
-        .chain(&eqs.speeds)
-        .chain(&eqs.states)
-        .map(|s| sys.arena.symbol(*s).name.clone())
-        .collect();
-    let state_units: Vec<String> = eqs
-        .coordinates
-        .iter()
-        .chain(&eqs.speeds)
-        .chain(&eqs.states)
-        .map(|s| sys.arena.symbol(*s).unit.clone().unwrap_or_default())
-        .collect();
-    let mut reserved: FxHashSet<String> = state_names.iter().cloned().collect();
-    for s in &inputs {
-        reserved.insert(sys.arena.symbol(*s).name.clone());
-    }
-    for sub in &subs {
-        for o in &sub.outputs {
-            reserved.insert(sys.arena.symbol(*o).name.clone());
+/// Names for generated code: hints for readable values, and the names the
+/// generated ones must avoid.
+struct Naming {
+    hints: FxHashMap<Nid, String>,
+    /// Names taken in every block.
+    reserved: FxHashSet<String>,
+    /// Names taken in the outputs block (the accelerations too).
+    output_reserved: FxHashSet<String>,
+}
+
+impl Naming {
+    fn new(ir: &Ir, interface: &Interface, lowered: &Lowered) -> Naming {
+        let layout = &interface.states;
+        let mut reserved: FxHashSet<String> = layout.states().map(|s| s.name.clone()).collect();
+        reserved.extend(interface.inputs.iter().map(|i| i.name.clone()));
+        for sub in &interface.subroutines {
+            reserved.extend(sub.outputs.iter().cloned());
+        }
+        for r in [
+            "t", "x", "dx", "y", "p", "c", "m", "f", "e", "self", "externs", "inputs",
+        ] {
+            reserved.insert(r.to_string());
+        }
+        let mut output_reserved = reserved.clone();
+        for k in 0..layout.n_speeds() {
+            output_reserved.insert(layout.speed_rate_name(k));
+        }
+        Naming {
+            hints: hints(ir, layout, lowered),
+            reserved,
+            output_reserved,
         }
     }
-    for r in [
-        "t", "x", "dx", "y", "p", "c", "m", "f", "e", "self", "externs", "inputs",
-    ] {
-        reserved.insert(r.to_string());
-    }
+}
 
+/// Readable names: `sin_q4`, `m2_1`, `f3`, `u5_dot`, the factor's `d2`, ...
+fn hints(ir: &Ir, layout: &StateLayout, lowered: &Lowered) -> FxHashMap<Nid, String> {
     let mut hints: FxHashMap<Nid, String> = FxHashMap::default();
     let mut hint = |n: Nid, h: String| {
         hints.entry(n).or_insert(h);
@@ -240,153 +342,102 @@ pub fn build(model: &mut ResolvedModel, eqs: &Equations) -> Result<Program, Prog
             && let Op::Leaf(Leaf::State(i)) = ir.op(args[0])
         {
             let pre = if *f == Func::Sin { "sin" } else { "cos" };
-            hint(nid, format!("{pre}_{}", state_names[*i]));
+            hint(nid, format!("{pre}_{}", layout.state(*i).name));
         }
     }
-    for i in 0..n {
+    for i in 0..layout.n_speeds() {
         for j in 0..=i {
-            if let Some(m) = mass[i][j] {
+            if let Some(m) = lowered.mass[i][j] {
                 hint(m, format!("m{}_{}", i + 1, j + 1));
             }
         }
-        hint(forcing[i], format!("f{}", i + 1));
-        hint(solve.du[i], format!("{}_dot", state_names[n + i]));
-        hint(kin[i], format!("{}_dot", state_names[i]));
+        hint(lowered.forcing[i], format!("f{}", i + 1));
+        hint(lowered.solve.du[i], layout.speed_rate_name(i));
+        hint(
+            lowered.kinematics[i],
+            format!("{}_dot", layout.coordinates[i].name),
+        );
     }
-    for (h, nid) in &solve.hints {
+    for (h, nid) in &lowered.solve.hints {
         hint(*nid, h.clone());
     }
+    hints
+}
 
-    let opts = |hoist: bool| Options {
+/// `Store` tasks writing `values` into slots `first..`.
+fn stores(values: &[Nid], first: usize) -> impl Iterator<Item = Task> + '_ {
+    values.iter().enumerate().map(move |(i, v)| Task::Store {
+        slot: first + i,
+        value: *v,
+    })
+}
+
+/// Schedules every block and assembles the program.
+fn schedule_blocks(mut ir: Ir, lowered: Lowered, names: &Naming, interface: Interface) -> Program {
+    let n = interface.states.n_speeds();
+    let options = |hoist: bool, reserved| Options {
         hoist_constants: hoist,
-        hints: &hints,
-        call_order: &call_order,
-        sub_args: &sub_args,
-        reserved: &reserved,
+        hints: &names.hints,
+        call_order: &lowered.call_order,
+        sub_args: &lowered.sub_args,
+        reserved,
     };
+    let all = options(true, &names.reserved);
 
-    let mut tasks: Vec<Task> = kin
-        .iter()
-        .enumerate()
-        .map(|(i, v)| Task::Store { slot: i, value: *v })
-        .collect();
-    for (pivot, speed) in &solve.pivots {
+    let mut tasks: Vec<Task> = stores(&lowered.kinematics, 0).collect();
+    for (pivot, speed) in &lowered.solve.pivots {
         tasks.push(Task::Check {
             pivot: *pivot,
             speed: *speed,
         });
     }
-    for (i, v) in solve.du.iter().enumerate() {
-        tasks.push(Task::Store {
-            slot: n + i,
-            value: *v,
-        });
-    }
-    for (i, v) in extra.iter().enumerate() {
-        tasks.push(Task::Store {
-            slot: 2 * n + i,
-            value: *v,
-        });
-    }
-    let derivatives = schedule(&ir, &tasks, &opts(true));
+    tasks.extend(stores(&lowered.solve.du, n));
+    tasks.extend(stores(&lowered.extra, 2 * n));
+    let derivatives = schedule(&ir, &tasks, &all);
 
-    let mut out_reserved = reserved.clone();
-    for i in 0..n {
-        out_reserved.insert(format!("{}_dot", state_names[n + i]));
-    }
-    let out_opts = Options {
-        hoist_constants: true,
-        hints: &hints,
-        call_order: &call_order,
-        sub_args: &sub_args,
-        reserved: &out_reserved,
-    };
-    let out_tasks: Vec<Task> = outs
-        .iter()
-        .enumerate()
-        .map(|(i, v)| Task::Store { slot: i, value: *v })
-        .collect();
-    let outputs = schedule(&ir, &out_tasks, &out_opts);
+    let out_tasks: Vec<Task> = stores(&lowered.outputs, 0).collect();
+    let outputs = schedule(&ir, &out_tasks, &options(true, &names.output_reserved));
     let outputs_need_derivatives = outputs.leaves.iter().any(|l| matches!(l, Leaf::Accel(_)));
 
     let zero = ir.num(0.0);
     let mut mm_tasks = Vec::with_capacity(n * n);
     for i in 0..n {
         for j in 0..n {
-            let v = mass[i.max(j)][i.min(j)].unwrap_or(zero);
+            let v = lowered.mass[i.max(j)][i.min(j)].unwrap_or(zero);
             mm_tasks.push(Task::Store {
                 slot: i * n + j,
                 value: v,
             });
         }
     }
-    let mass_matrix = schedule(&ir, &mm_tasks, &opts(true));
-    let f_tasks: Vec<Task> = forcing
-        .iter()
-        .enumerate()
-        .map(|(i, v)| Task::Store { slot: i, value: *v })
-        .collect();
-    let forcing_block = schedule(&ir, &f_tasks, &opts(true));
+    let mass_matrix = schedule(&ir, &mm_tasks, &all);
+    let f_tasks: Vec<Task> = stores(&lowered.forcing, 0).collect();
+    let forcing = schedule(&ir, &f_tasks, &all);
 
-    let mut hoisted: Vec<Nid> = derivatives
-        .hoisted
+    let mut hoisted: Vec<Nid> = [&derivatives, &outputs, &mass_matrix, &forcing]
         .iter()
-        .chain(&outputs.hoisted)
-        .chain(&mass_matrix.hoisted)
-        .chain(&forcing_block.hoisted)
-        .copied()
+        .flat_map(|b| b.hoisted.iter().copied())
         .collect();
     hoisted.sort();
     hoisted.dedup();
-    let c_tasks: Vec<Task> = hoisted
-        .iter()
-        .enumerate()
-        .map(|(k, v)| Task::Store { slot: k, value: *v })
-        .collect();
-    let constants = schedule(&ir, &c_tasks, &opts(false));
-    let i_tasks: Vec<Task> = initial
-        .iter()
-        .enumerate()
-        .map(|(k, v)| Task::Store { slot: k, value: *v })
-        .collect();
-    let initial_block = schedule(&ir, &i_tasks, &opts(false));
+    let c_tasks: Vec<Task> = stores(&hoisted, 0).collect();
+    let constants = schedule(&ir, &c_tasks, &options(false, &names.reserved));
+    let i_tasks: Vec<Task> = stores(&lowered.initial, 0).collect();
+    let initial = schedule(&ir, &i_tasks, &options(false, &names.reserved));
 
-    Ok(Program {
-        n,
-        n_extra,
-        state_names,
-        state_units,
-        parameter_names: params
-            .iter()
-            .map(|s| sys.arena.symbol(*s).name.clone())
-            .collect(),
-        input_names: inputs
-            .iter()
-            .map(|s| sys.arena.symbol(*s).name.clone())
-            .collect(),
-        user_fn_names: sys.arena.user_fns().map(|(_, f)| f.name.clone()).collect(),
-        subroutines: subs
-            .iter()
-            .map(|s| {
-                (
-                    s.name.clone(),
-                    s.outputs
-                        .iter()
-                        .map(|o| sys.arena.symbol(*o).name.clone())
-                        .collect(),
-                )
-            })
-            .collect(),
-        output_names: sys.outputs().iter().map(|o| o.name.clone()).collect(),
-        derivatives,
-        outputs,
-        outputs_need_derivatives,
-        mass_matrix,
-        forcing: forcing_block,
-        constants,
-        hoisted,
-        initial: initial_block,
-        sub_args,
+    Program {
         ir,
-    })
+        blocks: vec![
+            (BlockKind::Derivatives, derivatives),
+            (BlockKind::Outputs, outputs),
+            (BlockKind::Constants, constants),
+            (BlockKind::MassMatrix, mass_matrix),
+            (BlockKind::Forcing, forcing),
+            (BlockKind::Initial, initial),
+        ],
+        hoisted,
+        sub_args: lowered.sub_args,
+        outputs_need_derivatives,
+        interface,
+    }
 }

@@ -73,7 +73,7 @@ macro_rules! differential {
             let mut model = $($path)::+::new();
             let mut params = vec![0.0; <$($path)::+ as Model>::PARAMETER_NAMES.len()];
             model.parameter_values(&mut params);
-            let n = c.program.n;
+            let n = c.program.n();
             for _ in 0..25 {
                 let mut x = [0.0; <$($path)::+ as Model>::STATE_NAMES.len()];
                 for (i, v) in x.iter_mut().enumerate() {

@@ -256,7 +256,7 @@ pub fn generated_code(case: &Case) -> Option<String> {
     };
     let compiled = compiled.ok()?;
     Some(format_tokens(&model_tokens(
-        &compiled,
+        &compiled.program,
         &EmitOptions::default(),
     )))
 }
@@ -270,9 +270,9 @@ fn run_unguarded(case: &Case, tokens_too: bool) -> Outcome {
     };
     let outcome = match compiled {
         Ok(compiled) => {
-            let tokens = model_tokens(&compiled, &EmitOptions::default());
+            let tokens = model_tokens(&compiled.program, &EmitOptions::default());
             let formatted = format_tokens(&tokens);
-            let _ = markdown(&compiled, "fuzz.sim");
+            let _ = markdown(&compiled.program, "fuzz.sim");
             match syn::parse2::<syn::File>(tokens) {
                 Ok(_) => Outcome::Ok,
                 Err(e) => Outcome::BadEmit(format!(
@@ -292,7 +292,7 @@ fn run_unguarded(case: &Case, tokens_too: bool) -> Outcome {
     if let Some(Ok(tokens)) = tokens_too.then(|| text.parse::<proc_macro2::TokenStream>()) {
         match compile_tokens(tokens) {
             Ok(compiled) => {
-                let _ = model_tokens(&compiled, &EmitOptions::default());
+                let _ = model_tokens(&compiled.program, &EmitOptions::default());
             }
             Err(diags) => {
                 let _ = diags.to_syn_error();

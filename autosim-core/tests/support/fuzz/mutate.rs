@@ -225,7 +225,7 @@ pub(crate) fn soup(rng: &mut Rng) -> String {
     let n = rng.range(0, 120);
     match rng.below(3) {
         0 => {
-            let bytes: Vec<u8> = (0..n).map(|_| rng.next() as u8).collect();
+            let bytes: Vec<u8> = (0..n).map(|_| rng.next_u64() as u8).collect();
             String::from_utf8_lossy(&bytes).into_owned()
         }
         1 => (0..n)

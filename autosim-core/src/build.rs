@@ -3,10 +3,8 @@
 //! documentation. Shaped like prost-build: a one-call [`compile`] and a
 //! [`Config`] builder.
 
-use super::file::{format_tokens, header};
-use super::markdown::markdown;
-use super::model::{EmitOptions, model_tokens, snake_case};
 use crate::diag::{SourceFile, Span};
+use crate::emit::{EmitOptions, format_tokens, header, markdown, model_tokens, snake_case};
 use crate::model::Scene;
 use crate::pipeline::compile_source_scene;
 use std::fmt;
@@ -140,7 +138,7 @@ impl Config {
             .map_err(|d| BuildError::Model(d.render(&SourceFile::new(path, String::new()))))?;
         let compiled = compile_source_scene(&file, &self.scene)
             .map_err(|d| BuildError::Model(d.render(&file)))?;
-        let name = compiled.model.system.name().to_string();
+        let name = compiled.program.interface.name.clone();
         let module = self
             .emit
             .module_name
@@ -150,13 +148,13 @@ impl Config {
         let text = format!(
             "{}{}",
             header(&shown, &file.text),
-            format_tokens(&model_tokens(&compiled, &self.emit))
+            format_tokens(&model_tokens(&compiled.program, &self.emit))
         );
         let rust_file = out_dir.join(format!("{module}.rs"));
         let changed = write_if_changed(&rust_file, &text)?;
         let markdown_file = if self.markdown {
             let md = out_dir.join(format!("{module}.md"));
-            write_if_changed(&md, &markdown(&compiled, &shown))?;
+            write_if_changed(&md, &markdown(&compiled.program, &shown))?;
             Some(md)
         } else {
             None

@@ -1,0 +1,135 @@
+//! The bodies and signatures of the generated functions, one per block of
+//! the program: `derivatives`, `outputs`, `mass_matrix`, `forcing`,
+//! `initial_state` and `Constants::new`.
+
+use crate::emit::block::{BlockEmitter, Target};
+use crate::emit::expr::Locals;
+use crate::opt::{Block, BlockKind, Leaf, Program, Stmt};
+use proc_macro2::{Literal, TokenStream};
+use quote::quote;
+
+/// The arguments a block function names: `t` or `_`, the state array or
+/// `_`, as the block reads them.
+pub(super) struct Args {
+    pub t: TokenStream,
+    pub x: TokenStream,
+}
+
+fn uses_time(b: &Block) -> bool {
+    b.leaves.contains(&Leaf::Time)
+}
+
+fn reads_state(b: &Block) -> bool {
+    b.leaves.iter().any(|l| matches!(l, Leaf::State(_)))
+}
+
+/// `t`/`_` and `x`/`_` for the function of a block (the outputs take both
+/// when they compute the derivatives first).
+pub(super) fn args(prog: &Program, kind: BlockKind, locals: &Locals) -> Args {
+    let b = prog.block(kind);
+    let need = kind == BlockKind::Outputs && prog.outputs_need_derivatives;
+    let lx = &locals.x;
+    Args {
+        t: if uses_time(b) || need {
+            quote!(t)
+        } else {
+            quote!(_)
+        },
+        x: if reads_state(b) || need {
+            quote!(#lx)
+        } else {
+            quote!(_)
+        },
+    }
+}
+
+/// The statements of the function of a block.
+pub(super) fn body(be: &BlockEmitter<'_>, kind: BlockKind) -> TokenStream {
+    let prog = be.prog;
+    let l = be.locals;
+    let block = prog.block(kind);
+    let n_states = Literal::usize_unsuffixed(prog.states().len());
+    match kind {
+        BlockKind::Derivatives => be.emit(block, true, Target::Array(&l.dx)),
+        BlockKind::MassMatrix => be.emit(block, true, Target::Matrix(&l.m, prog.n().max(1))),
+        BlockKind::Forcing => be.emit(block, true, Target::Array(&l.f)),
+        BlockKind::Outputs => {
+            let body = be.emit(block, true, Target::Array(&l.y));
+            if !prog.outputs_need_derivatives {
+                return body;
+            }
+            let (lx, ldx, rt) = (&l.x, &l.dx, &be.rt);
+            quote! {
+                let mut #ldx = [0.0; #n_states];
+                <Self as #rt::Model>::derivatives(self, t, #lx, &mut #ldx)?;
+                #body
+            }
+        }
+        BlockKind::Initial => initial_state(be, block, n_states),
+        BlockKind::Constants => constants_new(be, block),
+    }
+}
+
+/// The initial state: only its nonzero entries are computed.
+fn initial_state(be: &BlockEmitter<'_>, block: &Block, n_states: Literal) -> TokenStream {
+    let mut nonzero = block.clone();
+    nonzero.stmts.retain(|st| match st {
+        Stmt::Store { value, .. } => be.prog.ir.as_num(*value) != Some(0.0),
+        _ => true,
+    });
+    if !nonzero
+        .stmts
+        .iter()
+        .any(|st| matches!(st, Stmt::Store { .. }))
+    {
+        return quote!([0.0; #n_states]);
+    }
+    let lx0 = &be.locals.x0;
+    let body = be.emit(&nonzero, false, Target::Array(lx0));
+    quote!(let mut #lx0 = [0.0; #n_states]; #body #lx0)
+}
+
+/// The body of `Constants::new` (which names its argument `_parameters`
+/// when no constant reads a parameter).
+fn constants_new(be: &BlockEmitter<'_>, block: &Block) -> TokenStream {
+    let body = be.emit(block, false, Target::ConstantFields);
+    if reads_parameters(block) {
+        let lp = &be.locals.p;
+        quote!(let #lp = parameters; #body)
+    } else {
+        body
+    }
+}
+
+/// Whether a block reads a parameter.
+pub(super) fn reads_parameters(block: &Block) -> bool {
+    block.leaves.iter().any(|l| matches!(l, Leaf::Param(_)))
+}
+
+/// The constant reporting the cost of a block's function, if it has one:
+/// its name and doc comment.
+pub(super) fn ops_constant(kind: BlockKind) -> Option<(&'static str, TokenStream)> {
+    Some(match kind {
+        BlockKind::Derivatives => (
+            "DERIVATIVE_OPS",
+            quote!(#[doc = r" Operations of one `derivatives` call."]),
+        ),
+        BlockKind::Outputs => (
+            "OUTPUT_OPS",
+            quote!(#[doc = r" Operations of one `outputs` call."]),
+        ),
+        BlockKind::Constants => (
+            "CONSTANT_OPS",
+            quote!(#[doc = r" Operations of a parameter change."]),
+        ),
+        BlockKind::MassMatrix => (
+            "MASS_MATRIX_OPS",
+            quote!(#[doc = r" Operations of one `mass_matrix` call."]),
+        ),
+        BlockKind::Forcing => (
+            "FORCING_OPS",
+            quote!(#[doc = r" Operations of one `forcing` call."]),
+        ),
+        BlockKind::Initial => return None,
+    })
+}

@@ -13,7 +13,9 @@
 pub mod build;
 pub mod diag;
 pub mod emit;
+pub mod expand;
 pub mod expr;
+pub mod limits;
 pub mod mech;
 pub mod model;
 pub mod opt;

@@ -6,7 +6,9 @@ mod expr;
 mod file;
 mod markdown;
 mod model;
+mod placeholder;
 
 pub use file::{format_tokens, header, source_hash};
 pub use markdown::markdown;
 pub use model::{EmitOptions, model_tokens, snake_case};
+pub use placeholder::placeholder;

@@ -334,7 +334,7 @@ pub struct Arena {
     pub(crate) user_fns: Vec<UserFn>,
     pub(crate) threshold: i16,
     /// How many new nodes one derivative may create (see
-    /// [`super::calculus::MAX_DERIVATIVE_NODES`]).
+    /// [`crate::limits::MAX_DERIVATIVE_NODES`]).
     pub(crate) derivative_limit: usize,
 }
 
@@ -357,7 +357,7 @@ impl Arena {
             sym_dxdt: Vec::new(),
             user_fns: Vec::new(),
             threshold: 2,
-            derivative_limit: super::calculus::MAX_DERIVATIVE_NODES,
+            derivative_limit: crate::limits::MAX_DERIVATIVE_NODES,
         };
         // Ids 0 and 1 are always 0 and 1.
         arena.num(Number::ZERO);

@@ -4,12 +4,6 @@ use super::arena::{Arena, ExprError, ExprId, Func, Node, SymId};
 use super::number::Number;
 use rustc_hash::FxHashMap;
 
-/// How many new nodes one derivative may create. Each `partial` of a
-/// derivative multiplies its size, so a chain of them grows exponentially;
-/// past this (50 times the whole arena of a 20-body spatial chain) the
-/// derivative is refused instead of filling the memory.
-pub(crate) const MAX_DERIVATIVE_NODES: usize = 500_000;
-
 impl Arena {
     /// The partial derivative `∂e/∂x` (the paper's `partial`).
     pub fn partial(&mut self, e: ExprId, x: SymId) -> Result<ExprId, ExprError> {

@@ -117,10 +117,15 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
                 match opt.key {
                     SettingKey::Threshold => {
                         if let Some(k) = r.integer(&opt.value, "the threshold") {
-                            if (1..=20).contains(&k) {
-                                r.sys.set_threshold(k as i16);
-                            } else {
-                                r.error(opt.value.span(), "the threshold must be between 1 and 20");
+                            match i16::try_from(k)
+                                .ok()
+                                .filter(|k| crate::limits::THRESHOLDS.contains(k))
+                            {
+                                Some(k) => r.sys.set_threshold(k),
+                                None => r.error(
+                                    opt.value.span(),
+                                    "the threshold must be between 1 and 20",
+                                ),
                             }
                         }
                     }

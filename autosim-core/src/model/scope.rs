@@ -61,15 +61,7 @@ pub(crate) struct Resolver<'a> {
     pub implicit_parameters: Vec<(String, Span)>,
 }
 
-/// How many `let`s and points may wait on one another (a `let` using one
-/// defined later waits for it), before the resolver refuses instead of
-/// overflowing its stack.
-pub(crate) const MAX_PENDING: usize = 200;
-
-/// How deep the value of a `let` or the coordinates of a point may nest
-/// (see `Arena::depth`): every later pass recurses that deep, and a chain
-/// of thousands of `let`s each wrapping the one before overflowed the stack.
-pub(crate) const MAX_NESTING: u32 = 500;
+pub(crate) use crate::limits::{MAX_NESTING, MAX_PENDING};
 
 impl<'a> Resolver<'a> {
     pub fn new(name: &str) -> Resolver<'a> {

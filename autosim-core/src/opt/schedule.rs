@@ -9,9 +9,7 @@ use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::BTreeSet;
 use std::fmt;
 
-/// Expressions nest at most this deep in generated code; deeper values are
-/// named.
-const MAX_INLINE_DEPTH: usize = 24;
+use crate::limits::MAX_INLINE_DEPTH;
 
 /// What a block must produce.
 #[derive(Clone, Debug, PartialEq)]

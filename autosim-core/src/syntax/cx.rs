@@ -12,14 +12,7 @@ use syn::parse::{ParseBuffer, ParseStream};
 use super::kw::ITEM_STARTS;
 use crate::diag::{Diagnostic, Diagnostics, LineCol, Span};
 
-/// How deeply expressions may nest (parentheses, brackets, signs, `^`
-/// chains) before the parser refuses, instead of overflowing the stack.
-pub(crate) const MAX_DEPTH: usize = 100;
-
-/// How many binary operators one expression may have. A chain `a + b + ...`
-/// is parsed in a loop but is as deep as it is long in the AST, which is
-/// walked (and dropped) recursively.
-pub(crate) const MAX_OPERATORS: usize = 10_000;
+pub(crate) use crate::limits::{MAX_DEPTH, MAX_OPERATORS};
 
 /// Why a parser stopped: a syn error not yet recorded, or a diagnostic
 /// already pushed into the context.

@@ -12,9 +12,10 @@ use std::str::FromStr;
 
 use proc_macro2::{TokenStream, TokenTree};
 
+use super::Parsed;
 use super::ast::Model;
 use super::cx::{Cx, MAX_DEPTH};
-use crate::diag::{Diagnostic, Diagnostics, LineCol, SourceFile, Span};
+use crate::diag::{Diagnostic, LineCol, SourceFile, Span};
 
 /// Turns the fallback lexer on for its lifetime (off again on drop, even on
 /// an early return).
@@ -33,16 +34,28 @@ impl Drop for Fallback {
     }
 }
 
-/// Parses a model file (see [`super::parse_source`]).
-pub(crate) fn parse(file: &SourceFile) -> Result<Model, Diagnostics> {
+/// Parses a model file (see [`super::parse_source_recovering`]).
+pub(crate) fn parse(file: &SourceFile) -> Parsed {
     let text = file.text.strip_prefix('\u{feff}').unwrap_or(&file.text);
     let fallback = Fallback::on();
-    let result = match TokenStream::from_str(text) {
+    let parsed = match TokenStream::from_str(text) {
         Ok(tokens) => super::parse_with(Cx::file(end_of(text)), tokens),
-        Err(error) => Err(lex_error(&error, text).into()),
+        Err(error) => Parsed {
+            model: readable_prefix(&error, text),
+            diagnostics: lex_error(&error, text).into(),
+        },
     };
     drop(fallback);
-    result
+    parsed
+}
+
+/// What the text before a lexing error holds (its `model` item names the
+/// placeholder a macro emits on error), read without reporting.
+fn readable_prefix(error: &proc_macro2::LexError, text: &str) -> Option<Model> {
+    let offset = byte_offset(text, start_of(error.span()))?;
+    let prefix = text.get(..offset)?;
+    let tokens = TokenStream::from_str(prefix).ok()?;
+    super::parse_with(Cx::file(end_of(prefix)), tokens).model
 }
 
 /// The position just after the last non-blank character.

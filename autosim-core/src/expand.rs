@@ -1,0 +1,82 @@
+//! The `model!` macro's expansion: everything but the `#[proc_macro]`
+//! shell in `autosim-macros`. A model inline or in a file (with the scene
+//! options of its use) in; the generated module out, or every diagnostic
+//! with a placeholder module named from what could be parsed.
+
+use crate::diag::{Diagnostics, SourceFile, Span};
+use crate::emit::{EmitOptions, model_tokens, placeholder};
+use crate::model::Scene;
+use crate::pipeline::compile_scene;
+use crate::syntax::{self, FileArguments, Parsed, file_arguments};
+use proc_macro2::TokenStream;
+use quote::{quote, quote_spanned};
+use std::path::Path;
+
+/// Expands `autosim::model!(input)`; file paths are relative to
+/// `crate_root` (the using crate's `CARGO_MANIFEST_DIR`).
+pub fn expand_model(input: TokenStream, crate_root: &Path) -> TokenStream {
+    match file_arguments(&input) {
+        Some(Ok(args)) => expand_file(&args, crate_root),
+        Some(Err(e)) => e.to_compile_error(),
+        None => {
+            let parsed = syntax::parse_tokens_recovering(input);
+            let name = model_name(&parsed, &Scene::default());
+            match compile(parsed, &Scene::default()) {
+                Ok(module) => module,
+                Err(d) => {
+                    let mut out = match d.to_syn_error() {
+                        Some(e) => e.to_compile_error(),
+                        None => syn::Error::new(proc_macro2::Span::call_site(), "invalid model")
+                            .to_compile_error(),
+                    };
+                    out.extend(name.as_deref().map(placeholder));
+                    out
+                }
+            }
+        }
+    }
+}
+
+/// The name the generated module and type take.
+fn model_name(parsed: &Parsed, scene: &Scene) -> Option<String> {
+    scene
+        .name
+        .as_ref()
+        .or(parsed.name())
+        .map(|n| n.text.clone())
+}
+
+fn compile(parsed: Parsed, scene: &Scene) -> Result<TokenStream, Diagnostics> {
+    let model = parsed.into_result()?;
+    let compiled = compile_scene(&model, scene)?;
+    Ok(model_tokens(&compiled.program, &EmitOptions::default()))
+}
+
+/// A model file: the module (or the errors, each showing `path:line:col`
+/// and the excerpt, at the span of the path literal), and an
+/// `include_str!` of the file so the crate is rebuilt when it changes.
+fn expand_file(args: &FileArguments, crate_root: &Path) -> TokenStream {
+    let full = crate_root.join(&args.path);
+    let span = args.span;
+    let file = match SourceFile::read(&full, &args.path, Span::from_token(span)) {
+        Ok(f) => f,
+        Err(d) => {
+            return d
+                .to_syn_error()
+                .map(|e| e.to_compile_error())
+                .unwrap_or_default();
+        }
+    };
+    let full_str = full.to_string_lossy().to_string();
+    let track = quote_spanned!(span=> const _: &str = include_str!(#full_str););
+    let parsed = syntax::parse_source_recovering(&file);
+    let name = model_name(&parsed, &args.scene);
+    match compile(parsed, &args.scene) {
+        Ok(module) => quote!(#module #track),
+        Err(d) => {
+            let errors = d.to_syn_error_in(&file, span).map(|e| e.to_compile_error());
+            let placeholder = name.as_deref().map(placeholder);
+            quote!(#errors #placeholder #track)
+        }
+    }
+}

@@ -2,7 +2,7 @@
 //! Run with `cargo bench -p autosim-core --bench derive`.
 
 use autosim_core::expr::ExprId;
-use autosim_core::mech::{BodyId, BodySpec, System};
+use autosim_core::mech::{Axis, BodyId, BodySpec, Rotation, System};
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
@@ -32,10 +32,10 @@ pub fn chain_spatial(n: usize) -> System {
         };
         let mut spec = BodySpec::new(&format!("B{i}"), &parent);
         if let Some(pl) = prev_len {
-            spec.joint = Some([zero, zero, sys.arena.neg(pl)]);
+            spec.joint_point = Some([zero, zero, sys.arena.neg(pl)]);
         }
         let axis = ((i - 1) % 3) as i64 + 1;
-        spec.rotations = vec![axis];
+        spec.joint.rotation = Rotation::Simple(Axis::number(axis).unwrap());
         spec.mass = Some(m);
         let half = sys.arena.rational(-1, 2);
         spec.cm = Some([zero, zero, sys.arena.mul(half, l)]);
@@ -48,13 +48,13 @@ pub fn chain_spatial(n: usize) -> System {
         let s = sys.arena.add(kq, cu);
         let mag = sys.arena.neg(s);
         let parent_id = sys.body_named(&parent).expect("parent");
-        let axis_v = sys.unit_vector(parent_id, axis as usize).expect("axis");
+        let axis_v = sys.unit_vector(parent_id, Axis::number(axis).unwrap());
         let v = axis_v.scale(&mut sys.arena, mag);
         sys.add_moment(&format!("spring{i}"), b, Some(parent_id), v)
             .expect("moment");
         prev_len = Some(l);
     }
-    let n3 = sys.unit_vector(BodyId::N, 3).expect("n3");
+    let n3 = sys.unit_vector(BodyId::N, Axis::A3);
     let mg = sys.arena.neg(g);
     let gv = n3.scale(&mut sys.arena, mg);
     sys.set_gravity(gv);

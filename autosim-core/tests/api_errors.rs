@@ -2,7 +2,7 @@
 //! message names the problem, and random body specifications never panic.
 
 use autosim_core::expr::ExprId;
-use autosim_core::mech::{BodyId, BodySpec, Direction, ModelError, System};
+use autosim_core::mech::{Axis, BodyId, BodySpec, Direction, ModelError, Rotation, System};
 use proptest::prelude::*;
 
 fn err_text(e: &ModelError) -> String {
@@ -47,7 +47,7 @@ fn spec(name: &str, parent: &str) -> BodySpec {
 /// A coordinate symbol (not constant), made by adding a body.
 fn a_coordinate(sys: &mut System) -> ExprId {
     let mut s = spec("Mover", "N");
-    s.rotations = vec![1];
+    s.joint.rotation = Rotation::Simple(Axis::A1);
     sys.add_body(s).unwrap();
     let q = sys.coordinates().last().unwrap().q;
     sys.arena.sym(q)
@@ -95,41 +95,32 @@ fn parent_cycles() {
 }
 
 #[test]
-fn rotation_axes_and_counts() {
-    for axis in [4, 0, -1] {
-        let mut s = sys();
-        let mut b = spec("A", "N");
-        b.rotations = vec![axis];
-        assert_err(
-            s.add_body(b),
-            &[&format!("axis {axis}"), "`A`", "out of range"],
-        );
+fn axis_numbers_outside_1_to_3_are_not_axes() {
+    // The API takes typed axes: what the language writes as 4 or 0 has no
+    // `Axis` to become (the resolver reports it at its span).
+    for k in [4, 0, -1] {
+        assert_eq!(Axis::number(k), None);
     }
-    let mut s = sys();
-    let mut b = spec("A", "N");
-    b.rotations = vec![1, 2];
-    assert_err(s.add_body(b), &["`A`", "2 rotations"]);
-    let mut b = spec("A", "N");
-    b.rotations = vec![1, 2, 3, 1];
-    assert_err(s.add_body(b), &["`A`", "4 rotations"]);
-    let mut b = spec("A", "N");
-    b.rotations = vec![1, 1, 2];
-    assert_err(s.add_body(b), &["`A`", "same axis"]);
-    let mut b = spec("A", "N");
-    b.rotations = vec![3, 1, 5];
-    assert_err(s.add_body(b), &["axis 5", "out of range"]);
+    assert_eq!(Axis::number(2), Some(Axis::A2));
+    assert_eq!(Rotation::from_axes(&[Axis::A1, Axis::A2]), None);
+    assert_eq!(
+        Rotation::from_axes(&[Axis::A3]),
+        Some(Rotation::Simple(Axis::A3))
+    );
 }
 
 #[test]
-
-fn fixed_rotation_axes() {
+fn consecutive_rotations_about_one_axis() {
     let mut s = sys();
-    let half = s.arena.rational(1, 2);
-    for axis in [0, 4] {
-        let mut b = spec("A", "N");
-        b.fixed_rotations = vec![(axis, half)];
-        assert_err(s.add_body(b), &[&format!("axis {axis}"), "out of range"]);
-    }
+    let mut b = spec("A", "N");
+    b.joint.rotation = Rotation::Sequence([Axis::A1, Axis::A1, Axis::A2]);
+    assert_err(s.add_body(b), &["`A`", "same axis"]);
+    let mut b = spec("A", "N");
+    b.joint.rotation = Rotation::Sequence([Axis::A3, Axis::A1, Axis::A1]);
+    assert_err(s.add_body(b), &["`A`", "same axis"]);
+    let mut b = spec("A", "N");
+    b.joint.rotation = Rotation::Sequence([Axis::A3, Axis::A1, Axis::A3]);
+    s.add_body(b).expect("3-1-3 is a sequence");
 }
 
 #[test]
@@ -137,7 +128,7 @@ fn fixed_rotation_angles() {
     let mut s = sys();
     let q = a_coordinate(&mut s);
     let mut b = spec("A", "N");
-    b.fixed_rotations = vec![(1, q)];
+    b.fixed_rotations = vec![(Axis::A1, q)];
     assert_err(s.add_body(b), &["fixed rotation", "`A`", "constant"]);
 }
 
@@ -145,18 +136,18 @@ fn fixed_rotation_angles() {
 fn translations() {
     let mut s = sys();
     let mut b = spec("A", "N");
-    b.translations = vec![Direction::Axis(1); 4];
+    b.joint.translations = vec![Direction::Axis(Axis::A1); 4];
     assert_err(s.add_body(b), &["`A`", "4 translations"]);
     let mut b = spec("A", "N");
-    b.translations = vec![Direction::Axis(7)];
-    assert_err(s.add_body(b), &["axis 7", "out of range"]);
+    b.joint.translations = vec![Direction::Axis(Axis::A2), Direction::Axis(Axis::A2)];
+    assert_err(s.add_body(b), &["already translates along axis 2"]);
     let zero = s.arena.zero();
     let mut b = spec("A", "N");
-    b.translations = vec![Direction::Vector([zero; 3])];
+    b.joint.translations = vec![Direction::Vector([zero; 3])];
     assert_err(s.add_body(b), &["`A`", "zero vector"]);
     let q = a_coordinate(&mut s);
     let mut b = spec("A", "N");
-    b.translations = vec![Direction::Vector([q, zero, zero])];
+    b.joint.translations = vec![Direction::Vector([q, zero, zero])];
     assert_err(s.add_body(b), &["translation direction", "`A`", "constant"]);
 }
 
@@ -182,16 +173,16 @@ fn duplicate_names() {
     // The time symbol and generated coordinate names are taken too.
     assert_err(s.add_parameter("t", 1.0, None), &["`t`", "defined twice"]);
     let mut b = spec("C", "N");
-    b.rotations = vec![2];
+    b.joint.rotation = Rotation::Simple(Axis::A2);
     s.add_body(b).unwrap();
     assert_err(s.add_parameter("q1", 1.0, None), &["`q1`", "defined twice"]);
     // Coordinate names that collide with a parameter.
     let mut b = spec("D", "N");
-    b.rotations = vec![1];
+    b.joint.rotation = Rotation::Simple(Axis::A1);
     b.coordinate_names = Some(vec!["k".to_string()]);
     assert_err(s.add_body(b), &["`k`", "defined twice"]);
     // Forces and moments by name.
-    let v = s.unit_vector(a, 1).unwrap();
+    let v = s.unit_vector(a, Axis::A1);
     let p = s.point_named("P").unwrap();
     s.add_force("F", p, None, v.clone()).unwrap();
     assert_err(
@@ -207,7 +198,7 @@ fn non_constant_geometry_and_mass() {
     let q = a_coordinate(&mut s);
     let zero = s.arena.zero();
     let mut b = spec("A", "N");
-    b.joint = Some([q, zero, zero]);
+    b.joint_point = Some([q, zero, zero]);
     assert_err(s.add_body(b), &["joint coordinates", "`A`", "constant"]);
     let mut b = spec("A", "N");
     b.cm = Some([zero, q, zero]);
@@ -221,13 +212,13 @@ fn non_constant_geometry_and_mass() {
     b.inertia = Some(m);
     assert_err(s.add_body(b), &["inertia", "`A`", "constant"]);
     let mut b = spec("A", "N");
-    b.rotations = vec![1];
+    b.joint.rotation = Rotation::Simple(Axis::A1);
     b.initial_coordinates = Some(vec![q]);
     assert_err(s.add_body(b), &["initial coordinate", "`A`", "constant"]);
     // Time and inputs are not constant either.
     let t = s.arena.sym(s.time());
     let mut b = spec("A", "N");
-    b.joint = Some([zero, zero, t]);
+    b.joint_point = Some([zero, zero, t]);
     assert_err(s.add_body(b), &["joint coordinates", "constant"]);
     let i = s.add_input("steer", 0.0, None).unwrap();
     let i = s.arena.sym(i);
@@ -240,27 +231,27 @@ fn non_constant_geometry_and_mass() {
 fn wrong_name_counts() {
     let mut s = sys();
     let mut b = spec("A", "N");
-    b.rotations = vec![1, 2, 3];
+    b.joint.rotation = Rotation::Sequence([Axis::A1, Axis::A2, Axis::A3]);
     b.coordinate_names = Some(vec!["a".into(), "b".into()]);
     assert_err(
         s.add_body(b),
         &["`A`", "3 degrees of freedom", "2 coordinate"],
     );
     let mut b = spec("A", "N");
-    b.translations = vec![Direction::Axis(1)];
+    b.joint.translations = vec![Direction::Axis(Axis::A1)];
     b.speed_names = Some(vec!["a".into(), "b".into()]);
-    assert_err(s.add_body(b), &["`A`", "1 degrees of freedom", "2 speed"]);
+    assert_err(s.add_body(b), &["`A`", "1 degree of freedom", "2 speed"]);
     let mut b = spec("A", "N");
-    b.rotations = vec![3];
+    b.joint.rotation = Rotation::Simple(Axis::A3);
     b.initial_speeds = Some(vec![]);
     assert_err(s.add_body(b), &["`A`", "initial speed"]);
     let mut b = spec("A", "N");
-    b.rotations = vec![3];
+    b.joint.rotation = Rotation::Simple(Axis::A3);
     b.small = vec![true, false];
     assert_err(s.add_body(b), &["`A`", "small flags"]);
     // A name given twice within one body.
     let mut b = spec("A", "N");
-    b.rotations = vec![1, 2, 3];
+    b.joint.rotation = Rotation::Sequence([Axis::A1, Axis::A2, Axis::A3]);
     b.coordinate_names = Some(vec!["a".into(), "a".into(), "c".into()]);
     assert_err(s.add_body(b), &["`a`", "defined twice"]);
 }
@@ -294,25 +285,25 @@ fn failed_bodies_leave_no_trace() {
     // retry fail.
     let mut s = sys();
     let mut b = spec("A", "N");
-    b.rotations = vec![1, 2];
+    b.joint.rotation = Rotation::Sequence([Axis::A1, Axis::A1, Axis::A2]);
     assert!(s.add_body(b).is_err());
     let mut b = spec("A", "N");
-    b.rotations = vec![1, 2, 3];
+    b.joint.rotation = Rotation::Sequence([Axis::A1, Axis::A2, Axis::A3]);
     b.coordinate_names = Some(vec!["x".into(), "y".into(), "x".into()]);
     assert!(s.add_body(b).is_err());
     let mut b = spec("A", "N");
-    b.rotations = vec![1, 2, 3];
+    b.joint.rotation = Rotation::Sequence([Axis::A1, Axis::A2, Axis::A3]);
     b.coordinate_names = Some(vec!["x".into(), "y".into(), "z".into()]);
     s.add_body(b).expect("a corrected body is accepted");
     assert_eq!(s.coordinates().len(), 3);
     // A non-constant mass is found after the body's coordinates exist.
     let q = s.arena.sym(s.coordinates()[0].q);
     let mut b = spec("B", "N");
-    b.rotations = vec![2];
+    b.joint.rotation = Rotation::Simple(Axis::A2);
     b.mass = Some(q);
     assert_err(s.add_body(b), &["mass", "constant"]);
     let mut b = spec("B", "N");
-    b.rotations = vec![2];
+    b.joint.rotation = Rotation::Simple(Axis::A2);
     s.add_body(b).expect("the next body is accepted");
     s.equations().unwrap();
 }
@@ -323,8 +314,8 @@ fn failed_bodies_leave_no_trace() {
 struct RandomSpec {
     name: usize,
     parent: usize,
-    translations: Vec<(i64, Option<[i8; 3]>)>,
-    rotations: Vec<i64>,
+    translations: Vec<(usize, Option<[i8; 3]>)>,
+    rotations: Vec<usize>,
     small: Vec<bool>,
     names: Option<usize>,
     joint_kind: u8,
@@ -341,10 +332,10 @@ fn random_spec() -> impl Strategy<Value = RandomSpec> {
         0..NAMES.len(),
         0..PARENTS.len(),
         prop::collection::vec(
-            (-1i64..5, prop::option::of(prop::array::uniform3(-1i8..2))),
+            (0usize..3, prop::option::of(prop::array::uniform3(-1i8..2))),
             0..5,
         ),
-        prop::collection::vec(-1i64..5, 0..5),
+        prop::collection::vec(0usize..3, 0..5),
         prop::collection::vec(any::<bool>(), 0..8),
         prop::option::of(0usize..8),
         0u8..4,
@@ -383,21 +374,25 @@ fn make_spec(s: &mut System, r: &RandomSpec, serial: usize) -> BodySpec {
     let mut b = spec(NAMES[r.name], PARENTS[r.parent]);
     let zero = s.arena.zero();
     for (axis, vector) in &r.translations {
-        b.translations.push(match vector {
+        b.joint.translations.push(match vector {
             Some(v) => Direction::Vector(v.map(|x| s.arena.int(i64::from(x)))),
-            None => Direction::Axis(*axis),
+            None => Direction::Axis(Axis::from_index(*axis)),
         });
     }
-    b.rotations = r.rotations.clone();
+    let axes: Vec<Axis> = r.rotations.iter().map(|k| Axis::from_index(*k)).collect();
+    // A random count of axes: 0, 1 and 3 are rotations, others are not.
+    b.joint.rotation = match r.quaternion {
+        true => Rotation::Quaternion,
+        false => Rotation::from_axes(&axes).unwrap_or_default(),
+    };
     b.small = r.small.clone();
-    b.quaternion = r.quaternion;
     b.locked = r.locked.clone();
     if let Some(n) = r.names {
         b.coordinate_names = Some((0..n).map(|k| format!("c{serial}_{k}")).collect());
     }
     let t = s.arena.sym(s.time());
     let half = s.arena.rational(1, 2);
-    b.joint = match r.joint_kind {
+    b.joint_point = match r.joint_kind {
         0 => None,
         1 => Some([half, zero, half]),
         2 => Some([t, zero, zero]),
@@ -439,13 +434,15 @@ proptest! {
             }
         }
         // Whatever was accepted gives equations, and accepted bodies are
-        // valid: rotations 0, 1 or 3 about axes 1..3, at most 3
-        // translations.
+        // valid: at most 3 translations, no rotation sequence turning about
+        // one axis twice in a row.
         let eqs = s.equations();
         prop_assert!(eqs.is_ok(), "{:?}", eqs.err());
         for b in s.bodies().iter().skip(1) {
-            prop_assert!(b.rotation_axes.iter().all(|a| *a < 3));
-            prop_assert!(b.rotation_axes.len() <= 3 && b.rotation_axes.len() != 2);
+            prop_assert!(b.joint.translations.len() <= 3);
+            if let Rotation::Sequence([a, b, c]) = b.joint.rotation {
+                prop_assert!(a != b && b != c);
+            }
         }
         let _ = BodyId::N;
     }

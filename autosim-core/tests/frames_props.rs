@@ -5,7 +5,9 @@
 //! unit vectors in N are the rows of `C_BN = C_BA C_AN`.
 
 use autosim_core::expr::{Arena, Bindings, ExprId, NoUserFunctions, SymId, SymbolKind};
-use autosim_core::mech::{BodyId, BodySpec, Direction, FrameId, Frames, System, UvId, Vector};
+use autosim_core::mech::{
+    Axis, BodyId, BodySpec, Direction, FrameId, Frames, Rotation, System, UvId, Vector,
+};
 use nalgebra::{Matrix3, Rotation3, Unit, Vector3};
 use proptest::prelude::*;
 
@@ -132,7 +134,7 @@ fn build(t: &FrameTree) -> Built {
         let f = frames.add_rotated(
             &mut arena,
             parent,
-            t.axes[i],
+            Axis::from_index(t.axes[i]),
             q,
             &format!("F{i}"),
             &format!("f{i}_"),
@@ -248,11 +250,11 @@ const SEQUENCES: [[i64; 3]; 4] = [[1, 2, 3], [3, 2, 1], [3, 1, 3], [2, 3, 1]];
 fn body_system(seq: [i64; 3], a_axis: i64) -> System {
     let mut sys = System::new("Frames");
     let mut a = BodySpec::new("A", "N");
-    a.rotations = vec![a_axis];
+    a.joint.rotation = Rotation::Simple(Axis::number(a_axis).unwrap());
     let mut b = BodySpec::new("B", "A");
-    b.rotations = seq.to_vec();
+    b.joint.rotation = Rotation::Sequence(seq.map(|k| Axis::number(k).unwrap()));
     let mut c = BodySpec::new("C", "B");
-    c.translations = vec![Direction::Axis(2)];
+    c.joint.translations = vec![Direction::Axis(Axis::A2)];
     sys.add_bodies(vec![a, b, c]).unwrap();
     sys
 }

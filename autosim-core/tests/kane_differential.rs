@@ -9,7 +9,9 @@
 use autosim_core::expr::{
     Arena, Bindings, ExprId, NoUserFunctions, Number, OpCount, SymId, SymbolKind,
 };
-use autosim_core::mech::{BodyId, BodySpec, Direction, Dyadic, PointId, System, Vector};
+use autosim_core::mech::{
+    Axis, BodyId, BodySpec, Direction, Dyadic, PointId, Rotation, System, Vector,
+};
 use nalgebra::{DMatrix, DVector};
 use rustc_hash::FxHashMap;
 
@@ -155,8 +157,12 @@ fn rich_model(opt: &Options) -> System {
     let zero = sys.arena.zero();
 
     let mut b1 = BodySpec::new("B1", "N");
-    b1.translations = vec![Direction::Axis(1), Direction::Axis(2), Direction::Axis(3)];
-    b1.rotations = vec![1, 2, 3];
+    b1.joint.translations = vec![
+        Direction::Axis(Axis::A1),
+        Direction::Axis(Axis::A2),
+        Direction::Axis(Axis::A3),
+    ];
+    b1.joint.rotation = Rotation::Sequence([Axis::A1, Axis::A2, Axis::A3]);
     b1.mass = Some(m1);
     b1.cm = Some([
         num(&mut sys, 0.05),
@@ -166,13 +172,13 @@ fn rich_model(opt: &Options) -> System {
     b1.inertia = Some(sym_matrix(&mut sys, [0.9, 1.1, 1.4], [0.05, -0.03, 0.02]));
 
     let mut b2 = BodySpec::new("B2", "B1");
-    b2.joint = Some([num(&mut sys, 0.1), num(&mut sys, 0.2), num(&mut sys, -0.3)]);
-    b2.translations = vec![Direction::Vector([
+    b2.joint_point = Some([num(&mut sys, 0.1), num(&mut sys, 0.2), num(&mut sys, -0.3)]);
+    b2.joint.translations = vec![Direction::Vector([
         sys.arena.int(1),
         sys.arena.int(2),
         sys.arena.int(2),
     ])];
-    b2.rotations = vec![2];
+    b2.joint.rotation = Rotation::Simple(Axis::A2);
     b2.mass = Some(num(&mut sys, 1.3));
     b2.cm = Some([
         num(&mut sys, 0.02),
@@ -182,20 +188,20 @@ fn rich_model(opt: &Options) -> System {
     b2.inertia = Some(sym_matrix(&mut sys, [0.2, 0.15, 0.1], [0.01, 0.0, -0.02]));
 
     let mut b3 = BodySpec::new("B3", "B2");
-    b3.joint = Some([zero, num(&mut sys, -0.3), zero]);
-    b3.rotations = vec![3];
+    b3.joint_point = Some([zero, num(&mut sys, -0.3), zero]);
+    b3.joint.rotation = Rotation::Simple(Axis::A3);
     b3.mass = Some(zero);
     b3.inertia = Some([[zero; 3]; 3]);
 
     let mut b4 = BodySpec::new("B4", "B3");
-    b4.joint = Some([num(&mut sys, 0.05), zero, zero]);
-    b4.rotations = vec![1];
+    b4.joint_point = Some([num(&mut sys, 0.05), zero, zero]);
+    b4.joint.rotation = Rotation::Simple(Axis::A1);
     b4.mass = Some(num(&mut sys, 0.8));
     b4.cm = Some([zero, num(&mut sys, -0.25), num(&mut sys, 0.03)]);
     b4.inertia = Some(sym_matrix(&mut sys, [0.05, 0.02, 0.06], [0.0, 0.004, 0.0]));
 
     let mut b5 = BodySpec::new("B5", "B2");
-    b5.joint = Some([num(&mut sys, 0.1), num(&mut sys, 0.1), num(&mut sys, 0.1)]);
+    b5.joint_point = Some([num(&mut sys, 0.1), num(&mut sys, 0.1), num(&mut sys, 0.1)]);
     b5.mass = Some(num(&mut sys, 0.6));
     b5.cm = Some([num(&mut sys, 0.02), zero, num(&mut sys, -0.05)]);
     b5.inertia = Some(sym_matrix(
@@ -205,8 +211,8 @@ fn rich_model(opt: &Options) -> System {
     ));
 
     let mut b6 = BodySpec::new("B6", "B1");
-    b6.joint = Some([num(&mut sys, -0.2), zero, num(&mut sys, 0.1)]);
-    b6.translations = vec![Direction::Vector([
+    b6.joint_point = Some([num(&mut sys, -0.2), zero, num(&mut sys, 0.1)]);
+    b6.joint.translations = vec![Direction::Vector([
         sys.arena.int(1),
         sys.arena.int(-1),
         sys.arena.rational(1, 2),
@@ -216,8 +222,8 @@ fn rich_model(opt: &Options) -> System {
     b6.inertia = Some(sym_matrix(&mut sys, [0.03, 0.03, 0.04], [0.0, 0.0, 0.005]));
 
     let mut b7 = BodySpec::new("B7", "B6");
-    b7.joint = Some([num(&mut sys, 0.1), num(&mut sys, -0.1), zero]);
-    b7.rotations = vec![2, 3, 1];
+    b7.joint_point = Some([num(&mut sys, 0.1), num(&mut sys, -0.1), zero]);
+    b7.joint.rotation = Rotation::Sequence([Axis::A2, Axis::A3, Axis::A1]);
     b7.mass = Some(num(&mut sys, 0.4));
     b7.cm = Some([
         num(&mut sys, 0.03),
@@ -240,7 +246,7 @@ fn rich_model(opt: &Options) -> System {
         id(&sys, "B6"),
     );
     if opt.gravity {
-        let n3 = sys.unit_vector(BodyId::N, 3).unwrap();
+        let n3 = sys.unit_vector(BodyId::N, Axis::A3);
         let mg = sys.arena.neg(g);
         let gv = n3.scale(&mut sys.arena, mg);
         sys.set_gravity(gv);
@@ -290,7 +296,7 @@ fn rich_model(opt: &Options) -> System {
             m = sys.arena.add(m, cu);
         }
         let m = sys.arena.neg(m);
-        let d = sys.unit_vector(parent, axis).unwrap();
+        let d = sys.unit_vector(parent, Axis::number(axis as i64).unwrap());
         let mv = d.scale(&mut sys.arena, m);
         sys.add_moment(name, child, Some(parent), mv).unwrap();
     }
@@ -306,7 +312,9 @@ fn rich_model(opt: &Options) -> System {
             (ib4, 3, "0.3f*u10 + cos(q10)"),
         ] {
             let x = e(&mut sys, text);
-            let t = sys.unit_vector(b, axis).unwrap().scale(&mut sys.arena, x);
+            let t = sys
+                .unit_vector(b, Axis::number(axis).unwrap())
+                .scale(&mut sys.arena, x);
             f = f.add(&mut sys.arena, &t);
         }
         sys.add_force("push", p1, Some(p2), f).unwrap();
@@ -314,19 +322,21 @@ fn rich_model(opt: &Options) -> System {
         let ib5 = id(&sys, "B5");
         let cm5 = sys.body(ib5).cm_point;
         let x = e(&mut sys, "u7 - q8");
-        let f5 = sys.unit_vector(ib3, 2).unwrap().scale(&mut sys.arena, x);
+        let f5 = sys.unit_vector(ib3, Axis::A2).scale(&mut sys.arena, x);
         sys.add_force("push5", cm5, None, f5).unwrap();
         // A moment on B4 with reaction on B1, components in N and B2.
         let mut m = Vector::zero();
         for (b, axis, text) in [(BodyId::N, 3, "u4 - 0.5f*q6"), (ib2, 1, "q2*q7 + 1")] {
             let x = e(&mut sys, text);
-            let t = sys.unit_vector(b, axis).unwrap().scale(&mut sys.arena, x);
+            let t = sys
+                .unit_vector(b, Axis::number(axis).unwrap())
+                .scale(&mut sys.arena, x);
             m = m.add(&mut sys.arena, &t);
         }
         sys.add_moment("twist", ib4, Some(ib1), m).unwrap();
         // A moment on B1 alone.
         let x = e(&mut sys, "-0.4f*u5");
-        let m1v = sys.unit_vector(ib1, 2).unwrap().scale(&mut sys.arena, x);
+        let m1v = sys.unit_vector(ib1, Axis::A2).scale(&mut sys.arena, x);
         sys.add_moment("drag", ib1, None, m1v).unwrap();
     }
     sys
@@ -468,7 +478,7 @@ fn undamped_model_conserves_energy() {
     for b in body_ids(&sys) {
         let body = sys.body(b).clone();
         let r = sys.pos(body.cm_point, None);
-        let n3 = sys.unit_vector(BodyId::N, 3).unwrap();
+        let n3 = sys.unit_vector(BodyId::N, Axis::A3);
         let z = sys.frames.dot_vec(&mut sys.arena, &r, &n3);
         pe.push(sys.arena.product(&[body.mass, g, z]));
     }
@@ -535,17 +545,17 @@ fn undamped_model_conserves_energy() {
 fn moving_point_force_matches_textbook_kane() {
     let mut sys = System::new("Moving");
     let mut a = BodySpec::new("A", "N");
-    a.rotations = vec![3];
+    a.joint.rotation = Rotation::Simple(Axis::A3);
     a.cm = Some([sys.arena.rational(1, 5), sys.arena.zero(), sys.arena.zero()]);
     let mut b = BodySpec::new("B", "A");
-    b.translations = vec![Direction::Axis(1)];
+    b.joint.translations = vec![Direction::Axis(Axis::A1)];
     sys.add_bodies(vec![a, b]).unwrap();
     let ia = sys.body_named("A").unwrap();
     let q2 = sys.arena.sym(sys.coordinates()[1].q);
     let zero = sys.arena.zero();
     let pt = sys.add_point("slider", ia, [q2, zero, zero]).unwrap();
     let x = e(&mut sys, "1 + q1");
-    let f = sys.unit_vector(ia, 1).unwrap().scale(&mut sys.arena, x);
+    let f = sys.unit_vector(ia, Axis::A1).scale(&mut sys.arena, x);
     sys.add_force("f", pt, None, f).unwrap();
     compare(&mut sys, 99, 4);
 }

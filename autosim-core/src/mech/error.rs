@@ -15,31 +15,16 @@ pub enum ModelError {
     DuplicateName(String),
     /// Bodies whose parents form a cycle (names in cycle order).
     ParentCycle(Vec<String>),
-    /// A rotation or translation axis outside 1..=3.
-    AxisOutOfRange {
+    /// A mistake in one option of a body's specification.
+    Body {
         /// Body name.
         body: String,
-        /// The axis given.
-        axis: i64,
-    },
-    /// A body with 2 or more than 3 rotations.
-    RotationCount {
-        /// Body name.
-        body: String,
-        /// Number of rotations given.
-        count: usize,
-    },
-    /// More than three translations.
-    TranslationCount {
-        /// Body name.
-        body: String,
-        /// Number of translations given.
-        count: usize,
-    },
-    /// A translation direction that is the zero vector.
-    ZeroDirection {
-        /// Body name.
-        body: String,
+        /// The option at fault.
+        field: BodyField,
+        /// What is wrong.
+        message: String,
+        /// How to fix it, if there is more to say than the message.
+        help: Option<String>,
     },
     /// A quantity that must be constant (parameters and numbers only) is not.
     NotConstant {
@@ -55,23 +40,83 @@ pub enum ModelError {
         /// The kind given.
         found: &'static str,
     },
-    /// A wrong number of coordinate or speed names.
-    NameCount {
-        /// Body name.
-        body: String,
-        /// What was named ("coordinates" or "speeds").
-        what: &'static str,
-        /// Number of degrees of freedom.
-        expected: usize,
-        /// Number of names given.
-        got: usize,
-    },
     /// The body `N` cannot be redefined or given options.
     InertialFrame(String),
     /// Something else about an expression.
     Expr(ExprError),
     /// A body, point or force refers to something invalid.
     Invalid(String),
+}
+
+/// The option of a body's specification a problem is in, so that a front
+/// end can point at its text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BodyField {
+    /// The whole list of translations.
+    Translations,
+    /// One translation (by position).
+    Translation(usize),
+    /// The rotation.
+    Rotation,
+    /// A constant rotation (by position).
+    FixedRotation(usize),
+    /// The joint point.
+    JointPoint,
+    /// The mass center.
+    Cm,
+    /// The mass.
+    Mass,
+    /// The inertia matrix.
+    Inertia,
+    /// The small-variable flags.
+    Small,
+    /// The lock flags.
+    Lock,
+    /// The coordinate names.
+    CoordinateNames,
+    /// The speed names.
+    SpeedNames,
+    /// The initial coordinates.
+    InitialCoordinates,
+    /// The initial speeds.
+    InitialSpeeds,
+}
+
+impl ModelError {
+    /// A mistake in option `field` of body `body`.
+    pub fn body(body: &str, field: BodyField, message: String) -> ModelError {
+        ModelError::Body {
+            body: body.to_string(),
+            field,
+            message,
+            help: None,
+        }
+    }
+
+    /// The same error with a fix to suggest.
+    pub fn with_help(mut self, text: &str) -> ModelError {
+        if let ModelError::Body { help, .. } = &mut self {
+            *help = Some(text.to_string());
+        }
+        self
+    }
+
+    /// The message as said where the option is shown (without naming the
+    /// body again).
+    pub fn local_message(&self) -> String {
+        match self {
+            ModelError::Body { message, .. } => message.clone(),
+            other => other.to_string(),
+        }
+    }
+
+    /// The fix to suggest, where the message does not say it.
+    pub fn help(&self) -> Option<&str> {
+        match self {
+            ModelError::Body { help, .. } => help.as_deref(),
+            _ => None,
+        }
+    }
 }
 
 impl From<ExprError> for ModelError {
@@ -105,22 +150,13 @@ impl fmt::Display for ModelError {
                     .collect::<Vec<_>>()
                     .join(" -> ")
             ),
-            ModelError::AxisOutOfRange { body, axis } => write!(
-                f,
-                "axis {axis} of body `{body}` is out of range: axes are 1, 2 or 3"
-            ),
-            ModelError::RotationCount { body, count } => write!(
-                f,
-                "body `{body}` has {count} rotations: a body rotates 0, 1 or 3 times (e.g. `rotate: 3` or `rotate: [1, 2, 3]`)"
-            ),
-            ModelError::TranslationCount { body, count } => write!(
-                f,
-                "body `{body}` has {count} translations: at most 3 are allowed"
-            ),
-            ModelError::ZeroDirection { body } => write!(
-                f,
-                "a translation direction of body `{body}` is the zero vector"
-            ),
+            ModelError::Body { body, message, .. } => {
+                if message.contains(&format!("`{body}`")) {
+                    write!(f, "{message}")
+                } else {
+                    write!(f, "body `{body}`: {message}")
+                }
+            }
             ModelError::NotConstant { what } => write!(
                 f,
                 "the {what} must be constant (parameters and numbers only)"
@@ -130,15 +166,6 @@ impl fmt::Display for ModelError {
                 expected,
                 found,
             } => write!(f, "{context} needs a {expected}, but this is a {found}"),
-            ModelError::NameCount {
-                body,
-                what,
-                expected,
-                got,
-            } => write!(
-                f,
-                "body `{body}` has {expected} degrees of freedom but {got} {what} names were given"
-            ),
             ModelError::InertialFrame(msg) => write!(f, "{msg}"),
             ModelError::Expr(e) => write!(f, "{e}"),
             ModelError::Invalid(msg) => write!(f, "{msg}"),

@@ -6,6 +6,7 @@
 //! rotation is shared: a frame rotated about `a3` has unit vectors
 //! `(b1, b2, a3)`, as in the paper's Table 8 (`c1, c2, b3`).
 
+use super::joint::Axis;
 use super::vector::Vector;
 use crate::expr::{Arena, ExprId};
 use rustc_hash::FxHashMap;
@@ -46,8 +47,8 @@ pub struct Frame {
     pub depth: u32,
     /// The three unit vectors, in axis order.
     pub triad: [UvId; 3],
-    /// Rotation relative to the parent: axis index (0-based) and angle.
-    pub rotation: Option<(usize, ExprId)>,
+    /// Rotation relative to the parent: the axis and the angle.
+    pub rotation: Option<(Axis, ExprId)>,
 }
 
 /// A unit vector.
@@ -121,21 +122,21 @@ impl Frames {
     }
 
     /// Adds a frame rotated from `parent` by `angle` about the parent's axis
-    /// `axis` (0-based). `uv_prefix` names the new unit vectors
+    /// `axis`. `uv_prefix` names the new unit vectors
     /// (`prefix1`...).
     pub fn add_rotated(
         &mut self,
         arena: &mut Arena,
         parent: FrameId,
-        axis: usize,
+        axis: Axis,
         angle: ExprId,
         name: &str,
         uv_prefix: &str,
     ) -> FrameId {
-        let axis = axis % 3;
         let id = FrameId(self.frames.len() as u32);
         let p = self.frames[parent.index()].clone();
-        let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+        let (i, j) = axis.others();
+        let (i, j) = (i.index(), j.index());
         let s = arena.sin(angle);
         let c = arena.cos(angle);
         let ms = arena.neg(s);

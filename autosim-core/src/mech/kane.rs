@@ -20,7 +20,8 @@ use super::frames::FrameId;
 use super::framevec::{
     Fv, Mat3, mat_add, mat_rotate_symmetric, mat_vec, point_inertia, shift_cross_term,
 };
-use super::system::{BodyId, DofKind, System};
+use super::joint::UnitMotion;
+use super::system::{BodyId, System};
 use super::vector::Vector;
 use crate::expr::{ExprId, SymId};
 
@@ -59,33 +60,7 @@ impl Equations {
     }
 }
 
-/// A unit motion of one speed: angular and linear velocity of the body's
-/// origin, body axes.
-struct UnitMotion {
-    w: Fv,
-    v: Fv,
-}
-
 impl System {
-    fn unit_motion(&mut self, k: usize) -> UnitMotion {
-        let c = self.coordinates[k].clone();
-        let body = self.bodies[c.body.index()].clone();
-        let frame = body.frame;
-        let zero = Fv::zero(&self.arena, frame);
-        match c.kind {
-            DofKind::Translation { direction } => {
-                let pf = self.bodies[body.parent.unwrap_or(BodyId::N).index()].frame;
-                let v = Fv::new(pf, direction).reexpress(&mut self.arena, &mut self.frames, frame);
-                UnitMotion { w: zero, v }
-            }
-            DofKind::Rotation { axis } => {
-                let mut e = zero;
-                e.c[axis] = self.arena.one();
-                UnitMotion { w: e, v: zero }
-            }
-        }
-    }
-
     /// Derives the equations of motion (Kane's method, composite-body form).
     pub fn equations(&mut self) -> Result<Equations, LocatedError> {
         let n = self.coordinates.len();
@@ -139,21 +114,8 @@ impl System {
         for b in 1..nb {
             let body = self.bodies[b].clone();
             let a = body.parent.unwrap_or(BodyId::N).index();
-            let pf = self.bodies[a].frame;
             let r = self.joint_vector(BodyId(b as u32));
-            let mut v_rel = Fv::zero(&self.arena, pf);
-            let mut w_rel = Fv::zero(&self.arena, body.frame);
-            for &k in &body.coordinates {
-                let c = self.coordinates[k].clone();
-                let u = self.arena.sym(c.u);
-                match c.kind {
-                    DofKind::Translation { direction } => {
-                        let t = Fv::new(pf, direction).scale(&mut self.arena, u);
-                        v_rel = v_rel.add(&mut self.arena, &t);
-                    }
-                    DofKind::Rotation { axis } => w_rel.c[axis] = u,
-                }
-            }
+            let (v_rel, w_rel) = self.relative_velocity(BodyId(b as u32));
             let w_a = self.bodies[a].w;
             let alpha_a = alpha[a];
             // a0_B = a0_A + α_A × r + w_A × (w_A × r) + 2 w_A × v_rel

@@ -3,29 +3,13 @@
 
 use super::error::ModelError;
 use super::framevec::Fv;
-use super::system::{BodyId, DofKind, PointId, System};
+use super::joint::Axis;
+use super::system::{BodyId, PointId, System};
 use super::vector::Vector;
 use crate::expr::ExprId;
 use rustc_hash::FxHashMap;
 
 impl System {
-    /// The vector from a body's parent's origin to the body's origin, in
-    /// the parent's axes (joint point plus translations).
-    pub(crate) fn joint_vector(&mut self, b: BodyId) -> Fv {
-        let body = self.bodies[b.index()].clone();
-        let parent = body.parent.unwrap_or(BodyId::N);
-        let pf = self.bodies[parent.index()].frame;
-        let mut directions = Vec::new();
-        let mut qs = Vec::new();
-        for &c in &body.coordinates {
-            if let DofKind::Translation { direction } = self.coordinates[c].kind {
-                directions.push(direction);
-                qs.push(self.coordinates[c].q);
-            }
-        }
-        self.joint_offset(pf, &body.joint, &directions, &qs)
-    }
-
     /// The chain of bodies from `b` up to N (inclusive of both).
     fn ancestors(&self, b: BodyId) -> Vec<BodyId> {
         let mut out = vec![b];
@@ -194,14 +178,11 @@ impl System {
             .c
     }
 
-    /// A unit vector of a body: axis 1, 2 or 3.
-    pub fn unit_vector(&mut self, b: BodyId, axis: usize) -> Option<Vector> {
-        if !(1..=3).contains(&axis) {
-            return None;
-        }
+    /// A unit vector of a body.
+    pub fn unit_vector(&mut self, b: BodyId, axis: Axis) -> Vector {
         let f = self.bodies[b.index()].frame;
-        let u = self.frames.frame(f).triad[axis - 1];
-        Some(Vector::uv(&mut self.arena, u))
+        let u = self.frames.frame(f).triad[axis.index()];
+        Vector::uv(&mut self.arena, u)
     }
 }
 

@@ -2,21 +2,26 @@
 //! Kane's equations.
 
 mod body;
+mod body_check;
 mod error;
 mod frames;
 mod framevec;
+mod joint;
 mod kane;
 mod kinematics;
 mod system;
+mod tree;
 mod vector;
 mod vector_ops;
 
-pub use error::{ItemRef, LocatedError, ModelError};
+pub use error::{BodyField, ItemRef, LocatedError, ModelError};
 pub use frames::{Frame, FrameId, Frames, Uv, UvId};
 pub use framevec::{Fv, Mat3};
+pub use joint::{Axis, Direction, DofKind, Joint, Rotation, UnitMotion};
 pub use kane::Equations;
 pub use system::{
-    Body, BodyId, BodySpec, Coordinate, Direction, DofKind, ExtraState, Force, Moment, Output,
-    Point, PointId, Subroutine, System,
+    Body, BodyId, BodySpec, Coordinate, ExtraState, Force, Moment, Output, Point, PointId,
+    Subroutine, System,
 };
+pub use tree::{ParentOrder, order_parents_first};
 pub use vector::{Dyadic, Vector};

@@ -5,6 +5,7 @@
 use super::error::ModelError;
 use super::frames::{FrameId, Frames};
 use super::framevec::{Fv, Mat3};
+use super::joint::{Axis, DofKind, Joint};
 use super::vector::Vector;
 use crate::expr::{Arena, ExprId, SymId, SymbolKind, UserFnId};
 
@@ -33,16 +34,6 @@ impl PointId {
     }
 }
 
-/// A direction of translation, fixed in the parent.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Direction {
-    /// Along the parent's axis 1, 2 or 3.
-    Axis(i64),
-    /// Along a constant vector given by its components in the parent's axes
-    /// (normalized).
-    Vector([ExprId; 3]),
-}
-
 /// What a body is made of and how it moves relative to its parent.
 #[derive(Clone, Debug)]
 pub struct BodySpec {
@@ -54,19 +45,12 @@ pub struct BodySpec {
     pub parent: String,
     /// Joint point: coordinates in the parent's axes from the parent's origin
     /// (default: the parent's origin).
-    pub joint: Option<[ExprId; 3]>,
-    /// Translations along directions fixed in the parent (0 to 3).
-    pub translations: Vec<Direction>,
-    /// Body-fixed rotation axes, in sequence (0, 1 or 3 of 1, 2, 3).
-    pub rotations: Vec<i64>,
-    /// Orientation by Euler parameters (a unit quaternion `e0..e3`, free of
-    /// singularities) instead of `rotations`: three speeds (the angular
-    /// velocity components in the body's axes) and four coordinates, of
-    /// which `e0` is kept as an added state.
-    pub quaternion: bool,
-    /// Constant rotations (axis 1..3, angle) applied at the joint before
-    /// the free rotations (what locked rotations become).
-    pub fixed_rotations: Vec<(i64, ExprId)>,
+    pub joint_point: Option<[ExprId; 3]>,
+    /// How the body moves relative to its parent.
+    pub joint: Joint,
+    /// Constant rotations (axis, angle) applied at the joint before the
+    /// free rotation (what locked rotations become).
+    pub fixed_rotations: Vec<(Axis, ExprId)>,
     /// Degrees of freedom locked at compile time (translations first, then
     /// rotations; empty means none): each becomes a parameter named after
     /// its coordinate, with its initial value as default, and has no speed.
@@ -99,10 +83,8 @@ impl BodySpec {
             name: name.to_string(),
             description: None,
             parent: parent.to_string(),
-            joint: None,
-            translations: Vec::new(),
-            rotations: Vec::new(),
-            quaternion: false,
+            joint_point: None,
+            joint: Joint::fixed(),
             fixed_rotations: Vec::new(),
             locked: Vec::new(),
             mass: None,
@@ -118,38 +100,13 @@ impl BodySpec {
 
     /// Number of degrees of freedom (= speeds).
     pub fn dofs(&self) -> usize {
-        self.translations.len() + self.rotation_dofs()
-    }
-
-    /// Number of rotational degrees of freedom.
-    pub fn rotation_dofs(&self) -> usize {
-        if self.quaternion {
-            3
-        } else {
-            self.rotations.len()
-        }
+        self.joint.dofs()
     }
 
     /// Number of coordinates (one more than the speeds for a quaternion).
     pub fn coordinate_count(&self) -> usize {
-        self.dofs() + usize::from(self.quaternion)
+        self.joint.coordinate_count()
     }
-}
-
-/// How a generalized coordinate moves its body.
-#[derive(Clone, Debug, PartialEq)]
-pub enum DofKind {
-    /// Translation along a unit direction, components in the parent's axes.
-    Translation {
-        /// Unit direction in the parent's axes.
-        direction: [ExprId; 3],
-    },
-    /// Rotation; the speed is the component of the body's angular velocity
-    /// relative to its parent along the body's axis `axis` (0-based).
-    Rotation {
-        /// Body axis index (0-based) of the angular-velocity component.
-        axis: usize,
-    },
 }
 
 /// A generalized coordinate with its speed.
@@ -189,15 +146,16 @@ pub struct Body {
     /// The body's frame (shared with the parent for non-rotating bodies).
     pub frame: FrameId,
     /// Joint point in the parent's axes.
-    pub joint: [ExprId; 3],
+    pub joint_point: [ExprId; 3],
+    /// How the body moves relative to its parent (locked degrees of
+    /// freedom removed).
+    pub joint: Joint,
     /// Indices of the body's coordinates (translations, then rotations).
     pub coordinates: Vec<usize>,
     /// Every declared degree of freedom in order, as (coordinate, speed)
     /// expressions: the symbols of a free one, the parameter and 0 of a
     /// locked one.
     pub dofs: Vec<(ExprId, ExprId)>,
-    /// Rotation axes (0-based) in sequence.
-    pub rotation_axes: Vec<usize>,
     /// Mass.
     pub mass: ExprId,
     /// Inertia matrix about the mass center, body axes.
@@ -341,10 +299,10 @@ impl System {
             children: Vec::new(),
             level: 0,
             frame: FrameId::N,
-            joint: [zero; 3],
+            joint_point: [zero; 3],
+            joint: Joint::fixed(),
             coordinates: Vec::new(),
             dofs: Vec::new(),
-            rotation_axes: Vec::new(),
             mass: zero,
             inertia: [[zero; 3]; 3],
             cm: [zero; 3],

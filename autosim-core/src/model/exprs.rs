@@ -145,7 +145,7 @@ impl Resolver<'_> {
             }
             None => {
                 if let Some(&(b, axis)) = self.uv_short.get(&name.text) {
-                    return self.sys.unit_vector(b, axis).map(Value::Vector);
+                    return Some(Value::Vector(self.sys.unit_vector(b, axis)));
                 }
                 // `n4`: a unit vector of a body that has no axis 4.
                 let frame = name.text.trim_end_matches(|c: char| c.is_ascii_digit());
@@ -312,19 +312,16 @@ impl Resolver<'_> {
             }
         };
         match member {
-            Member::Index { index, span } => {
-                let k = *index as usize;
-                match self.sys.unit_vector(b, k) {
-                    Some(v) => Some(Value::Vector(v)),
-                    None => {
-                        self.error(
-                            *span,
-                            format!("unit vector index {index} is out of range: use 1, 2 or 3"),
-                        );
-                        None
-                    }
+            Member::Index { index, span } => match crate::mech::Axis::number(*index as i64) {
+                Some(axis) => Some(Value::Vector(self.sys.unit_vector(b, axis))),
+                None => {
+                    self.error(
+                        *span,
+                        format!("unit vector index {index} is out of range: use 1, 2 or 3"),
+                    );
+                    None
                 }
-            }
+            },
             Member::Name(n) => match n.text.as_str() {
                 "cm" => Some(Value::Point(self.sys.body(b).cm_point)),
                 "origin" => Some(Value::Point(self.sys.body(b).origin)),

@@ -6,6 +6,7 @@
 //! and `let`s and points are evaluated on first use.
 
 mod bodies;
+mod body_options;
 mod exprs;
 mod scene;
 mod scope;

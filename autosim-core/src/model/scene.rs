@@ -6,6 +6,7 @@
 
 use super::FloatType;
 use crate::diag::Span;
+use crate::mech::Joint;
 use crate::syntax::ast;
 
 /// Options a use site sets on a model.
@@ -37,29 +38,26 @@ impl Scene {
 
     /// Flags for `small` or `lock` named in the scene for one body with
     /// these coordinate names (translations, then rotations; a quaternion's
-    /// `e0` skipped), and the names that matched.
+    /// `e0` matches no speed), and the names that matched.
     pub(crate) fn flags(
         names: &[ast::Name],
         body: &str,
         coordinates: &[String],
-        dofs: usize,
-        quaternion_at: Option<usize>,
+        joint: &Joint,
     ) -> (Vec<bool>, Vec<String>) {
-        let mut flags = vec![false; dofs];
+        let mut flags = vec![false; joint.dofs()];
         let mut matched = Vec::new();
         for n in names {
             if n.text == body {
                 flags.iter_mut().for_each(|f| *f = true);
                 matched.push(n.text.clone());
-            } else if let Some(k) = coordinates.iter().position(|c| *c == n.text) {
-                let k = match quaternion_at {
-                    Some(e0) if k > e0 => k - 1,
-                    _ => k,
-                };
-                if k < dofs {
-                    flags[k] = true;
-                    matched.push(n.text.clone());
-                }
+            } else if let Some(k) = coordinates
+                .iter()
+                .position(|c| *c == n.text)
+                .and_then(|k| joint.speed_of_coordinate(k))
+            {
+                flags[k] = true;
+                matched.push(n.text.clone());
             }
         }
         (flags, matched)

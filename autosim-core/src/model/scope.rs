@@ -46,7 +46,7 @@ pub(crate) struct Resolver<'a> {
     pub lets: Vec<(&'a ast::Let, Lazy<Value>)>,
     pub points: Vec<(&'a ast::Point, Lazy<PointId>)>,
     /// Unit-vector shorthands like `b1` (lower-case body name and axis).
-    pub uv_short: FxHashMap<String, (BodyId, usize)>,
+    pub uv_short: FxHashMap<String, (BodyId, crate::mech::Axis)>,
     /// How many `let`s and points are being evaluated, one inside another
     /// (each evaluates what it uses first: see [`MAX_PENDING`]).
     pub pending: usize,

@@ -4,7 +4,7 @@
 
 use crate::reference::floats;
 use autosim_core::expr::{Bindings, ExprId};
-use autosim_core::mech::{BodySpec, Direction, Equations, System, Vector};
+use autosim_core::mech::{Axis, BodySpec, Direction, Equations, Rotation, System, Vector};
 use nalgebra::{DMatrix, DVector};
 use serde_json::Value;
 
@@ -49,10 +49,10 @@ pub fn chain(n: usize, spatial: bool, params: &Value) -> System {
         let mut spec = BodySpec::new(&format!("B{i}"), &parent);
         if i > 1 {
             let prev: ExprId = lengths[i - 2];
-            spec.joint = Some([zero, zero, sys.arena.neg(prev)]);
+            spec.joint_point = Some([zero, zero, sys.arena.neg(prev)]);
         }
         let axis = if spatial { ((i - 1) % 3) as i64 + 1 } else { 1 };
-        spec.rotations = vec![axis];
+        spec.joint.rotation = Rotation::Simple(Axis::number(axis).unwrap());
         spec.mass = Some(m);
         let half = sys.arena.rational(-1, 2);
         spec.cm = Some([zero, zero, sys.arena.mul(half, l)]);
@@ -70,13 +70,13 @@ pub fn chain(n: usize, spatial: bool, params: &Value) -> System {
         let s = sys.arena.add(kq, cu);
         let mag = sys.arena.neg(s);
         let parent_id = sys.body_named(&parent).unwrap();
-        let axis_v = sys.unit_vector(parent_id, axis as usize).unwrap();
+        let axis_v = sys.unit_vector(parent_id, Axis::number(axis).unwrap());
         let vecm = axis_v.scale(&mut sys.arena, mag);
         let reaction = Some(parent_id);
         sys.add_moment(&format!("spring{i}"), b, reaction, vecm)
             .unwrap();
     }
-    let n3 = sys.unit_vector(autosim_core::mech::BodyId::N, 3).unwrap();
+    let n3 = sys.unit_vector(autosim_core::mech::BodyId::N, Axis::A3);
     let mg = sys.arena.neg(g);
     let gv = n3.scale(&mut sys.arena, mg);
     sys.set_gravity(gv);
@@ -113,37 +113,41 @@ fn build_satellite(params: &Value, small: bool, quaternion: bool, lock_boom: boo
     let e = |sys: &mut System, text: &str| -> ExprId { sys.arena.parse_text(text).unwrap() };
     let zero = sys.arena.zero();
     let mut b = BodySpec::new("B", "N");
-    b.translations = vec![Direction::Axis(1), Direction::Axis(2), Direction::Axis(3)];
+    b.joint.translations = vec![
+        Direction::Axis(Axis::A1),
+        Direction::Axis(Axis::A2),
+        Direction::Axis(Axis::A3),
+    ];
     if quaternion {
-        b.quaternion = true;
+        b.joint.rotation = Rotation::Quaternion;
         b.coordinate_names = Some(
             ["q1", "q2", "q3", "e0", "e1", "e2", "e3"]
                 .map(String::from)
                 .to_vec(),
         );
     } else {
-        b.rotations = vec![1, 2, 3];
+        b.joint.rotation = Rotation::Sequence([Axis::A1, Axis::A2, Axis::A3]);
     }
     if small {
         b.small = vec![true; 6];
     }
     let mut c = BodySpec::new("C", "B");
-    c.rotations = vec![3];
+    c.joint.rotation = Rotation::Simple(Axis::A3);
     c.mass = Some(e(&mut sys, "MC"));
     let ic = e(&mut sys, "IC");
     c.inertia = Some([[ic, zero, zero], [zero, ic, zero], [zero, zero, zero]]);
     c.cm = Some([zero, zero, e(&mut sys, "-L2")]);
     let mut d = BodySpec::new("D", "C");
-    d.joint = Some([zero, e(&mut sys, "L3"), e(&mut sys, "-L1")]);
+    d.joint_point = Some([zero, e(&mut sys, "L3"), e(&mut sys, "-L1")]);
     d.cm = Some([zero, e(&mut sys, "-L5"), e(&mut sys, "-L6")]);
-    d.rotations = vec![1];
+    d.joint.rotation = Rotation::Simple(Axis::A1);
     let mut be = BodySpec::new("E", "B");
-    be.joint = Some([zero, e(&mut sys, "-L7"), zero]);
-    be.rotations = vec![3];
+    be.joint_point = Some([zero, e(&mut sys, "-L7"), zero]);
+    be.joint.rotation = Rotation::Simple(Axis::A3);
     be.mass = Some(zero);
     be.inertia = Some([[zero; 3]; 3]);
     let mut f = BodySpec::new("F", "E");
-    f.rotations = vec![1];
+    f.joint.rotation = Rotation::Simple(Axis::A1);
     let if1 = e(&mut sys, "IF1");
     let if2 = e(&mut sys, "IF2");
     f.inertia = Some([[if1, zero, zero], [zero, if2, zero], [zero, zero, if1]]);
@@ -178,7 +182,9 @@ fn build_satellite(params: &Value, small: bool, quaternion: bool, lock_boom: boo
                   mag: &str| {
         let m = sys.arena.parse_text(mag).unwrap();
         let fb = body(sys, frame);
-        let d = sys.unit_vector(fb, axis).unwrap().scale(&mut sys.arena, m);
+        let d = sys
+            .unit_vector(fb, Axis::number(axis as i64).unwrap())
+            .scale(&mut sys.arena, m);
         let on = body(sys, on);
         let r = reaction.map(|r| body(sys, r));
         sys.add_moment(name, on, r, d).unwrap();
@@ -271,6 +277,6 @@ pub fn derivatives(sys: &System, eqs: &Equations, b: &Bindings) -> (Vec<f64>, Ve
 
 /// The component of `v` along `n3`.
 pub fn vector_dot_n3(sys: &mut System, v: &Vector) -> ExprId {
-    let n3 = sys.unit_vector(autosim_core::mech::BodyId::N, 3).unwrap();
+    let n3 = sys.unit_vector(autosim_core::mech::BodyId::N, Axis::A3);
     sys.frames.dot_vec(&mut sys.arena, v, &n3)
 }

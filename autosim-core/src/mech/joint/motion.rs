@@ -1,0 +1,78 @@
+//! What a joint's degrees of freedom do to its body, for the dynamics: the
+//! unit motion of each speed (its partial angular and linear velocity),
+//! the relative velocity of the joint, and the vector across it.
+
+use super::DofKind;
+use super::translation::joint_offset;
+use crate::mech::framevec::Fv;
+use crate::mech::system::{BodyId, System};
+
+/// A unit motion of one speed: angular velocity and velocity of the body's
+/// origin at unit rate of the speed, in body axes.
+#[derive(Clone, Copy, Debug)]
+pub struct UnitMotion {
+    /// Angular velocity.
+    pub w: Fv,
+    /// Velocity of the origin.
+    pub v: Fv,
+}
+
+impl System {
+    /// The unit motion of speed `k`.
+    pub(crate) fn unit_motion(&mut self, k: usize) -> UnitMotion {
+        let c = self.coordinates[k].clone();
+        let body = self.bodies[c.body.index()].clone();
+        let frame = body.frame;
+        let zero = Fv::zero(&self.arena, frame);
+        match c.kind {
+            DofKind::Translation { direction } => {
+                let pf = self.bodies[body.parent.unwrap_or(BodyId::N).index()].frame;
+                let v = Fv::new(pf, direction).reexpress(&mut self.arena, &mut self.frames, frame);
+                UnitMotion { w: zero, v }
+            }
+            DofKind::Rotation { axis } => {
+                let mut e = zero;
+                e.c[axis.index()] = self.arena.one();
+                UnitMotion { w: e, v: zero }
+            }
+        }
+    }
+
+    /// The velocity of body `b`'s origin relative to its parent (parent
+    /// axes) and its angular velocity relative to the parent (body axes).
+    pub(crate) fn relative_velocity(&mut self, b: BodyId) -> (Fv, Fv) {
+        let body = self.bodies[b.index()].clone();
+        let pf = self.bodies[body.parent.unwrap_or(BodyId::N).index()].frame;
+        let mut v_rel = Fv::zero(&self.arena, pf);
+        let mut w_rel = Fv::zero(&self.arena, body.frame);
+        for &k in &body.coordinates {
+            let c = self.coordinates[k].clone();
+            let u = self.arena.sym(c.u);
+            match c.kind {
+                DofKind::Translation { direction } => {
+                    let t = Fv::new(pf, direction).scale(&mut self.arena, u);
+                    v_rel = v_rel.add(&mut self.arena, &t);
+                }
+                DofKind::Rotation { axis } => w_rel.c[axis.index()] = u,
+            }
+        }
+        (v_rel, w_rel)
+    }
+
+    /// The vector from a body's parent's origin to the body's origin, in
+    /// the parent's axes (joint point plus translations).
+    pub(crate) fn joint_vector(&mut self, b: BodyId) -> Fv {
+        let body = self.bodies[b.index()].clone();
+        let parent = body.parent.unwrap_or(BodyId::N);
+        let pf = self.bodies[parent.index()].frame;
+        let mut directions = Vec::new();
+        let mut qs = Vec::new();
+        for &c in &body.coordinates {
+            if let DofKind::Translation { direction } = self.coordinates[c].kind {
+                directions.push(direction);
+                qs.push(self.coordinates[c].q);
+            }
+        }
+        joint_offset(&mut self.arena, pf, &body.joint_point, &directions, &qs)
+    }
+}

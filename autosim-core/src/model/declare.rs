@@ -1,0 +1,218 @@
+//! Declarations: the names that exist before any expression is evaluated
+//! (parameters, inputs, user functions; then, after the bodies, `let`s and
+//! points to evaluate on first use, added states and the outputs of user
+//! subroutines), so any expression may use any of them.
+
+use super::scope::{Lazy, Named, Resolver};
+use super::{ExternFnInfo, ItemDoc, ResolvedModel};
+use crate::diag::Diagnostic;
+use crate::expr::Number;
+use crate::syntax::ast::{self, Item};
+
+/// Declares the parameters, inputs and user functions.
+pub(super) fn declare_values(r: &mut Resolver<'_>, out: &mut ResolvedModel, model: &ast::Model) {
+    for item in &model.items {
+        match item {
+            Item::Parameters(ps) => parameters(r, out, ps),
+            Item::Inputs(is) => inputs(r, out, is),
+            Item::ExternFn(f) => extern_fn(r, out, f),
+            _ => {}
+        }
+    }
+}
+
+/// Declares `let`s and points (evaluated on first use), added states and
+/// subroutine outputs.
+pub(super) fn declare_names<'a>(
+    r: &mut Resolver<'a>,
+    out: &mut ResolvedModel,
+    model: &'a ast::Model,
+) {
+    for item in &model.items {
+        match item {
+            Item::Let(l) => {
+                let idx = r.lets.len();
+                if r.declare(&l.name, Named::Let(idx)) {
+                    r.lets.push((l, Lazy::Pending));
+                }
+            }
+            Item::Point(p) => {
+                let idx = r.points.len();
+                if r.declare(&p.name, Named::Point(idx)) {
+                    r.points.push((p, Lazy::Pending));
+                }
+            }
+            Item::State(s) => state(r, s),
+            Item::ExternSub(sub) => subroutine(r, out, sub),
+            _ => {}
+        }
+    }
+}
+
+fn parameters(r: &mut Resolver<'_>, out: &mut ResolvedModel, ps: &ast::Parameters) {
+    for p in &ps.params {
+        let value = finite_value(r, &p.value);
+        if !r.declare(&p.name, Named::Load) {
+            continue;
+        }
+        let unit = p.unit.as_ref().map(|u| u.text.as_str());
+        match r.sys.add_parameter(&p.name.text, value, unit) {
+            Ok(s) => {
+                r.names
+                    .insert(p.name.text.clone(), (Named::Symbol(s), p.name.span));
+            }
+            Err(e) => r.error(p.name.span, e.to_string()),
+        }
+        let docs = if p.docs.is_empty() {
+            ps.docs.clone()
+        } else {
+            p.docs.clone()
+        };
+        out.parameter_docs.push(ItemDoc {
+            name: p.name.text.clone(),
+            docs,
+            unit: p.unit.as_ref().map(|u| u.text.clone()),
+        });
+    }
+}
+
+fn inputs(r: &mut Resolver<'_>, out: &mut ResolvedModel, is: &ast::Inputs) {
+    for i in &is.inputs {
+        if !r.declare(&i.name, Named::Load) {
+            continue;
+        }
+        let default = i.default.as_ref().map_or(0.0, |v| finite_value(r, v));
+        let unit = i.unit.as_ref().map(|u| u.text.as_str());
+        match r.sys.add_input(&i.name.text, default, unit) {
+            Ok(s) => {
+                r.names
+                    .insert(i.name.text.clone(), (Named::Symbol(s), i.name.span));
+            }
+            Err(e) => r.error(i.name.span, e.to_string()),
+        }
+        out.input_docs.push(ItemDoc {
+            name: i.name.text.clone(),
+            docs: is.docs.clone(),
+            unit: i.unit.as_ref().map(|u| u.text.clone()),
+        });
+    }
+}
+
+fn extern_fn(r: &mut Resolver<'_>, out: &mut ResolvedModel, f: &ast::ExternFn) {
+    if crate::expr::Func::builtin(&f.name.text).is_some()
+        || super::exprs::OPERATIONS
+            .iter()
+            .any(|(n, _, _)| *n == f.name.text)
+    {
+        r.push(
+            Diagnostic::error(
+                f.name.span,
+                format!("`{}` is a built-in function", f.name.text),
+            )
+            .help("give the user function another name"),
+        );
+        return;
+    }
+    if !r.declare(&f.name, Named::Load) {
+        return;
+    }
+    match r.sys.add_user_function(&f.name.text, f.params.len()) {
+        Ok(id) => {
+            r.names
+                .insert(f.name.text.clone(), (Named::Function(id), f.name.span));
+        }
+        Err(e) => r.error(f.name.span, e.to_string()),
+    }
+    out.extern_fns.push(ExternFnInfo {
+        name: f.name.text.clone(),
+        params: f.params.iter().map(|p| p.text.clone()).collect(),
+        docs: f.docs.clone(),
+    });
+}
+
+fn state(r: &mut Resolver<'_>, s: &ast::State) {
+    if !r.declare(&s.name, Named::Load) {
+        return;
+    }
+    let zero = r.sys.arena.zero();
+    let unit = s.unit.as_ref().map(|u| u.text.as_str());
+    match r.sys.add_state(&s.name.text, unit, zero) {
+        Ok(sym) => {
+            r.names
+                .insert(s.name.text.clone(), (Named::Symbol(sym), s.name.span));
+        }
+        Err(e) => r.error(s.name.span, e.to_string()),
+    }
+}
+
+fn subroutine(r: &mut Resolver<'_>, out: &mut ResolvedModel, sub: &ast::ExternSub) {
+    let mut ok = r.declare(&sub.name, Named::Subroutine);
+    for o in &sub.outputs {
+        ok &= r.declare(&o.name, Named::Load);
+    }
+    if !ok {
+        return;
+    }
+    let outs: Vec<(&str, Option<&str>)> = sub
+        .outputs
+        .iter()
+        .map(|o| {
+            (
+                o.name.text.as_str(),
+                o.unit.as_ref().map(|u| u.text.as_str()),
+            )
+        })
+        .collect();
+    match r.sys.add_subroutine(&sub.name.text, Vec::new(), &outs) {
+        Ok(syms) => {
+            for (o, s) in sub.outputs.iter().zip(syms) {
+                r.names
+                    .insert(o.name.text.clone(), (Named::Symbol(s), o.name.span));
+            }
+        }
+        Err(e) => r.error(sub.name.span, e.to_string()),
+    }
+    out.subroutine_docs.push(sub.docs.clone());
+    out.subroutine_params.push(
+        sub.args
+            .iter()
+            .enumerate()
+            .map(|(k, a)| match a {
+                ast::Expr::Name(n) => n.text.clone(),
+                _ => format!("arg{}", k + 1),
+            })
+            .collect(),
+    );
+}
+
+/// The value of a parameter or input default, reported when it does not
+/// fit a float (`1e999` would become infinity in generated code).
+pub(super) fn finite_value(r: &mut Resolver<'_>, v: &ast::Value) -> f64 {
+    let x = value_f64(v);
+    if !x.is_finite() {
+        r.push(
+            Diagnostic::error(
+                v.span,
+                format!(
+                    "`{}` is too large for a floating-point number",
+                    v.number.text
+                ),
+            )
+            .help("values must be finite: at most about 1.8e308"),
+        );
+    }
+    x
+}
+
+fn value_f64(v: &ast::Value) -> f64 {
+    // Rust's parser rounds correctly (once), so `0.018562500000000003`
+    // is the same double as in any other program.
+    let x = v
+        .number
+        .text
+        .parse::<f64>()
+        .ok()
+        .or_else(|| Number::parse_decimal(&v.number.text).map(|n| n.to_f64()))
+        .unwrap_or(0.0);
+    if v.negative { -x } else { x }
+}

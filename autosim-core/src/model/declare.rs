@@ -100,9 +100,9 @@ fn inputs(r: &mut Resolver<'_>, out: &mut ResolvedModel, is: &ast::Inputs) {
 
 fn extern_fn(r: &mut Resolver<'_>, out: &mut ResolvedModel, f: &ast::ExternFn) {
     if crate::expr::Func::builtin(&f.name.text).is_some()
-        || super::exprs::OPERATIONS
+        || super::operations::OPERATIONS
             .iter()
-            .any(|(n, _, _)| *n == f.name.text)
+            .any(|(n, ..)| *n == f.name.text)
     {
         r.push(
             Diagnostic::error(

@@ -10,13 +10,16 @@ mod body_options;
 mod declare;
 mod exprs;
 mod items;
+mod lazy;
 mod loads;
+mod operations;
 mod scene;
 mod scope;
 mod settings;
 mod spans;
 #[cfg(test)]
 mod tests;
+mod typed;
 mod value;
 
 pub use scene::Scene;

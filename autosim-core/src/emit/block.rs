@@ -38,7 +38,6 @@ pub struct BlockEmitter<'a> {
 impl BlockEmitter<'_> {
     /// The statements of `block` (with `hoisted`: constants read from `c`).
     pub fn emit(&self, block: &Block, hoisted: bool, target: Target<'_>) -> TokenStream {
-        let in_constants = matches!(target, Target::ConstantFields);
         let printer = ExprPrinter {
             prog: self.prog,
             names: &block.names,
@@ -48,34 +47,7 @@ impl BlockEmitter<'_> {
             math: self.math.clone(),
             locals: self.locals,
         };
-        let Locals { x, dx, p, c, .. } = self.locals;
-        let mut out = TokenStream::new();
-        // Values the block reads.
-        if !in_constants && block.leaves.iter().any(|l| matches!(l, Leaf::Param(_))) {
-            out.extend(quote!(let #p = &self.parameters;));
-        }
-        if hoisted && !block.hoisted.is_empty() {
-            out.extend(quote!(let #c = &self.constants;));
-        }
-        for l in &block.leaves {
-            match *l {
-                Leaf::State(i) => {
-                    let id = ident(&self.prog.states().state(i).name);
-                    let k = Literal::usize_unsuffixed(i);
-                    out.extend(quote!(let #id = #x[#k];));
-                }
-                Leaf::Input(i) => {
-                    let id = ident(&self.prog.interface.inputs[i].name);
-                    out.extend(quote!(let #id = self.inputs.#id;));
-                }
-                Leaf::Accel(i) => {
-                    let id = ident(&self.prog.states().speed_rate_name(i));
-                    let k = Literal::usize_unsuffixed(self.prog.states().speed_slot(i));
-                    out.extend(quote!(let #id = #dx[#k];));
-                }
-                Leaf::Param(_) | Leaf::Time | Leaf::SubOut(..) => {}
-            }
-        }
+        let mut out = self.reads(block, hoisted, &target);
         let mut fields = Vec::new();
         for st in &block.stmts {
             match st {
@@ -93,39 +65,9 @@ impl BlockEmitter<'_> {
                     let m = &self.math;
                     out.extend(quote!(let (#s, #c) = #m::sin_cos(#arg);));
                 }
-                Stmt::CallSub(k) => {
-                    let sub = &self.prog.interface.subroutines[*k];
-                    let f = ident(&sub.name);
-                    let pats: Vec<TokenStream> = sub
-                        .outputs
-                        .iter()
-                        .enumerate()
-                        .map(|(j, o)| {
-                            if block.leaves.contains(&Leaf::SubOut(*k, j)) {
-                                let id = ident(o);
-                                quote!(#id)
-                            } else {
-                                quote!(_)
-                            }
-                        })
-                        .collect();
-                    let args: Vec<TokenStream> = self.prog.sub_args[*k]
-                        .iter()
-                        .map(|a| printer.expr(*a))
-                        .collect();
-                    out.extend(quote!(let [#(#pats),*] = self.externs.#f(#(#args),*);));
-                }
+                Stmt::CallSub(k) => out.extend(self.call_subroutine(block, &printer, *k)),
                 Stmt::Check { pivot, speed } => {
-                    let e = printer.expr(*pivot);
-                    let m = &self.math;
-                    let rt = &self.rt;
-                    let k = Literal::usize_unsuffixed(*speed);
-                    let name = &self.prog.states().speeds[*speed].name;
-                    out.extend(quote! {
-                        if !#m::is_positive(#e) {
-                            return Err(#rt::ModelError::SingularMassMatrix { speed: #k, name: #name });
-                        }
-                    });
+                    out.extend(self.pivot_check(&printer, *pivot, *speed))
                 }
                 Stmt::Store { slot, value } => {
                     let e = printer.expr(*value);
@@ -151,5 +93,78 @@ impl BlockEmitter<'_> {
             out.extend(quote!(Constants { #(#fields),* }));
         }
         out
+    }
+
+    /// Bindings of the values the block reads: parameters, constants,
+    /// states, inputs and accelerations.
+    fn reads(&self, block: &Block, hoisted: bool, target: &Target<'_>) -> TokenStream {
+        let in_constants = matches!(target, Target::ConstantFields);
+        let Locals { x, dx, p, c, .. } = self.locals;
+        let mut out = TokenStream::new();
+        if !in_constants && block.leaves.iter().any(|l| matches!(l, Leaf::Param(_))) {
+            out.extend(quote!(let #p = &self.parameters;));
+        }
+        if hoisted && !block.hoisted.is_empty() {
+            out.extend(quote!(let #c = &self.constants;));
+        }
+        for l in &block.leaves {
+            match *l {
+                Leaf::State(i) => {
+                    let id = ident(&self.prog.states().state(i).name);
+                    let k = Literal::usize_unsuffixed(i);
+                    out.extend(quote!(let #id = #x[#k];));
+                }
+                Leaf::Input(i) => {
+                    let id = ident(&self.prog.interface.inputs[i].name);
+                    out.extend(quote!(let #id = self.inputs.#id;));
+                }
+                Leaf::Accel(i) => {
+                    let id = ident(&self.prog.states().speed_rate_name(i));
+                    let k = Literal::usize_unsuffixed(self.prog.states().speed_slot(i));
+                    out.extend(quote!(let #id = #dx[#k];));
+                }
+                Leaf::Param(_) | Leaf::Time | Leaf::SubOut(..) => {}
+            }
+        }
+        out
+    }
+
+    /// `let [a, _, b] = self.externs.sub(args);`
+    fn call_subroutine(&self, block: &Block, printer: &ExprPrinter<'_>, k: usize) -> TokenStream {
+        let sub = &self.prog.interface.subroutines[k];
+        let f = ident(&sub.name);
+        let pats: Vec<TokenStream> = sub
+            .outputs
+            .iter()
+            .enumerate()
+            .map(|(j, o)| {
+                if block.leaves.contains(&Leaf::SubOut(k, j)) {
+                    let id = ident(o);
+                    quote!(#id)
+                } else {
+                    quote!(_)
+                }
+            })
+            .collect();
+        let args: Vec<TokenStream> = self.prog.sub_args[k]
+            .iter()
+            .map(|a| printer.expr(*a))
+            .collect();
+        quote!(let [#(#pats),*] = self.externs.#f(#(#args),*);)
+    }
+
+    /// A pivot of the mass matrix that must be positive, or the model
+    /// returns `SingularMassMatrix` naming the speed.
+    fn pivot_check(&self, printer: &ExprPrinter<'_>, pivot: Nid, speed: usize) -> TokenStream {
+        let e = printer.expr(pivot);
+        let m = &self.math;
+        let rt = &self.rt;
+        let k = Literal::usize_unsuffixed(speed);
+        let name = &self.prog.states().speeds[speed].name;
+        quote! {
+            if !#m::is_positive(#e) {
+                return Err(#rt::ModelError::SingularMassMatrix { speed: #k, name: #name });
+            }
+        }
     }
 }

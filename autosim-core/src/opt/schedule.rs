@@ -135,6 +135,13 @@ struct Sched<'a> {
     named: FxHashSet<Nid>,
     emitted: FxHashSet<Nid>,
     block: Block,
+    /// What the tasks read: roots, then everything reachable from them.
+    roots: Vec<Nid>,
+    reach: FxHashSet<Nid>,
+    /// Reachable nodes in the order they were found.
+    order: Vec<Nid>,
+    /// Subroutines whose outputs are read.
+    subs_used: BTreeSet<usize>,
 }
 
 impl Sched<'_> {
@@ -190,203 +197,248 @@ pub fn schedule(ir: &Ir, tasks: &[Task], opts: &Options<'_>) -> Block {
         named: FxHashSet::default(),
         emitted: FxHashSet::default(),
         block: Block::default(),
+        roots: Vec::new(),
+        reach: FxHashSet::default(),
+        order: Vec::new(),
+        subs_used: BTreeSet::new(),
     };
-    let task_nodes: Vec<Nid> = tasks
-        .iter()
-        .map(|t| match t {
-            Task::Store { value, .. } => *value,
-            Task::Check { pivot, .. } => *pivot,
-        })
-        .collect();
-
-    // Reachable computed nodes; subroutine arguments join the roots when
-    // one of the subroutine's outputs is used.
-    let mut roots: Vec<Nid> = task_nodes.clone();
-    let mut subs_used: BTreeSet<usize> = BTreeSet::new();
-    let mut reach: FxHashSet<Nid> = FxHashSet::default();
-    let mut order: Vec<Nid> = Vec::new();
-    loop {
-        let mut stack = roots.clone();
-        while let Some(n) = stack.pop() {
-            if !reach.insert(n) {
-                continue;
-            }
-            order.push(n);
-            if let Op::Leaf(l) = ir.op(n) {
-                s.block.leaves.insert(*l);
-                if let Leaf::SubOut(sub, _) = l {
-                    subs_used.insert(*sub);
-                }
-            }
-            if s.opaque(n) {
-                if !matches!(ir.op(n), Op::Num(_) | Op::Leaf(_)) {
-                    s.block.hoisted.insert(n);
-                }
-                continue;
-            }
-            stack.extend(ir.children(n));
-        }
-        let before = roots.len();
-        for &sub in &subs_used {
-            for a in opts.sub_args.get(sub).map(Vec::as_slice).unwrap_or(&[]) {
-                if !roots.contains(a) {
-                    roots.push(*a);
-                }
-            }
-        }
-        if roots.len() == before {
-            break;
-        }
-    }
-
-    // Use counts over computed nodes.
-    let mut uses: FxHashMap<Nid, usize> = FxHashMap::default();
-    for &r in &roots {
-        *uses.entry(r).or_default() += 1;
-    }
-    for &n in &order {
-        if s.opaque(n) {
-            continue;
-        }
-        for c in ir.children(n) {
-            *uses.entry(c).or_default() += 1;
-        }
-    }
-    for &n in &order {
-        if s.opaque(n) {
-            continue;
-        }
-        let multi = uses.get(&n).copied().unwrap_or(0) >= 2;
-        let user_call = matches!(ir.op(n), Op::Call(Func::User(_), _));
-        if multi || user_call {
-            s.named.insert(n);
-        }
-        // Small integer powers are written as products: name a computed base.
-        if let Op::Powi(b, k) = ir.op(n)
-            && *k <= 3
-            && !s.opaque(*b)
-        {
-            s.named.insert(*b);
-        }
-    }
-    for t in tasks {
-        if let Task::Check { pivot, .. } = t
-            && !s.opaque(*pivot)
-        {
-            s.named.insert(*pivot);
-        }
-    }
-    // Bound how deeply expressions nest when printed (and the recursion of
-    // the printers): a value nested deeper than this is named.
-    let mut sorted: Vec<Nid> = order.iter().copied().filter(|n| !s.opaque(*n)).collect();
-    sorted.sort();
-    let mut depth: FxHashMap<Nid, usize> = FxHashMap::default();
-    for &n in &sorted {
-        let d = 1 + ir
-            .children(n)
-            .iter()
-            .filter(|c| !s.opaque(**c) && !s.named.contains(c))
-            .map(|c| depth.get(c).copied().unwrap_or(0))
-            .max()
-            .unwrap_or(0);
-        if d > MAX_INLINE_DEPTH {
-            s.named.insert(n);
-        }
-        depth.insert(n, if s.named.contains(&n) { 0 } else { d });
-    }
-
-    // Sine and cosine of the same argument are computed together.
-    for &n in &order {
-        if s.opaque(n) {
-            continue;
-        }
-        if let Op::Call(Func::Sin, args) = ir.op(n)
-            && let Some(c) = ir.find(&Op::Call(Func::Cos, args.clone()))
-            && reach.contains(&c)
-            && !s.opaque(c)
-        {
-            s.named.insert(n);
-            s.named.insert(c);
-            s.partner.insert(n, c);
-            s.partner.insert(c, n);
-        }
-    }
-
-    // Order: subroutines, user functions, then the tasks.
-    for &sub in &subs_used {
-        for a in opts.sub_args.get(sub).map(Vec::as_slice).unwrap_or(&[]) {
-            s.emit_node(*a);
-        }
-        s.block.stmts.push(Stmt::CallSub(sub));
-    }
-    for &c in opts.call_order {
-        if reach.contains(&c) {
-            s.emit_node(c);
-        }
-    }
-    for t in tasks {
-        match *t {
-            Task::Store { slot, value } => {
-                s.emit_node(value);
-                s.block.stmts.push(Stmt::Store { slot, value });
-            }
-            Task::Check { pivot, speed } => {
-                s.emit_node(pivot);
-                s.block.stmts.push(Stmt::Check { pivot, speed });
-            }
-        }
-    }
-
-    // Names: hints where free, otherwise z1, z2, ... in order of use.
-    let mut used_names: FxHashSet<String> = opts.reserved.clone();
-    let mut counter = 0;
-    let lets: Vec<Nid> = s
-        .block
-        .stmts
-        .iter()
-        .flat_map(|st| match st {
-            Stmt::Let(n) => vec![*n],
-            Stmt::SinCos { sin, cos } => vec![*sin, *cos],
-            _ => Vec::new(),
-        })
-        .collect();
-    for n in lets {
-        let name = match opts.hints.get(&n) {
-            Some(h) if !used_names.contains(h) => h.clone(),
-            _ => loop {
-                counter += 1;
-                let z = format!("z{counter}");
-                if !used_names.contains(&z) {
-                    break z;
-                }
-            },
-        };
-        used_names.insert(name.clone());
-        s.block.names.insert(n, name);
-    }
-
-    // Cost: every computed node once.
-    let mut ops = Ops {
-        user_calls: subs_used.len(),
-        ..Ops::default()
-    };
-    for &n in &order {
-        if s.opaque(n) {
-            continue;
-        }
-        match ir.op(n) {
-            Op::Sum { pos, neg } => ops.adds += pos.len() + neg.len() - 1,
-            Op::Mul(..) => ops.muls += 1,
-            Op::Div(..) => ops.divs += 1,
-            Op::Powi(_, k) => ops.muls += (*k as usize).saturating_sub(1),
-            Op::Sqrt(_) | Op::Powf(..) => ops.funcs += 1,
-            Op::Call(Func::User(_), _) => ops.user_calls += 1,
-            Op::Call(..) => ops.funcs += 1,
-            Op::Neg(_) | Op::Num(_) | Op::Leaf(_) => {}
-        }
-    }
-    // A sine-cosine pair is one call.
-    ops.funcs -= s.partner.len() / 2;
-    s.block.ops = ops;
+    s.reachable(tasks);
+    s.name_shared_values(tasks);
+    s.bound_nesting();
+    s.pair_sines_and_cosines();
+    s.order_statements(tasks);
+    s.choose_names();
+    s.count_operations();
     s.block
+}
+
+impl Sched<'_> {
+    /// Reachable computed nodes; subroutine arguments join the roots when
+    /// one of the subroutine's outputs is used.
+    fn reachable(&mut self, tasks: &[Task]) {
+        self.roots = tasks
+            .iter()
+            .map(|t| match t {
+                Task::Store { value, .. } => *value,
+                Task::Check { pivot, .. } => *pivot,
+            })
+            .collect();
+        loop {
+            let mut stack = self.roots.clone();
+            while let Some(n) = stack.pop() {
+                if !self.reach.insert(n) {
+                    continue;
+                }
+                self.order.push(n);
+                if let Op::Leaf(l) = self.ir.op(n) {
+                    self.block.leaves.insert(*l);
+                    if let Leaf::SubOut(sub, _) = l {
+                        self.subs_used.insert(*sub);
+                    }
+                }
+                if self.opaque(n) {
+                    if !matches!(self.ir.op(n), Op::Num(_) | Op::Leaf(_)) {
+                        self.block.hoisted.insert(n);
+                    }
+                    continue;
+                }
+                stack.extend(self.ir.children(n));
+            }
+            let before = self.roots.len();
+            for &sub in &self.subs_used {
+                for a in self
+                    .opts
+                    .sub_args
+                    .get(sub)
+                    .map(Vec::as_slice)
+                    .unwrap_or(&[])
+                {
+                    if !self.roots.contains(a) {
+                        self.roots.push(*a);
+                    }
+                }
+            }
+            if self.roots.len() == before {
+                break;
+            }
+        }
+    }
+
+    /// Values used more than once, user calls, computed bases of small
+    /// powers (written as products) and pivots get a name.
+    fn name_shared_values(&mut self, tasks: &[Task]) {
+        let mut uses: FxHashMap<Nid, usize> = FxHashMap::default();
+        for &r in &self.roots {
+            *uses.entry(r).or_default() += 1;
+        }
+        for &n in &self.order {
+            if self.opaque(n) {
+                continue;
+            }
+            for c in self.ir.children(n) {
+                *uses.entry(c).or_default() += 1;
+            }
+        }
+        for i in 0..self.order.len() {
+            let n = self.order[i];
+            if self.opaque(n) {
+                continue;
+            }
+            let multi = uses.get(&n).copied().unwrap_or(0) >= 2;
+            let user_call = matches!(self.ir.op(n), Op::Call(Func::User(_), _));
+            if multi || user_call {
+                self.named.insert(n);
+            }
+            if let Op::Powi(b, k) = self.ir.op(n)
+                && *k <= 3
+                && !self.opaque(*b)
+            {
+                self.named.insert(*b);
+            }
+        }
+        for t in tasks {
+            if let Task::Check { pivot, .. } = t
+                && !self.opaque(*pivot)
+            {
+                self.named.insert(*pivot);
+            }
+        }
+    }
+
+    /// Bounds how deeply expressions nest when printed (and the recursion
+    /// of the printers): a value nested deeper than [`MAX_INLINE_DEPTH`] is
+    /// named.
+    fn bound_nesting(&mut self) {
+        let mut sorted: Vec<Nid> = self
+            .order
+            .iter()
+            .copied()
+            .filter(|n| !self.opaque(*n))
+            .collect();
+        sorted.sort();
+        let mut depth: FxHashMap<Nid, usize> = FxHashMap::default();
+        for &n in &sorted {
+            let d = 1 + self
+                .ir
+                .children(n)
+                .iter()
+                .filter(|c| !self.opaque(**c) && !self.named.contains(c))
+                .map(|c| depth.get(c).copied().unwrap_or(0))
+                .max()
+                .unwrap_or(0);
+            if d > MAX_INLINE_DEPTH {
+                self.named.insert(n);
+            }
+            depth.insert(n, if self.named.contains(&n) { 0 } else { d });
+        }
+    }
+
+    /// Sine and cosine of the same argument are computed together.
+    fn pair_sines_and_cosines(&mut self) {
+        for i in 0..self.order.len() {
+            let n = self.order[i];
+            if self.opaque(n) {
+                continue;
+            }
+            if let Op::Call(Func::Sin, args) = self.ir.op(n)
+                && let Some(c) = self.ir.find(&Op::Call(Func::Cos, args.clone()))
+                && self.reach.contains(&c)
+                && !self.opaque(c)
+            {
+                self.named.insert(n);
+                self.named.insert(c);
+                self.partner.insert(n, c);
+                self.partner.insert(c, n);
+            }
+        }
+    }
+
+    /// Statements in order: subroutines, user functions, then the tasks,
+    /// each with what it needs just before it.
+    fn order_statements(&mut self, tasks: &[Task]) {
+        for sub in self.subs_used.clone() {
+            for a in self
+                .opts
+                .sub_args
+                .get(sub)
+                .map(Vec::as_slice)
+                .unwrap_or(&[])
+            {
+                self.emit_node(*a);
+            }
+            self.block.stmts.push(Stmt::CallSub(sub));
+        }
+        for &c in self.opts.call_order {
+            if self.reach.contains(&c) {
+                self.emit_node(c);
+            }
+        }
+        for t in tasks {
+            match *t {
+                Task::Store { slot, value } => {
+                    self.emit_node(value);
+                    self.block.stmts.push(Stmt::Store { slot, value });
+                }
+                Task::Check { pivot, speed } => {
+                    self.emit_node(pivot);
+                    self.block.stmts.push(Stmt::Check { pivot, speed });
+                }
+            }
+        }
+    }
+
+    /// Names: hints where free, otherwise `z1`, `z2`, ... in order of use.
+    fn choose_names(&mut self) {
+        let mut used_names: FxHashSet<String> = self.opts.reserved.clone();
+        let mut counter = 0;
+        let lets: Vec<Nid> = self
+            .block
+            .stmts
+            .iter()
+            .flat_map(|st| match st {
+                Stmt::Let(n) => vec![*n],
+                Stmt::SinCos { sin, cos } => vec![*sin, *cos],
+                _ => Vec::new(),
+            })
+            .collect();
+        for n in lets {
+            let name = match self.opts.hints.get(&n) {
+                Some(h) if !used_names.contains(h) => h.clone(),
+                _ => loop {
+                    counter += 1;
+                    let z = format!("z{counter}");
+                    if !used_names.contains(&z) {
+                        break z;
+                    }
+                },
+            };
+            used_names.insert(name.clone());
+            self.block.names.insert(n, name);
+        }
+    }
+
+    /// The cost: every computed node once; a sine-cosine pair is one call.
+    fn count_operations(&mut self) {
+        let mut ops = Ops {
+            user_calls: self.subs_used.len(),
+            ..Ops::default()
+        };
+        for &n in &self.order {
+            if self.opaque(n) {
+                continue;
+            }
+            match self.ir.op(n) {
+                Op::Sum { pos, neg } => ops.adds += pos.len() + neg.len() - 1,
+                Op::Mul(..) => ops.muls += 1,
+                Op::Div(..) => ops.divs += 1,
+                Op::Powi(_, k) => ops.muls += (*k as usize).saturating_sub(1),
+                Op::Sqrt(_) | Op::Powf(..) => ops.funcs += 1,
+                Op::Call(Func::User(_), _) => ops.user_calls += 1,
+                Op::Call(..) => ops.funcs += 1,
+                Op::Neg(_) | Op::Num(_) | Op::Leaf(_) => {}
+            }
+        }
+        ops.funcs -= self.partner.len() / 2;
+        self.block.ops = ops;
+    }
 }

@@ -15,6 +15,7 @@ pub mod diag;
 pub mod emit;
 pub mod expand;
 pub mod expr;
+mod ids;
 pub mod limits;
 pub mod mech;
 pub mod model;

@@ -69,18 +69,18 @@ pub trait Model {
     const STATE_NAMES: &'static [&'static str];
     /// Units of the states (e.g. `"rad"`, `"m/s"`), in state order.
     const STATE_UNITS: &'static [&'static str];
-    /// Names of the parameters.
-    const PARAMETER_NAMES: &'static [&'static str];
+    /// Names of the parameters (none by default).
+    const PARAMETER_NAMES: &'static [&'static str] = &[];
     /// Units of the parameters.
-    const PARAMETER_UNITS: &'static [&'static str];
-    /// Names of the inputs.
-    const INPUT_NAMES: &'static [&'static str];
+    const PARAMETER_UNITS: &'static [&'static str] = &[];
+    /// Names of the inputs (none by default).
+    const INPUT_NAMES: &'static [&'static str] = &[];
     /// Units of the inputs.
-    const INPUT_UNITS: &'static [&'static str];
-    /// Names of the outputs.
-    const OUTPUT_NAMES: &'static [&'static str];
+    const INPUT_UNITS: &'static [&'static str] = &[];
+    /// Names of the outputs (none by default).
+    const OUTPUT_NAMES: &'static [&'static str] = &[];
     /// Units of the outputs.
-    const OUTPUT_UNITS: &'static [&'static str];
+    const OUTPUT_UNITS: &'static [&'static str] = &[];
 
     /// Writes the state derivatives `dx/dt` at time `t` and state `x` into `dx`.
     fn derivatives(
@@ -90,24 +90,37 @@ pub trait Model {
         dx: &mut Self::State,
     ) -> Result<(), ModelError>;
 
-    /// Writes the output variables at time `t` and state `x` into `y`.
+    /// Writes the output variables at time `t` and state `x` into `y`. The
+    /// default writes nothing: for models without outputs.
     fn outputs(
         &mut self,
         t: Self::Float,
         x: &Self::State,
         y: &mut Self::Outputs,
-    ) -> Result<(), ModelError>;
+    ) -> Result<(), ModelError> {
+        let _ = (t, x, y);
+        Ok(())
+    }
 
     /// Copies the current parameter values, in [`Model::PARAMETER_NAMES`]
-    /// order, into `values` (which must have that length).
-    fn parameter_values(&self, values: &mut [Self::Float]);
+    /// order, into `values` (which must have that length). The default
+    /// copies nothing: for models without parameters.
+    fn parameter_values(&self, values: &mut [Self::Float]) {
+        let _ = values;
+    }
 
     /// Sets all parameter values, in [`Model::PARAMETER_NAMES`] order, and
-    /// recomputes everything that depends only on parameters.
-    fn set_parameter_values(&mut self, values: &[Self::Float]);
+    /// recomputes everything that depends only on parameters. The default
+    /// sets nothing: for models without parameters.
+    fn set_parameter_values(&mut self, values: &[Self::Float]) {
+        let _ = values;
+    }
 
-    /// The default initial state written in the model (zeros where none was given).
-    fn initial_state(&self) -> Self::State;
+    /// The default initial state written in the model (zeros where none
+    /// was given; all zeros by default).
+    fn initial_state(&self) -> Self::State {
+        Self::State::zeros()
+    }
 }
 
 /// Operation counts of a block of generated code: what one call costs.

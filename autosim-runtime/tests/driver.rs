@@ -18,16 +18,7 @@ struct CallLog {
 }
 
 impl Model for CallLog {
-    type Float = f64;
-    type State = [f64; 1];
-    type Outputs = [f64; 1];
-    const NAME: &'static str = "CallLog";
-    const STATE_NAMES: &'static [&'static str] = &["x"];
-    const STATE_UNITS: &'static [&'static str] = &["m"];
-    const PARAMETER_NAMES: &'static [&'static str] = &[];
-    const PARAMETER_UNITS: &'static [&'static str] = &[];
-    const INPUT_NAMES: &'static [&'static str] = &[];
-    const INPUT_UNITS: &'static [&'static str] = &[];
+    autosim_test_support::model_header!(f64, "CallLog", states: ["x" in "m"], outputs: 1);
     const OUTPUT_NAMES: &'static [&'static str] = &["twice_x"];
     const OUTPUT_UNITS: &'static [&'static str] = &["m"];
     fn derivatives(&mut self, t: f64, x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
@@ -333,18 +324,7 @@ fn a_zero_length_run_reports_the_initial_state_once() {
 fn f32_models_run_too() {
     struct DecayF32;
     impl Model for DecayF32 {
-        type Float = f32;
-        type State = [f32; 1];
-        type Outputs = [f32; 0];
-        const NAME: &'static str = "DecayF32";
-        const STATE_NAMES: &'static [&'static str] = &["x"];
-        const STATE_UNITS: &'static [&'static str] = &["1"];
-        const PARAMETER_NAMES: &'static [&'static str] = &[];
-        const PARAMETER_UNITS: &'static [&'static str] = &[];
-        const INPUT_NAMES: &'static [&'static str] = &[];
-        const INPUT_UNITS: &'static [&'static str] = &[];
-        const OUTPUT_NAMES: &'static [&'static str] = &[];
-        const OUTPUT_UNITS: &'static [&'static str] = &[];
+        autosim_test_support::model_header!(f32, "DecayF32", states: ["x" in "1"], outputs: 0);
         fn derivatives(
             &mut self,
             _t: f32,
@@ -352,9 +332,6 @@ fn f32_models_run_too() {
             dx: &mut [f32; 1],
         ) -> Result<(), ModelError> {
             dx[0] = -x[0];
-            Ok(())
-        }
-        fn outputs(&mut self, _t: f32, _x: &[f32; 1], _y: &mut [f32; 0]) -> Result<(), ModelError> {
             Ok(())
         }
         fn parameter_values(&self, _v: &mut [f32]) {}

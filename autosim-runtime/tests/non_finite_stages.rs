@@ -14,18 +14,7 @@ use autosim_runtime::{IntegrationError, Model, ModelError, RunSettings, Stepper,
 struct Guarded;
 
 impl Model for Guarded {
-    type Float = f64;
-    type State = [f64; 2];
-    type Outputs = [f64; 0];
-    const NAME: &'static str = "Guarded";
-    const STATE_NAMES: &'static [&'static str] = &["x", "v"];
-    const STATE_UNITS: &'static [&'static str] = &["m", "m/s"];
-    const PARAMETER_NAMES: &'static [&'static str] = &[];
-    const PARAMETER_UNITS: &'static [&'static str] = &[];
-    const INPUT_NAMES: &'static [&'static str] = &[];
-    const INPUT_UNITS: &'static [&'static str] = &[];
-    const OUTPUT_NAMES: &'static [&'static str] = &[];
-    const OUTPUT_UNITS: &'static [&'static str] = &[];
+    autosim_test_support::model_header!(f64, "Guarded", states: ["x" in "m", "v" in "m/s"], outputs: 0);
     fn derivatives(&mut self, _t: f64, x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
         // The "pivot" is NaN when the state is not finite, as a generated
         // model's would be.
@@ -38,9 +27,6 @@ impl Model for Guarded {
         }
         dx[0] = x[1];
         dx[1] = -1e6 * x[0];
-        Ok(())
-    }
-    fn outputs(&mut self, _t: f64, _x: &[f64; 2], _y: &mut [f64; 0]) -> Result<(), ModelError> {
         Ok(())
     }
     fn parameter_values(&self, _v: &mut [f64]) {}
@@ -126,18 +112,7 @@ struct Fenced {
 }
 
 impl Model for Fenced {
-    type Float = f64;
-    type State = [f64; 2];
-    type Outputs = [f64; 0];
-    const NAME: &'static str = "Fenced";
-    const STATE_NAMES: &'static [&'static str] = &["x", "v"];
-    const STATE_UNITS: &'static [&'static str] = &["m", "m/s"];
-    const PARAMETER_NAMES: &'static [&'static str] = &[];
-    const PARAMETER_UNITS: &'static [&'static str] = &[];
-    const INPUT_NAMES: &'static [&'static str] = &[];
-    const INPUT_UNITS: &'static [&'static str] = &[];
-    const OUTPUT_NAMES: &'static [&'static str] = &[];
-    const OUTPUT_UNITS: &'static [&'static str] = &[];
+    autosim_test_support::model_header!(f64, "Fenced", states: ["x" in "m", "v" in "m/s"], outputs: 0);
     fn derivatives(&mut self, _t: f64, x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
         if x[0].abs() > 2.0 {
             return Err(ModelError::SingularMassMatrix {
@@ -150,9 +125,6 @@ impl Model for Fenced {
         } else {
             *dx = [x[1], -x[0]];
         }
-        Ok(())
-    }
-    fn outputs(&mut self, _t: f64, _x: &[f64; 2], _y: &mut [f64; 0]) -> Result<(), ModelError> {
         Ok(())
     }
     fn parameter_values(&self, _v: &mut [f64]) {}

@@ -147,23 +147,9 @@ fn sdirk_handles_stiff_van_der_pol() {
 struct SignSwitch;
 
 impl Model for SignSwitch {
-    type Float = f64;
-    type State = [f64; 1];
-    type Outputs = [f64; 0];
-    const NAME: &'static str = "SignSwitch";
-    const STATE_NAMES: &'static [&'static str] = &["x"];
-    const STATE_UNITS: &'static [&'static str] = &["1"];
-    const PARAMETER_NAMES: &'static [&'static str] = &[];
-    const PARAMETER_UNITS: &'static [&'static str] = &[];
-    const INPUT_NAMES: &'static [&'static str] = &[];
-    const INPUT_UNITS: &'static [&'static str] = &[];
-    const OUTPUT_NAMES: &'static [&'static str] = &[];
-    const OUTPUT_UNITS: &'static [&'static str] = &[];
+    autosim_test_support::model_header!(f64, "SignSwitch", states: ["x" in "1"], outputs: 0);
     fn derivatives(&mut self, _t: f64, x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
         dx[0] = -1000.0 * x[0].signum();
-        Ok(())
-    }
-    fn outputs(&mut self, _t: f64, _x: &[f64; 1], _y: &mut [f64; 0]) -> Result<(), ModelError> {
         Ok(())
     }
     fn parameter_values(&self, _v: &mut [f64]) {}

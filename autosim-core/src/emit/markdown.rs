@@ -50,40 +50,17 @@ fn write_tables(s: &mut String, prog: &Program) -> std::fmt::Result {
     for (k, st) in i.states.states().enumerate() {
         writeln!(s, "| {k} | `{}` | {} |", st.name, st.unit)?;
     }
-    let rows = |v: Vec<(&String, &String, &Vec<String>)>| -> Vec<String> {
-        v.into_iter()
-            .map(|(n, u, d)| format!("| `{n}` | {u} | {} |", d.join(" ").trim()))
-            .collect()
-    };
-    for (title, lines) in [
-        (
-            "Inputs",
-            rows(
-                i.inputs
-                    .iter()
-                    .map(|x| (&x.name, &x.unit, &x.docs))
-                    .collect(),
-            ),
-        ),
-        (
-            "Outputs",
-            rows(
-                i.outputs
-                    .iter()
-                    .map(|o| (&o.name, &o.unit, &o.docs))
-                    .collect(),
-            ),
-        ),
-    ] {
-        if lines.is_empty() {
+    for (title, quantities) in [("Inputs", &i.inputs), ("Outputs", &i.outputs)] {
+        if quantities.is_empty() {
             continue;
         }
         writeln!(
             s,
             "\n## {title}\n\n| name | unit | description |\n| --- | --- | --- |"
         )?;
-        for l in lines {
-            writeln!(s, "{l}")?;
+        for q in quantities {
+            let doc = q.docs.as_deref().unwrap_or_default().join(" ");
+            writeln!(s, "| `{}` | {} | {} |", q.name, q.unit, doc.trim())?;
         }
     }
     if i.has_externs() {

@@ -8,38 +8,23 @@ use super::number::Number;
 use indexmap::IndexSet;
 use rustc_hash::{FxBuildHasher, FxHashMap};
 
-/// A scalar expression: an index into an [`Arena`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct ExprId(pub(crate) u32);
+crate::ids::id_type!(
+    /// A scalar expression: an index into an [`Arena`].
+    ExprId,
+    "arena"
+);
 
-impl ExprId {
-    /// The position of the node in its arena.
-    pub fn index(self) -> usize {
-        self.0 as usize
-    }
-}
+crate::ids::id_type!(
+    /// A symbol of an [`Arena`].
+    SymId,
+    "symbol table"
+);
 
-/// A symbol of an [`Arena`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct SymId(pub(crate) u32);
-
-impl SymId {
-    /// The position of the symbol in its arena.
-    pub fn index(self) -> usize {
-        self.0 as usize
-    }
-}
-
-/// A user function (declared by name and arity) of an [`Arena`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct UserFnId(pub(crate) u32);
-
-impl UserFnId {
-    /// The position of the function in its arena.
-    pub fn index(self) -> usize {
-        self.0 as usize
-    }
-}
+crate::ids::id_type!(
+    /// A user function (declared by name and arity) of an [`Arena`].
+    UserFnId,
+    "table of user functions"
+);
 
 /// Functions that may appear in expressions (the paper's `func` and `trig`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

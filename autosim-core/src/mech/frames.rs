@@ -11,30 +11,22 @@ use super::vector::Vector;
 use crate::expr::{Arena, ExprId};
 use rustc_hash::FxHashMap;
 
-/// A reference frame; `FrameId::N` is the inertial frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct FrameId(pub(crate) u32);
+crate::ids::id_type!(
+    /// A reference frame; `FrameId::N` is the inertial frame.
+    FrameId,
+    "frame table"
+);
 
 impl FrameId {
     /// The inertial frame N.
     pub const N: FrameId = FrameId(0);
-
-    /// Position in the frame table.
-    pub fn index(self) -> usize {
-        self.0 as usize
-    }
 }
 
-/// A unit vector fixed in some frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct UvId(pub(crate) u32);
-
-impl UvId {
-    /// Position in the unit-vector table.
-    pub fn index(self) -> usize {
-        self.0 as usize
-    }
-}
+crate::ids::id_type!(
+    /// A unit vector fixed in some frame.
+    UvId,
+    "unit-vector table"
+);
 
 /// A reference frame.
 #[derive(Clone, Debug)]

@@ -9,30 +9,22 @@ use super::joint::{Axis, DofKind, Joint};
 use super::vector::Vector;
 use crate::expr::{Arena, ExprId, SymId, SymbolKind, UserFnId};
 
-/// A body; `BodyId::N` is the inertial frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct BodyId(pub(crate) u32);
+crate::ids::id_type!(
+    /// A body; `BodyId::N` is the inertial frame.
+    BodyId,
+    "body table (N is 0)"
+);
 
 impl BodyId {
     /// The inertial frame N.
     pub const N: BodyId = BodyId(0);
-
-    /// Position in the body table (N is 0).
-    pub fn index(self) -> usize {
-        self.0 as usize
-    }
 }
 
-/// A point fixed in (or moving relative to) a body.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct PointId(pub(crate) u32);
-
-impl PointId {
-    /// Position in the point table.
-    pub fn index(self) -> usize {
-        self.0 as usize
-    }
-}
+crate::ids::id_type!(
+    /// A point fixed in (or moving relative to) a body.
+    PointId,
+    "point table"
+);
 
 /// What a body is made of and how it moves relative to its parent.
 #[derive(Clone, Debug)]
@@ -572,13 +564,23 @@ impl System {
         }
     }
 
-    /// Forces and moments share one namespace.
-    fn check_load_name(&self, name: &str) -> Result<(), ModelError> {
+    /// A new load named `name` on the items `ids` (of `count`, called
+    /// `what`): forces and moments share one namespace.
+    fn check_load(
+        &self,
+        name: &str,
+        ids: impl IntoIterator<Item = usize>,
+        count: usize,
+        what: &str,
+    ) -> Result<(), ModelError> {
         if self.forces.iter().any(|f| f.name == name) || self.moments.iter().any(|m| m.name == name)
         {
             return Err(ModelError::DuplicateName(name.to_string()));
         }
-        Ok(())
+        match ids.into_iter().all(|i| i < count) {
+            true => Ok(()),
+            false => Err(ModelError::Invalid(format!("unknown {what} id"))),
+        }
     }
 
     /// Adds a force `vector` at `point`, with `-vector` at `reaction`.
@@ -589,14 +591,11 @@ impl System {
         reaction: Option<PointId>,
         vector: Vector,
     ) -> Result<(), ModelError> {
-        self.check_load_name(name)?;
-        for p in std::iter::once(point).chain(reaction) {
-            if p.index() >= self.points.len() {
-                return Err(ModelError::Invalid("unknown point id".to_string()));
-            }
-        }
+        let ids = std::iter::once(point).chain(reaction).map(PointId::index);
+        self.check_load(name, ids, self.points.len(), "point")?;
+        let name = name.to_string();
         self.forces.push(Force {
-            name: name.to_string(),
+            name,
             point,
             reaction,
             vector,
@@ -612,14 +611,11 @@ impl System {
         reaction: Option<BodyId>,
         vector: Vector,
     ) -> Result<(), ModelError> {
-        self.check_load_name(name)?;
-        for b in std::iter::once(body).chain(reaction) {
-            if b.index() >= self.bodies.len() {
-                return Err(ModelError::Invalid("unknown body id".to_string()));
-            }
-        }
+        let ids = std::iter::once(body).chain(reaction).map(BodyId::index);
+        self.check_load(name, ids, self.bodies.len(), "body")?;
+        let name = name.to_string();
         self.moments.push(Moment {
-            name: name.to_string(),
+            name,
             body,
             reaction,
             vector,

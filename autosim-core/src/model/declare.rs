@@ -3,8 +3,8 @@
 //! points to evaluate on first use, added states and the outputs of user
 //! subroutines), so any expression may use any of them.
 
+use super::ResolvedModel;
 use super::scope::{Lazy, Named, Resolver};
-use super::{ExternFnInfo, ItemDoc, ResolvedModel};
 use crate::diag::Diagnostic;
 use crate::expr::Number;
 use crate::syntax::ast::{self, Item};
@@ -68,11 +68,7 @@ fn parameters(r: &mut Resolver<'_>, out: &mut ResolvedModel, ps: &ast::Parameter
         } else {
             p.docs.clone()
         };
-        out.parameter_docs.push(ItemDoc {
-            name: p.name.text.clone(),
-            docs,
-            unit: p.unit.as_ref().map(|u| u.text.clone()),
-        });
+        out.item_docs.insert(p.name.text.clone(), docs);
     }
 }
 
@@ -90,11 +86,7 @@ fn inputs(r: &mut Resolver<'_>, out: &mut ResolvedModel, is: &ast::Inputs) {
             }
             Err(e) => r.error(i.name.span, e.to_string()),
         }
-        out.input_docs.push(ItemDoc {
-            name: i.name.text.clone(),
-            docs: is.docs.clone(),
-            unit: i.unit.as_ref().map(|u| u.text.clone()),
-        });
+        out.item_docs.insert(i.name.text.clone(), is.docs.clone());
     }
 }
 
@@ -123,11 +115,9 @@ fn extern_fn(r: &mut Resolver<'_>, out: &mut ResolvedModel, f: &ast::ExternFn) {
         }
         Err(e) => r.error(f.name.span, e.to_string()),
     }
-    out.extern_fns.push(ExternFnInfo {
-        name: f.name.text.clone(),
-        params: f.params.iter().map(|p| p.text.clone()).collect(),
-        docs: f.docs.clone(),
-    });
+    out.item_docs.insert(f.name.text.clone(), f.docs.clone());
+    let params = f.params.iter().map(|p| p.text.clone()).collect();
+    out.formal_params.insert(f.name.text.clone(), params);
 }
 
 fn state(r: &mut Resolver<'_>, s: &ast::State) {
@@ -172,17 +162,18 @@ fn subroutine(r: &mut Resolver<'_>, out: &mut ResolvedModel, sub: &ast::ExternSu
         }
         Err(e) => r.error(sub.name.span, e.to_string()),
     }
-    out.subroutine_docs.push(sub.docs.clone());
-    out.subroutine_params.push(
-        sub.args
-            .iter()
-            .enumerate()
-            .map(|(k, a)| match a {
-                ast::Expr::Name(n) => n.text.clone(),
-                _ => format!("arg{}", k + 1),
-            })
-            .collect(),
-    );
+    out.item_docs
+        .insert(sub.name.text.clone(), sub.docs.clone());
+    let params = sub
+        .args
+        .iter()
+        .enumerate()
+        .map(|(k, a)| match a {
+            ast::Expr::Name(n) => n.text.clone(),
+            _ => format!("arg{}", k + 1),
+        })
+        .collect();
+    out.formal_params.insert(sub.name.text.clone(), params);
 }
 
 /// The value of a parameter or input default, reported when it does not

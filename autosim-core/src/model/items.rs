@@ -2,9 +2,9 @@
 //! declared: points and `let`s (if nothing used them first), subroutine
 //! arguments, added states, gravity, loads and outputs.
 
+use super::ResolvedModel;
 use super::loads::{coefficients, force, moment};
 use super::scope::{Named, Resolver};
-use super::{ItemDoc, ResolvedModel};
 use crate::diag::Diagnostic;
 use crate::syntax::ast::{self, Item, StateKey};
 
@@ -122,9 +122,5 @@ fn output(
             r.sys.describe_last_output(&o.docs.join(" "));
         }
     }
-    out.output_docs.push(ItemDoc {
-        name: o.name.text.clone(),
-        docs: o.docs.clone(),
-        unit: o.unit.as_ref().map(|u| u.text.clone()),
-    });
+    out.item_docs.insert(o.name.text.clone(), o.docs.clone());
 }

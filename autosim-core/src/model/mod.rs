@@ -29,6 +29,7 @@ pub use value::Value;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::mech::System;
 use crate::syntax::ast::{self, Item};
+use rustc_hash::FxHashMap;
 use scope::Resolver;
 
 /// The float type generated code computes in.
@@ -41,28 +42,6 @@ pub enum FloatType {
     F32,
 }
 
-/// Documentation of one declared item, for generated docs.
-#[derive(Clone, Debug, Default)]
-pub struct ItemDoc {
-    /// The name.
-    pub name: String,
-    /// Doc comments.
-    pub docs: Vec<String>,
-    /// Unit, if any.
-    pub unit: Option<String>,
-}
-
-/// A user function (`extern fn`).
-#[derive(Clone, Debug)]
-pub struct ExternFnInfo {
-    /// Name.
-    pub name: String,
-    /// Formal argument names.
-    pub params: Vec<String>,
-    /// Doc comments.
-    pub docs: Vec<String>,
-}
-
 /// The resolved model: the system plus what code generation and
 /// documentation need to know about the source.
 #[derive(Clone, Debug)]
@@ -73,19 +52,14 @@ pub struct ResolvedModel {
     pub float: FloatType,
     /// Doc comments of the model.
     pub docs: Vec<String>,
-    /// Parameters as declared (docs and units).
-    pub parameter_docs: Vec<ItemDoc>,
-    /// Inputs as declared.
-    pub input_docs: Vec<ItemDoc>,
-    /// Outputs as declared.
-    pub output_docs: Vec<ItemDoc>,
-    /// User functions.
-    pub extern_fns: Vec<ExternFnInfo>,
-    /// Doc comments of user subroutines, in declaration order.
-    pub subroutine_docs: Vec<Vec<String>>,
-    /// Parameter names of user subroutines (an argument written as a plain
-    /// name gives its name, others are `arg1`, `arg2`, ...).
-    pub subroutine_params: Vec<Vec<String>>,
+    /// Doc comments of the items the model declares (parameters, inputs,
+    /// outputs, user code), by name; a parameter the compiler declared (a
+    /// body's default mass) has none.
+    pub item_docs: FxHashMap<String, Vec<String>>,
+    /// Formal argument names of user functions and subroutines, by name (a
+    /// subroutine argument written as a plain name gives its name, others
+    /// are `arg1`, `arg2`, ...).
+    pub formal_params: FxHashMap<String, Vec<String>>,
     /// Where each item is declared, for diagnostics of later phases.
     pub spans: ItemSpans,
 }
@@ -104,12 +78,8 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
         system: System::default(),
         float: FloatType::F64,
         docs: model.docs.clone(),
-        parameter_docs: Vec::new(),
-        input_docs: Vec::new(),
-        output_docs: Vec::new(),
-        extern_fns: Vec::new(),
-        subroutine_docs: Vec::new(),
-        subroutine_params: Vec::new(),
+        item_docs: FxHashMap::default(),
+        formal_params: FxHashMap::default(),
         spans: ItemSpans::new(model_name.span),
     };
     check_model_name(&mut r, model_name);

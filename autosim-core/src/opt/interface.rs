@@ -4,7 +4,7 @@
 //! documentation read this and the program, nothing else.
 
 use crate::diag::Span;
-use crate::expr::{Arena, SymId, SymbolKind};
+use crate::expr::{SymId, SymbolKind};
 use crate::mech::Equations;
 use crate::model::{FloatType, ResolvedModel};
 
@@ -77,14 +77,15 @@ impl StateLayout {
     }
 }
 
-/// A parameter of the generated `Parameters` struct.
+/// A named value of the interface: a parameter (a field of `Parameters`),
+/// an input (of `Inputs`) or an output.
 #[derive(Clone, Debug)]
-pub struct ParameterInfo {
-    /// Name (a field of `Parameters`).
+pub struct Quantity {
+    /// Name.
     pub name: String,
     /// Unit text (empty when none).
     pub unit: String,
-    /// Default value.
+    /// Default value (0 for outputs).
     pub default: f64,
     /// The model's doc comments; `None` for a parameter the compiler
     /// declared (a body's default mass or inertia).
@@ -93,57 +94,15 @@ pub struct ParameterInfo {
     pub span: Span,
 }
 
-/// An input of the generated `Inputs` struct.
+/// User code the model calls: an `extern fn` (one value) or an `extern
+/// sub` (an array of values), a method of the `Externs` trait.
 #[derive(Clone, Debug)]
-pub struct InputInfo {
-    /// Name.
-    pub name: String,
-    /// Unit text.
-    pub unit: String,
-    /// Default value.
-    pub default: f64,
-    /// Doc comments.
-    pub docs: Vec<String>,
-    /// Where it is declared.
-    pub span: Span,
-}
-
-/// An output variable.
-#[derive(Clone, Debug)]
-pub struct OutputInfo {
-    /// Name.
-    pub name: String,
-    /// Unit text.
-    pub unit: String,
-    /// Doc comments.
-    pub docs: Vec<String>,
-    /// Where it is declared.
-    pub span: Span,
-}
-
-/// A user function (`extern fn`): a method of the `Externs` trait.
-#[derive(Clone, Debug)]
-pub struct ExternFnInfo {
+pub struct UserCode {
     /// Name.
     pub name: String,
     /// Formal argument names.
     pub params: Vec<String>,
-    /// Doc comments.
-    pub docs: Vec<String>,
-    /// Where it is declared.
-    pub span: Span,
-}
-
-/// A user subroutine (`extern sub`): a method of the `Externs` trait
-/// returning an array.
-#[derive(Clone, Debug)]
-pub struct SubroutineInfo {
-    /// Name.
-    pub name: String,
-    /// Formal argument names (a plain-name argument gives its name, others
-    /// are `arg1`, `arg2`, ...).
-    pub params: Vec<String>,
-    /// Names of the values it returns.
+    /// Names of the values a subroutine returns (empty for a function).
     pub outputs: Vec<String>,
     /// Doc comments.
     pub docs: Vec<String>,
@@ -162,17 +121,17 @@ pub struct Interface {
     /// Float type of generated code.
     pub float: FloatType,
     /// Parameters in declaration order (`Leaf::Param` indices).
-    pub parameters: Vec<ParameterInfo>,
+    pub parameters: Vec<Quantity>,
     /// Inputs in declaration order (`Leaf::Input` indices).
-    pub inputs: Vec<InputInfo>,
+    pub inputs: Vec<Quantity>,
     /// The state vector (`Leaf::State` indices).
     pub states: StateLayout,
     /// Outputs in order (slots of the outputs block).
-    pub outputs: Vec<OutputInfo>,
+    pub outputs: Vec<Quantity>,
     /// User functions, by `UserFnId` index.
-    pub extern_fns: Vec<ExternFnInfo>,
+    pub extern_fns: Vec<UserCode>,
     /// User subroutines in declaration order.
-    pub subroutines: Vec<SubroutineInfo>,
+    pub subroutines: Vec<UserCode>,
 }
 
 impl Interface {
@@ -180,92 +139,46 @@ impl Interface {
     pub fn new(model: &ResolvedModel, eqs: &Equations) -> Interface {
         let sys = &model.system;
         let a = &sys.arena;
-        let spans = &model.spans;
         let state = |s: &SymId| StateVar {
             name: a.symbol(*s).name.clone(),
             unit: a.symbol(*s).unit.clone().unwrap_or_default(),
         };
-        let parameters = sys
-            .parameters()
-            .iter()
-            .map(|s| {
-                let sym = a.symbol(*s);
-                let declared = model.parameter_docs.iter().find(|d| d.name == sym.name);
-                ParameterInfo {
-                    name: sym.name.clone(),
-                    unit: sym.unit.clone().unwrap_or_default(),
-                    default: symbol_default(a, *s),
-                    docs: declared.map(|d| d.docs.clone()),
-                    span: spans.named(&sym.name),
-                }
-            })
-            .collect();
-        let inputs = sys
-            .inputs()
-            .iter()
-            .map(|s| {
-                let sym = a.symbol(*s);
-                InputInfo {
-                    name: sym.name.clone(),
-                    unit: sym.unit.clone().unwrap_or_default(),
-                    default: symbol_default(a, *s),
-                    docs: model
-                        .input_docs
-                        .iter()
-                        .find(|d| d.name == sym.name)
-                        .map(|d| d.docs.clone())
-                        .unwrap_or_default(),
-                    span: spans.named(&sym.name),
-                }
-            })
-            .collect();
+        let symbol = |s: &SymId| {
+            let sym = a.symbol(*s);
+            let default = match sym.kind {
+                SymbolKind::Parameter { default } | SymbolKind::Input { default } => default,
+                _ => 0.0,
+            };
+            model.quantity(&sym.name, sym.unit.as_deref(), default)
+        };
         let outputs = sys
             .outputs()
             .iter()
-            .map(|o| {
-                let declared = model.output_docs.iter().find(|d| d.name == o.name);
-                OutputInfo {
-                    name: o.name.clone(),
-                    unit: declared.and_then(|d| d.unit.clone()).unwrap_or_default(),
-                    docs: declared.map(|d| d.docs.clone()).unwrap_or_default(),
-                    span: spans.named(&o.name),
-                }
-            })
+            .map(|o| model.quantity(&o.name, o.unit.as_deref(), 0.0))
             .collect();
         let subroutines = sys
             .subroutines()
             .iter()
-            .enumerate()
-            .map(|(k, s)| SubroutineInfo {
-                name: s.name.clone(),
-                params: model.subroutine_params.get(k).cloned().unwrap_or_default(),
-                outputs: s
-                    .outputs
-                    .iter()
-                    .map(|o| a.symbol(*o).name.clone())
-                    .collect(),
-                docs: model.subroutine_docs.get(k).cloned().unwrap_or_default(),
-                span: spans.named(&s.name),
+            .map(|s| {
+                model.user_code(
+                    &s.name,
+                    s.outputs
+                        .iter()
+                        .map(|o| a.symbol(*o).name.clone())
+                        .collect(),
+                )
             })
             .collect();
         let extern_fns = a
             .user_fns()
-            .map(|(_, f)| {
-                let declared = model.extern_fns.iter().find(|d| d.name == f.name);
-                ExternFnInfo {
-                    name: f.name.clone(),
-                    params: declared.map(|d| d.params.clone()).unwrap_or_default(),
-                    docs: declared.map(|d| d.docs.clone()).unwrap_or_default(),
-                    span: spans.named(&f.name),
-                }
-            })
+            .map(|(_, f)| model.user_code(&f.name, Vec::new()))
             .collect();
         Interface {
             name: sys.name().to_string(),
             docs: model.docs.clone(),
             float: model.float,
-            parameters,
-            inputs,
+            parameters: sys.parameters().iter().map(symbol).collect(),
+            inputs: sys.inputs().iter().map(symbol).collect(),
             states: StateLayout {
                 coordinates: eqs.coordinates.iter().map(state).collect(),
                 speeds: eqs.speeds.iter().map(state).collect(),
@@ -284,10 +197,26 @@ impl Interface {
     }
 }
 
-/// The default value of a parameter or input symbol.
-fn symbol_default(a: &Arena, s: SymId) -> f64 {
-    match a.symbol(s).kind {
-        SymbolKind::Parameter { default } | SymbolKind::Input { default } => default,
-        _ => 0.0,
+impl ResolvedModel {
+    /// The interface entry of a named value declared by the model.
+    fn quantity(&self, name: &str, unit: Option<&str>, default: f64) -> Quantity {
+        Quantity {
+            name: name.to_string(),
+            unit: unit.unwrap_or_default().to_string(),
+            default,
+            docs: self.item_docs.get(name).cloned(),
+            span: self.spans.named(name),
+        }
+    }
+
+    /// The interface entry of user code.
+    fn user_code(&self, name: &str, outputs: Vec<String>) -> UserCode {
+        UserCode {
+            name: name.to_string(),
+            params: self.formal_params.get(name).cloned().unwrap_or_default(),
+            outputs,
+            docs: self.item_docs.get(name).cloned().unwrap_or_default(),
+            span: self.spans.named(name),
+        }
     }
 }

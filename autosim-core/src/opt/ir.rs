@@ -10,16 +10,11 @@ use crate::expr::Func;
 use indexmap::IndexSet;
 use rustc_hash::FxBuildHasher;
 
-/// A node of the program IR.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct Nid(pub(crate) u32);
-
-impl Nid {
-    /// Position in the IR.
-    pub fn index(self) -> usize {
-        self.0 as usize
-    }
-}
+crate::ids::id_type!(
+    /// A node of the program IR.
+    Nid,
+    "IR"
+);
 
 /// Values the program reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

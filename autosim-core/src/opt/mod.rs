@@ -13,10 +13,7 @@ mod solve;
 mod text;
 mod verify;
 
-pub use interface::{
-    ExternFnInfo, InputInfo, Interface, OutputInfo, ParameterInfo, StateLayout, StateVar,
-    SubroutineInfo,
-};
+pub use interface::{Interface, Quantity, StateLayout, StateVar, UserCode};
 pub use interp::{Interpreter, SolveError};
 pub use ir::{Ir, Leaf, Nid, Op};
 pub use lower::{Lowering, UnboundSymbol};

@@ -187,20 +187,30 @@ pub struct Parameter {
     pub unit: Option<Unit>,
 }
 
-/// `body B "bus" { ... }`
+/// A named block of options: `body B "bus" { ... }`, `force name
+/// "label" { on: ..., ... }`, `moment name "label" { on: ..., ... }`.
 #[derive(Clone, Debug)]
-pub struct Body {
+pub struct Block<K> {
     /// Doc comments.
     pub docs: Vec<String>,
-    /// The `body` keyword through the name.
+    /// The keyword through the name.
     pub span: Span,
-    /// The body's name.
+    /// The item's name.
     pub name: Name,
     /// Optional description.
     pub label: Option<Label>,
     /// The options.
-    pub options: Options<BodyKey>,
+    pub options: Options<K>,
 }
+
+/// `body B "bus" { ... }`
+pub type Body = Block<BodyKey>;
+
+/// `force name "label" { on: ..., ... }`
+pub type Force = Block<ForceKey>;
+
+/// `moment name "label" { on: ..., ... }`
+pub type Moment = Block<MomentKey>;
 
 /// `point P "tip" in F at [0, -L8, 0];`
 #[derive(Clone, Debug)]
@@ -230,36 +240,6 @@ pub struct Let {
     pub name: Name,
     /// Its value.
     pub value: Expr,
-}
-
-/// `force name "label" { on: ..., ... }`
-#[derive(Clone, Debug)]
-pub struct Force {
-    /// Doc comments.
-    pub docs: Vec<String>,
-    /// The `force` keyword through the name.
-    pub span: Span,
-    /// The force's name.
-    pub name: Name,
-    /// Optional description.
-    pub label: Option<Label>,
-    /// The options.
-    pub options: Options<ForceKey>,
-}
-
-/// `moment name "label" { on: ..., ... }`
-#[derive(Clone, Debug)]
-pub struct Moment {
-    /// Doc comments.
-    pub docs: Vec<String>,
-    /// The `moment` keyword through the name.
-    pub span: Span,
-    /// The moment's name.
-    pub name: Name,
-    /// Optional description.
-    pub label: Option<Label>,
-    /// The options.
-    pub options: Options<MomentKey>,
 }
 
 /// `gravity = -g*n3;`

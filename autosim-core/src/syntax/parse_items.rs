@@ -7,11 +7,11 @@ use syn::Token;
 use syn::parse::ParseStream;
 
 use super::ast::{
-    Body, BodyKey, ExternFn, ExternSub, Force, ForceKey, Gravity, Input, Inputs, Item, Let, Model,
-    Moment, MomentKey, Name, Output, Parameters, Point, SettingKey, Settings, State, StateKey,
-    SubOutput,
+    Block, Body, ExternFn, ExternSub, Force, Gravity, Input, Inputs, Item, Let, Model, Moment,
+    Name, Output, Parameters, Point, SettingKey, Settings, State, StateKey, SubOutput,
 };
 use super::cx::{Cx, PResult, at_item_start, expected, in_group, peek_group, recover};
+use super::keys::OptionKey;
 use super::kw::{self, ITEM_STARTS};
 use super::parse_block::{docs, options, parameter, parameter_entries};
 use super::parse_expr::{expr, label, name, unit, value};
@@ -207,16 +207,7 @@ fn settings(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Settings>
 
 fn body(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Body> {
     let keyword: kw::body = input.parse()?;
-    let name = name(input, cx, "a body name")?;
-    let label = label(input, cx)?;
-    let options = options::<BodyKey>(input, cx, &format!("body `{}`", name.text))?;
-    Ok(Body {
-        docs,
-        span: cx.span(keyword.span).to(name.span),
-        name,
-        label,
-        options,
-    })
+    block(input, cx, docs, cx.span(keyword.span), "body")
 }
 
 fn point(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Point> {
@@ -281,30 +272,12 @@ fn equals(input: ParseStream, cx: &Cx, after: &str) -> PResult<()> {
 
 fn force(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Force> {
     let keyword: kw::force = input.parse()?;
-    let name = name(input, cx, "a force name")?;
-    let label = label(input, cx)?;
-    let options = options::<ForceKey>(input, cx, &format!("force `{}`", name.text))?;
-    Ok(Force {
-        docs,
-        span: cx.span(keyword.span).to(name.span),
-        name,
-        label,
-        options,
-    })
+    block(input, cx, docs, cx.span(keyword.span), "force")
 }
 
 fn moment(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Moment> {
     let keyword: kw::moment = input.parse()?;
-    let name = name(input, cx, "a moment name")?;
-    let label = label(input, cx)?;
-    let options = options::<MomentKey>(input, cx, &format!("moment `{}`", name.text))?;
-    Ok(Moment {
-        docs,
-        span: cx.span(keyword.span).to(name.span),
-        name,
-        label,
-        options,
-    })
+    block(input, cx, docs, cx.span(keyword.span), "moment")
 }
 
 fn gravity(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Gravity> {
@@ -490,5 +463,26 @@ fn output(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Output> {
         name,
         unit,
         value,
+    })
+}
+
+/// The rest of a named block after its keyword (at `keyword`): the name,
+/// an optional label and the options, `what` naming the item in messages.
+fn block<K: OptionKey>(
+    input: ParseStream,
+    cx: &Cx,
+    docs: Vec<String>,
+    keyword: Span,
+    what: &str,
+) -> PResult<Block<K>> {
+    let name = name(input, cx, &format!("a {what} name"))?;
+    let label = label(input, cx)?;
+    let options = options::<K>(input, cx, &format!("{what} `{}`", name.text))?;
+    Ok(Block {
+        docs,
+        span: keyword.to(name.span),
+        name,
+        label,
+        options,
     })
 }

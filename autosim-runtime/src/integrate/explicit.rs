@@ -1,4 +1,7 @@
 //! Fixed-step explicit Runge–Kutta methods: Euler, Heun and classic RK4.
+//! Each is a [`FixedStep`]: it computes the new state into a workspace, and
+//! one implementation of [`Stepper`] checks the step and the result around
+//! it for all three.
 
 use core::fmt;
 
@@ -6,10 +9,60 @@ use super::vector::{check_step, combine, eval};
 use super::{StepInfo, Stepper};
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 
-/// Implements `Clone`, `Default` and `Debug` for a stepper whose fields are
-/// state arrays and counters (deriving would demand `M: Clone`).
-macro_rules! workspace_impls {
-    ($ty:ident { $($field:ident),* }) => {
+/// A fixed-step method that carries nothing from one step to the next.
+trait FixedStep<M: Model> {
+    /// The method's name.
+    const NAME: &'static str;
+    /// Its order of accuracy.
+    const ORDER: u32;
+    /// Derivative evaluations per step.
+    const STAGES: u32;
+
+    /// Computes the state at `t + h` from `x` (returned; `x` unchanged).
+    fn advance(
+        &mut self,
+        model: &mut M,
+        t: M::Float,
+        x: &M::State,
+        h: M::Float,
+    ) -> Result<&M::State, IntegrationError>;
+}
+
+/// A [`FixedStep`] as a [`Stepper`]: the step checked, the new state
+/// checked before it replaces `x`.
+fn fixed_step<M: Model, S: FixedStep<M>>(
+    s: &mut S,
+    model: &mut M,
+    t: M::Float,
+    x: &mut M::State,
+    h: M::Float,
+) -> Result<StepInfo<M::Float>, IntegrationError> {
+    check_step(h)?;
+    let new = *s.advance(model, t, x, h)?;
+    check_finite::<M>(t + h, &new)?;
+    *x = new;
+    Ok(fixed_info(h, S::STAGES))
+}
+
+/// Declares a stepper whose fields are state arrays (zeroed by `new`) and
+/// an evaluation counter, with `Clone`, `Default` and `Debug` (deriving
+/// would demand `M: Clone`), and its [`Stepper`] implementation through
+/// [`FixedStep`].
+macro_rules! fixed_stepper {
+    ($(#[$doc:meta])* $ty:ident { $($field:ident),* }) => {
+        $(#[$doc])*
+        pub struct $ty<M: Model> {
+            $($field: M::State,)*
+            evals: u64,
+        }
+
+        impl<M: Model> $ty<M> {
+            /// A stepper with zeroed workspaces.
+            pub fn new() -> Self {
+                Self { $($field: M::State::zeros(),)* evals: 0 }
+            }
+        }
+
         impl<M: Model> Clone for $ty<M> {
             fn clone(&self) -> Self {
                 Self { $($field: self.$field,)* evals: self.evals }
@@ -27,166 +80,111 @@ macro_rules! workspace_impls {
                     .finish_non_exhaustive()
             }
         }
+
+        impl<M: Model> Stepper<M> for $ty<M> {
+            fn step(
+                &mut self,
+                model: &mut M,
+                t: M::Float,
+                x: &mut M::State,
+                h: M::Float,
+            ) -> Result<StepInfo<M::Float>, IntegrationError> {
+                fixed_step(self, model, t, x, h)
+            }
+            fn evaluations(&self) -> u64 {
+                self.evals
+            }
+            fn reset(&mut self) {}
+            fn name(&self) -> &'static str {
+                <Self as FixedStep<M>>::NAME
+            }
+            fn order(&self) -> u32 {
+                <Self as FixedStep<M>>::ORDER
+            }
+        }
     };
 }
 
-/// Explicit (forward) Euler: `x += h·f(t, x)`. Order 1, one evaluation per
-/// step.
-///
-/// Use it only where the step is tiny anyway (a fast control loop) or to
-/// show what a better method buys; [`Heun`] costs one more evaluation and is
-/// an order more accurate.
-pub struct Euler<M: Model> {
-    k: M::State,
-    x_new: M::State,
-    evals: u64,
+fixed_stepper! {
+    /// Explicit (forward) Euler: `x += h·f(t, x)`. Order 1, one evaluation per
+    /// step.
+    ///
+    /// Use it only where the step is tiny anyway (a fast control loop) or to
+    /// show what a better method buys; [`Heun`] costs one more evaluation and is
+    /// an order more accurate.
+    Euler { k, x_new }
 }
 
-impl<M: Model> Euler<M> {
-    /// A stepper with zeroed workspaces.
-    pub fn new() -> Self {
-        Self {
-            k: M::State::zeros(),
-            x_new: M::State::zeros(),
-            evals: 0,
-        }
-    }
-}
-
-workspace_impls!(Euler { k, x_new });
-
-impl<M: Model> Stepper<M> for Euler<M> {
-    fn step(
+impl<M: Model> FixedStep<M> for Euler<M> {
+    const NAME: &'static str = "Euler";
+    const ORDER: u32 = 1;
+    const STAGES: u32 = 1;
+    fn advance(
         &mut self,
         model: &mut M,
         t: M::Float,
-        x: &mut M::State,
+        x: &M::State,
         h: M::Float,
-    ) -> Result<StepInfo<M::Float>, IntegrationError> {
-        check_step(h)?;
+    ) -> Result<&M::State, IntegrationError> {
         eval(model, t, x, &mut self.k, &mut self.evals)?;
         combine(&mut self.x_new, x, h, &[(M::Float::ONE, &self.k)]);
-        check_finite::<M>(t + h, &self.x_new)?;
-        *x = self.x_new;
-        Ok(fixed_info(h, 1))
-    }
-    fn evaluations(&self) -> u64 {
-        self.evals
-    }
-    fn reset(&mut self) {}
-    fn name(&self) -> &'static str {
-        "Euler"
-    }
-    fn order(&self) -> u32 {
-        1
+        Ok(&self.x_new)
     }
 }
 
-/// Heun's method (explicit trapezoid, RK2): an Euler predictor and a
-/// trapezoid corrector. Order 2, two evaluations per step, stage times `t`
-/// and `t + h`.
-///
-/// Use it for cheap fixed-step loops where Euler's error is too large and
-/// RK4's four evaluations are too many.
-pub struct Heun<M: Model> {
-    k1: M::State,
-    k2: M::State,
-    stage: M::State,
-    evals: u64,
+fixed_stepper! {
+    /// Heun's method (explicit trapezoid, RK2): an Euler predictor and a
+    /// trapezoid corrector. Order 2, two evaluations per step, stage times `t`
+    /// and `t + h`.
+    ///
+    /// Use it for cheap fixed-step loops where Euler's error is too large and
+    /// RK4's four evaluations are too many.
+    Heun { k1, k2, stage }
 }
 
-impl<M: Model> Heun<M> {
-    /// A stepper with zeroed workspaces.
-    pub fn new() -> Self {
-        Self {
-            k1: M::State::zeros(),
-            k2: M::State::zeros(),
-            stage: M::State::zeros(),
-            evals: 0,
-        }
-    }
-}
-
-workspace_impls!(Heun { k1, k2, stage });
-
-impl<M: Model> Stepper<M> for Heun<M> {
-    fn step(
+impl<M: Model> FixedStep<M> for Heun<M> {
+    const NAME: &'static str = "Heun";
+    const ORDER: u32 = 2;
+    const STAGES: u32 = 2;
+    fn advance(
         &mut self,
         model: &mut M,
         t: M::Float,
-        x: &mut M::State,
+        x: &M::State,
         h: M::Float,
-    ) -> Result<StepInfo<M::Float>, IntegrationError> {
-        check_step(h)?;
+    ) -> Result<&M::State, IntegrationError> {
         let one = M::Float::ONE;
         let half = M::Float::from_f64(0.5);
         eval(model, t, x, &mut self.k1, &mut self.evals)?;
         combine(&mut self.stage, x, h, &[(one, &self.k1)]);
         eval(model, t + h, &self.stage, &mut self.k2, &mut self.evals)?;
         combine(&mut self.stage, x, h, &[(half, &self.k1), (half, &self.k2)]);
-        check_finite::<M>(t + h, &self.stage)?;
-        *x = self.stage;
-        Ok(fixed_info(h, 2))
-    }
-    fn evaluations(&self) -> u64 {
-        self.evals
-    }
-    fn reset(&mut self) {}
-    fn name(&self) -> &'static str {
-        "Heun"
-    }
-    fn order(&self) -> u32 {
-        2
+        Ok(&self.stage)
     }
 }
 
-/// The classic fourth-order Runge–Kutta method. Order 4, four evaluations
-/// per step.
-///
-/// The model's derivatives are called exactly four times per step, in this
-/// order: at `t`, `t + h/2`, `t + h/2`, `t + h` — user functions that keep
-/// state (AUTOSIM's controllers that count calls) may rely on it.
-/// Use it as the default fixed-step method for smooth, non-stiff models.
-pub struct Rk4<M: Model> {
-    k1: M::State,
-    k2: M::State,
-    k3: M::State,
-    k4: M::State,
-    stage: M::State,
-    evals: u64,
+fixed_stepper! {
+    /// The classic fourth-order Runge–Kutta method. Order 4, four evaluations
+    /// per step.
+    ///
+    /// The model's derivatives are called exactly four times per step, in this
+    /// order: at `t`, `t + h/2`, `t + h/2`, `t + h` — user functions that keep
+    /// state (AUTOSIM's controllers that count calls) may rely on it.
+    /// Use it as the default fixed-step method for smooth, non-stiff models.
+    Rk4 { k1, k2, k3, k4, stage }
 }
 
-impl<M: Model> Rk4<M> {
-    /// A stepper with zeroed workspaces.
-    pub fn new() -> Self {
-        Self {
-            k1: M::State::zeros(),
-            k2: M::State::zeros(),
-            k3: M::State::zeros(),
-            k4: M::State::zeros(),
-            stage: M::State::zeros(),
-            evals: 0,
-        }
-    }
-}
-
-workspace_impls!(Rk4 {
-    k1,
-    k2,
-    k3,
-    k4,
-    stage
-});
-
-impl<M: Model> Stepper<M> for Rk4<M> {
-    fn step(
+impl<M: Model> FixedStep<M> for Rk4<M> {
+    const NAME: &'static str = "RK4";
+    const ORDER: u32 = 4;
+    const STAGES: u32 = 4;
+    fn advance(
         &mut self,
         model: &mut M,
         t: M::Float,
-        x: &mut M::State,
+        x: &M::State,
         h: M::Float,
-    ) -> Result<StepInfo<M::Float>, IntegrationError> {
-        check_step(h)?;
+    ) -> Result<&M::State, IntegrationError> {
         rk4_step(
             model,
             t,
@@ -196,19 +194,7 @@ impl<M: Model> Stepper<M> for Rk4<M> {
             &mut self.stage,
             &mut self.evals,
         )?;
-        check_finite::<M>(t + h, &self.stage)?;
-        *x = self.stage;
-        Ok(fixed_info(h, 4))
-    }
-    fn evaluations(&self) -> u64 {
-        self.evals
-    }
-    fn reset(&mut self) {}
-    fn name(&self) -> &'static str {
-        "RK4"
-    }
-    fn order(&self) -> u32 {
-        4
+        Ok(&self.stage)
     }
 }
 

@@ -26,16 +26,9 @@ impl Oscillator {
 }
 
 impl Model for Oscillator {
-    type Float = f64;
-    type State = [f64; 2];
-    type Outputs = [f64; 1];
-    const NAME: &'static str = "Oscillator";
-    const STATE_NAMES: &'static [&'static str] = &["x", "v"];
-    const STATE_UNITS: &'static [&'static str] = &["m", "m/s"];
+    autosim_test_support::model_header!(f64, "Oscillator", states: ["x" in "m", "v" in "m/s"], outputs: 1);
     const PARAMETER_NAMES: &'static [&'static str] = &["omega", "mass"];
     const PARAMETER_UNITS: &'static [&'static str] = &["rad/s", "kg"];
-    const INPUT_NAMES: &'static [&'static str] = &[];
-    const INPUT_UNITS: &'static [&'static str] = &[];
     const OUTPUT_NAMES: &'static [&'static str] = &["energy"];
     const OUTPUT_UNITS: &'static [&'static str] = &["J"];
 
@@ -69,24 +62,12 @@ pub struct Decay {
 }
 
 impl Model for Decay {
-    type Float = f64;
-    type State = [f64; 1];
-    type Outputs = [f64; 0];
-    const NAME: &'static str = "Decay";
-    const STATE_NAMES: &'static [&'static str] = &["x"];
-    const STATE_UNITS: &'static [&'static str] = &["1"];
+    autosim_test_support::model_header!(f64, "Decay", states: ["x" in "1"], outputs: 0);
     const PARAMETER_NAMES: &'static [&'static str] = &["k"];
     const PARAMETER_UNITS: &'static [&'static str] = &["1/s"];
-    const INPUT_NAMES: &'static [&'static str] = &[];
-    const INPUT_UNITS: &'static [&'static str] = &[];
-    const OUTPUT_NAMES: &'static [&'static str] = &[];
-    const OUTPUT_UNITS: &'static [&'static str] = &[];
 
     fn derivatives(&mut self, _t: f64, x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
         dx[0] = -self.k * x[0];
-        Ok(())
-    }
-    fn outputs(&mut self, _t: f64, _x: &[f64; 1], _y: &mut [f64; 0]) -> Result<(), ModelError> {
         Ok(())
     }
     fn parameter_values(&self, values: &mut [f64]) {
@@ -133,18 +114,7 @@ impl StiffLinear {
 }
 
 impl Model for StiffLinear {
-    type Float = f64;
-    type State = [f64; 3];
-    type Outputs = [f64; 0];
-    const NAME: &'static str = "StiffLinear";
-    const STATE_NAMES: &'static [&'static str] = &["y1", "y2", "y3"];
-    const STATE_UNITS: &'static [&'static str] = &["1", "1", "1"];
-    const PARAMETER_NAMES: &'static [&'static str] = &[];
-    const PARAMETER_UNITS: &'static [&'static str] = &[];
-    const INPUT_NAMES: &'static [&'static str] = &[];
-    const INPUT_UNITS: &'static [&'static str] = &[];
-    const OUTPUT_NAMES: &'static [&'static str] = &[];
-    const OUTPUT_UNITS: &'static [&'static str] = &[];
+    autosim_test_support::model_header!(f64, "StiffLinear", states: ["y1" in "1", "y2" in "1", "y3" in "1"], outputs: 0);
 
     fn derivatives(&mut self, t: f64, x: &[f64; 3], dx: &mut [f64; 3]) -> Result<(), ModelError> {
         let phi = Self::exact(t);
@@ -154,11 +124,6 @@ impl Model for StiffLinear {
         }
         Ok(())
     }
-    fn outputs(&mut self, _t: f64, _x: &[f64; 3], _y: &mut [f64; 0]) -> Result<(), ModelError> {
-        Ok(())
-    }
-    fn parameter_values(&self, _values: &mut [f64]) {}
-    fn set_parameter_values(&mut self, _values: &[f64]) {}
     fn initial_state(&self) -> [f64; 3] {
         Self::exact(0.0)
     }
@@ -172,16 +137,9 @@ pub struct VanDerPol {
 }
 
 impl Model for VanDerPol {
-    type Float = f64;
-    type State = [f64; 2];
-    type Outputs = [f64; 1];
-    const NAME: &'static str = "VanDerPol";
-    const STATE_NAMES: &'static [&'static str] = &["x", "v"];
-    const STATE_UNITS: &'static [&'static str] = &["1", "1/s"];
+    autosim_test_support::model_header!(f64, "VanDerPol", states: ["x" in "1", "v" in "1/s"], outputs: 1);
     const PARAMETER_NAMES: &'static [&'static str] = &["mu", "stiffness"];
     const PARAMETER_UNITS: &'static [&'static str] = &["1", "1/s2"];
-    const INPUT_NAMES: &'static [&'static str] = &[];
-    const INPUT_UNITS: &'static [&'static str] = &[];
     const OUTPUT_NAMES: &'static [&'static str] = &["x_squared"];
     const OUTPUT_UNITS: &'static [&'static str] = &["1"];
 
@@ -216,28 +174,12 @@ pub struct Polynomial {
 }
 
 impl Model for Polynomial {
-    type Float = f64;
-    type State = [f64; 1];
-    type Outputs = [f64; 0];
-    const NAME: &'static str = "Polynomial";
-    const STATE_NAMES: &'static [&'static str] = &["x"];
-    const STATE_UNITS: &'static [&'static str] = &["1"];
-    const PARAMETER_NAMES: &'static [&'static str] = &[];
-    const PARAMETER_UNITS: &'static [&'static str] = &[];
-    const INPUT_NAMES: &'static [&'static str] = &[];
-    const INPUT_UNITS: &'static [&'static str] = &[];
-    const OUTPUT_NAMES: &'static [&'static str] = &[];
-    const OUTPUT_UNITS: &'static [&'static str] = &[];
+    autosim_test_support::model_header!(f64, "Polynomial", states: ["x" in "1"], outputs: 0);
 
     fn derivatives(&mut self, t: f64, _x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
         dx[0] = f64::from(self.degree) * t.powi(self.degree - 1);
         Ok(())
     }
-    fn outputs(&mut self, _t: f64, _x: &[f64; 1], _y: &mut [f64; 0]) -> Result<(), ModelError> {
-        Ok(())
-    }
-    fn parameter_values(&self, _values: &mut [f64]) {}
-    fn set_parameter_values(&mut self, _values: &[f64]) {}
     fn initial_state(&self) -> [f64; 1] {
         [0.0]
     }
@@ -248,28 +190,12 @@ impl Model for Polynomial {
 pub struct BlowUp;
 
 impl Model for BlowUp {
-    type Float = f64;
-    type State = [f64; 1];
-    type Outputs = [f64; 0];
-    const NAME: &'static str = "BlowUp";
-    const STATE_NAMES: &'static [&'static str] = &["x"];
-    const STATE_UNITS: &'static [&'static str] = &["1"];
-    const PARAMETER_NAMES: &'static [&'static str] = &[];
-    const PARAMETER_UNITS: &'static [&'static str] = &[];
-    const INPUT_NAMES: &'static [&'static str] = &[];
-    const INPUT_UNITS: &'static [&'static str] = &[];
-    const OUTPUT_NAMES: &'static [&'static str] = &[];
-    const OUTPUT_UNITS: &'static [&'static str] = &[];
+    autosim_test_support::model_header!(f64, "BlowUp", states: ["x" in "1"], outputs: 0);
 
     fn derivatives(&mut self, _t: f64, x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
         dx[0] = x[0] * x[0];
         Ok(())
     }
-    fn outputs(&mut self, _t: f64, _x: &[f64; 1], _y: &mut [f64; 0]) -> Result<(), ModelError> {
-        Ok(())
-    }
-    fn parameter_values(&self, _values: &mut [f64]) {}
-    fn set_parameter_values(&mut self, _values: &[f64]) {}
     fn initial_state(&self) -> [f64; 1] {
         [1.0]
     }

@@ -32,3 +32,30 @@ pub fn max_diff(a: &[f64], b: &[f64]) -> f64 {
         .map(|(x, y)| (x - y).abs())
         .fold(0.0, f64::max)
 }
+
+/// The associated types, name and state names of a hand-written model,
+/// inside its `impl Model` (the other lists default to empty):
+///
+/// ```
+/// use autosim_runtime::{Model, ModelError};
+/// struct Decay;
+/// impl Model for Decay {
+///     autosim_test_support::model_header!(f64, "Decay", states: ["x" in "1"], outputs: 0);
+///     fn derivatives(&mut self, _t: f64, x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
+///         dx[0] = -x[0];
+///         Ok(())
+///     }
+/// }
+/// assert_eq!(Decay::STATE_NAMES, ["x"]);
+/// ```
+#[macro_export]
+macro_rules! model_header {
+    ($f:ty, $name:literal, states: [$($s:literal in $u:literal),* $(,)?], outputs: $n:literal) => {
+        type Float = $f;
+        type State = [$f; [$($s),*].len()];
+        type Outputs = [$f; $n];
+        const NAME: &'static str = $name;
+        const STATE_NAMES: &'static [&'static str] = &[$($s),*];
+        const STATE_UNITS: &'static [&'static str] = &[$($u),*];
+    };
+}

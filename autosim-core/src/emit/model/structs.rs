@@ -4,121 +4,74 @@
 use super::{doc, docs};
 use crate::emit::expr::{float_type, ident, literal};
 use crate::model::FloatType;
-use crate::opt::Interface;
+use crate::opt::{Interface, Quantity};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
-/// A field of `Parameters` or `Inputs`.
-struct Field<'a> {
-    name: &'a str,
-    unit: &'a str,
-    default: f64,
-    docs: Vec<String>,
-}
-
-/// The fields, the struct's `Default` (derived when every default is zero,
-/// which clippy prefers) and the field list of a struct literal.
-struct StructParts {
-    fields: Vec<TokenStream>,
-    derive_default: TokenStream,
-    default_impl: TokenStream,
-}
-
-fn struct_parts(type_name: &str, fields: &[Field<'_>], float: FloatType) -> StructParts {
+/// A struct of values with their defaults (`Parameters`, `Inputs`): one
+/// documented field per quantity, and `Default` (derived when every
+/// default is zero, which clippy prefers).
+fn values_struct(
+    name: &str,
+    struct_doc: TokenStream,
+    quantities: &[Quantity],
+    float: FloatType,
+) -> TokenStream {
     let ty = float_type(float);
-    let mut out = Vec::with_capacity(fields.len());
-    let mut defaults = Vec::with_capacity(fields.len());
-    for f in fields {
-        let id = ident(f.name);
-        let mut d = docs(&f.docs);
-        let unit = if f.unit.is_empty() {
+    let mut fields = Vec::with_capacity(quantities.len());
+    let mut defaults = Vec::with_capacity(quantities.len());
+    for q in quantities {
+        let id = ident(&q.name);
+        let mut d =
+            docs(&q.docs.clone().unwrap_or_else(|| {
+                vec![format!("{} (default mass or inertia of a body).", q.name)]
+            }));
+        let unit = if q.unit.is_empty() {
             String::new()
         } else {
-            format!(" [{}]", f.unit)
+            format!(" [{}]", q.unit)
         };
-        d.extend(doc(&format!("Default: `{:?}`{unit}.", f.default)));
-        let lit = literal(f.default, float);
-        out.push(quote!(#d pub #id: #ty));
+        d.extend(doc(&format!("Default: `{:?}`{unit}.", q.default)));
+        let lit = literal(q.default, float);
+        fields.push(quote!(#d pub #id: #ty));
         defaults.push(quote!(#id: #lit));
     }
-    let ty_name = ident(type_name);
-    if fields.iter().all(|f| f.default == 0.0) {
-        StructParts {
-            fields: out,
-            derive_default: quote!(, Default),
-            default_impl: quote!(),
-        }
+    let ty_name = ident(name);
+    let (derive_default, default_impl) = if quantities.iter().all(|q| q.default == 0.0) {
+        (quote!(, Default), quote!())
     } else {
-        StructParts {
-            fields: out,
-            derive_default: quote!(),
-            default_impl: quote! {
+        (
+            quote!(),
+            quote! {
                 impl Default for #ty_name {
                     fn default() -> Self {
                         #ty_name { #(#defaults,)* }
                     }
                 }
             },
+        )
+    };
+    quote! {
+        #struct_doc
+        #[derive(Clone, Copy, Debug, PartialEq #derive_default)]
+        pub struct #ty_name {
+            #(#fields,)*
         }
+
+        #default_impl
     }
 }
 
 /// `Parameters` and its `Default`.
 pub(super) fn parameters(i: &Interface) -> TokenStream {
-    let fields: Vec<Field<'_>> = i
-        .parameters
-        .iter()
-        .map(|p| Field {
-            name: &p.name,
-            unit: &p.unit,
-            default: p.default,
-            docs: p.docs.clone().unwrap_or_else(|| {
-                vec![format!("{} (default mass or inertia of a body).", p.name)]
-            }),
-        })
-        .collect();
-    let StructParts {
-        fields,
-        derive_default,
-        default_impl,
-    } = struct_parts("Parameters", &fields, i.float);
-    quote! {
-        /// Parameters of the model, with their defaults.
-        #[derive(Clone, Copy, Debug, PartialEq #derive_default)]
-        pub struct Parameters {
-            #(#fields,)*
-        }
-
-        #default_impl
-    }
+    let doc = quote!(#[doc = r" Parameters of the model, with their defaults."]);
+    values_struct("Parameters", doc, &i.parameters, i.float)
 }
 
 /// `Inputs` and its `Default`.
 pub(super) fn inputs(i: &Interface) -> TokenStream {
-    let fields: Vec<Field<'_>> = i
-        .inputs
-        .iter()
-        .map(|x| Field {
-            name: &x.name,
-            unit: &x.unit,
-            default: x.default,
-            docs: x.docs.clone(),
-        })
-        .collect();
-    let StructParts {
-        fields,
-        derive_default,
-        default_impl,
-    } = struct_parts("Inputs", &fields, i.float);
-    quote! {
-        /// Inputs of the model, supplied by the caller at run time.
-        #[derive(Clone, Copy, Debug, PartialEq #derive_default)]
-        pub struct Inputs {
-            #(#fields,)*
-        }
-
-        #default_impl
-    }
+    let doc = quote!(#[doc = r" Inputs of the model, supplied by the caller at run time."]);
+    values_struct("Inputs", doc, &i.inputs, i.float)
 }
 
 /// The `Externs` trait: one method per user function and subroutine

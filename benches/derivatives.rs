@@ -5,36 +5,9 @@ use autosim::runtime::Model;
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 
-mod models {
-    autosim::model!(file = "examples/models/chain_spatial_1.sim");
-    autosim::model!(file = "examples/models/chain_spatial_3.sim");
-    autosim::model!(file = "examples/models/chain_spatial_5.sim");
-    autosim::model!(file = "examples/models/chain_spatial_10.sim");
-    autosim::model!(file = "examples/models/chain_spatial_20.sim");
-    autosim::model!(file = "examples/models/chain_planar_10.sim");
-    autosim::model!(file = "examples/models/satellite.sim");
-    autosim::model!(file = "examples/models/satellite_small.sim");
-}
-
-struct Quiet;
-
-impl models::satellite::Externs for Quiet {
-    fn thrust(&mut self, _t: f64, _axis: f64, _error: f64) -> f64 {
-        0.0
-    }
-    fn cmd(&mut self, _t: f64) -> [f64; 2] {
-        [0.8584074, -0.5]
-    }
-}
-
-impl models::satellite_small::Externs for Quiet {
-    fn thrust(&mut self, _t: f64, _axis: f64, _error: f64) -> f64 {
-        0.0
-    }
-    fn cmd(&mut self, _t: f64) -> [f64; 2] {
-        [0.8584074, -0.5]
-    }
-}
+#[path = "../examples/common/perf_models.rs"]
+mod perf_models;
+use perf_models::{Quiet, models};
 
 fn bench_model<M: Model<Float = f64, State = [f64; N]>, const N: usize>(
     c: &mut Criterion,

@@ -8,52 +8,9 @@ use autosim_test_support::Rng;
 use std::hint::black_box;
 use std::time::Instant;
 
-mod models {
-    autosim::model!(file = "examples/models/chain_spatial_1.sim");
-    autosim::model!(file = "examples/models/chain_spatial_2.sim");
-    autosim::model!(file = "examples/models/chain_spatial_3.sim");
-    autosim::model!(file = "examples/models/chain_spatial_5.sim");
-    autosim::model!(file = "examples/models/chain_spatial_7.sim");
-    autosim::model!(file = "examples/models/chain_spatial_10.sim");
-    autosim::model!(file = "examples/models/chain_spatial_20.sim");
-    autosim::model!(file = "examples/models/chain_planar_10.sim");
-    autosim::model!(file = "examples/models/satellite.sim");
-    autosim::model!(file = "examples/models/satellite_small.sim");
-}
-
-/// Thrusters off, fixed commands: the cost of the model, not of user code.
-#[derive(Clone, Copy)]
-struct Quiet;
-
-impl models::satellite::Externs for Quiet {
-    fn thrust(&mut self, _t: f64, _axis: f64, error: f64) -> f64 {
-        if error > 0.0025 {
-            -1.0
-        } else if error < -0.0025 {
-            1.0
-        } else {
-            0.0
-        }
-    }
-    fn cmd(&mut self, _t: f64) -> [f64; 2] {
-        [0.8584074, -0.5]
-    }
-}
-
-impl models::satellite_small::Externs for Quiet {
-    fn thrust(&mut self, _t: f64, _axis: f64, error: f64) -> f64 {
-        if error > 0.0025 {
-            -1.0
-        } else if error < -0.0025 {
-            1.0
-        } else {
-            0.0
-        }
-    }
-    fn cmd(&mut self, _t: f64) -> [f64; 2] {
-        [0.8584074, -0.5]
-    }
-}
+#[path = "common/perf_models.rs"]
+mod perf_models;
+use perf_models::{Quiet, models};
 
 /// Median ns per call over `rounds` rounds of calls at `states`.
 fn measure<M: Model<Float = f64, State = [f64; N]>, const N: usize>(

@@ -1,7 +1,7 @@
 //! The paper's slew maneuver (Sayers 1991, Figures 8 and 9): the full
 //! satellite model with the Figure 8 user code (CMD and the stateful THRUST),
 //! integrated with classic RK4 at h = 1 ms for 15 s, reproduces the
-//! independent reference trajectory `../shared/reference/satellite-slew.json`.
+//! independent reference trajectory `tests/reference/satellite-slew.json`.
 //!
 //! The thrusters are a bang-bang element whose state changes inside the
 //! derivative evaluations, so the trajectory depends on the integrator's
@@ -19,12 +19,15 @@ mod model {
 
 use model::satellite::{Externs, Satellite};
 
-/// The paper's Figure 8, transcribed: SUBROUTINE CMD and FUNCTION THRUST
-/// with its saved FIRE and TOFF per axis. Every call is also checked
-/// against the expected calling sequence.
-struct Figure8 {
-    fire: [f64; 3],
-    toff: [f64; 3],
+// The paper's Figure 8 (CMD and THRUST), as the examples fly it.
+#[allow(unused_macros)]
+#[path = "../examples/common/figure8.rs"]
+mod figure8;
+
+/// The paper's Figure 8 user code, with every call checked against the
+/// expected calling sequence.
+struct Checked {
+    figure8: figure8::Figure8,
     /// The call expected next within an evaluation: 0 = `cmd`, 1..=3 = `thrust(axis)`.
     next: usize,
     /// Times of the `cmd` calls of the current step (four per RK4 step).
@@ -32,11 +35,10 @@ struct Figure8 {
     evaluations: u64,
 }
 
-impl Figure8 {
+impl Checked {
     fn new() -> Self {
-        Figure8 {
-            fire: [0.0; 3],
-            toff: [0.0; 3],
+        Checked {
+            figure8: figure8::Figure8::new(),
             next: 0,
             stage_times: Vec::with_capacity(4),
             evaluations: 0,
@@ -44,7 +46,7 @@ impl Figure8 {
     }
 }
 
-impl Externs for Figure8 {
+impl Externs for Checked {
     fn cmd(&mut self, t: f64) -> [f64; 2] {
         assert_eq!(
             self.next, 0,
@@ -53,16 +55,7 @@ impl Externs for Figure8 {
         self.next = 1;
         self.evaluations += 1;
         self.stage_times.push(t);
-        // The Fortran's PARAMETER (PI = 3.1415926), not f64::consts::PI.
-        #[allow(clippy::approx_constant)]
-        const PI: f64 = 3.1415926;
-        if t < 1.0 {
-            [4.0 - PI, -0.5]
-        } else if t < 11.0 {
-            [4.0 - 0.025 * (t - 1.0) - PI, -0.5 + 0.01 * (t - 1.0)]
-        } else {
-            [3.75 - PI, -0.4]
-        }
+        self.figure8.cmd(t)
     }
 
     fn thrust(&mut self, t: f64, axis: f64, error: f64) -> f64 {
@@ -72,35 +65,19 @@ impl Externs for Figure8 {
             self.next
         );
         self.next = if self.next == 3 { 0 } else { self.next + 1 };
-        const DBAND: f64 = 0.0025;
-        const TMIN: f64 = 0.02;
-        let i = axis as usize - 1;
-        if error < -DBAND {
-            if self.fire[i] < 1.0 {
-                self.toff[i] = t + TMIN;
-            }
-            self.fire[i] = 1.0;
-        } else if error > DBAND {
-            if self.fire[i] > -1.0 {
-                self.toff[i] = t + TMIN;
-            }
-            self.fire[i] = -1.0;
-        } else if t >= self.toff[i] {
-            self.fire[i] = 0.0;
-        }
-        self.fire[i]
+        self.figure8.thrust(t, axis, error)
     }
 }
 
 #[test]
 fn slew_maneuver_matches_reference() {
     let data = load("satellite-slew");
-    let mut model = Satellite::new(Figure8::new());
+    let mut model = Satellite::new(Checked::new());
 
     // The reference's parameters are the model's defaults (Table 13).
-    let mut values = vec![0.0; <Satellite<Figure8> as Model>::PARAMETER_NAMES.len()];
+    let mut values = vec![0.0; <Satellite<Checked> as Model>::PARAMETER_NAMES.len()];
     model.parameter_values(&mut values);
-    for (name, v) in <Satellite<Figure8> as Model>::PARAMETER_NAMES
+    for (name, v) in <Satellite<Checked> as Model>::PARAMETER_NAMES
         .iter()
         .zip(&values)
     {
@@ -192,7 +169,7 @@ fn slew_through_the_run_driver_matches_reference() {
     use autosim::runtime::{RunSettings, run};
     let data = load("satellite-slew");
     let records = data["records"].as_array().unwrap();
-    let mut model = Satellite::new(Figure8::new());
+    let mut model = Satellite::new(Checked::new());
     let mut x = model.initial_state();
     let mut rk4 = Rk4::new();
     let mut k = 0;

@@ -2,7 +2,7 @@
 //! reference data; the optimized program matches the unoptimized equations.
 
 use autosim_core::diag::SourceFile;
-use autosim_core::opt::Interpreter;
+use autosim_core::opt::{Interpreter, UserCalls};
 use autosim_core::pipeline::{Compiled, compile_source};
 use autosim_test_support::*;
 use std::path::PathBuf;
@@ -56,10 +56,14 @@ fn satellite_program_matches_reference() {
             inp["clkcmd"].as_f64().unwrap(),
             inp["camcmd"].as_f64().unwrap(),
         ];
-        let mut user = |_f: usize, args: &[f64]| thr[args[1] as usize - 1];
-        let mut sub = |_s: usize, _a: &[f64]| cmd.clone();
+        let mut function = |_f: usize, args: &[f64]| thr[args[1] as usize - 1];
+        let mut subroutine = |_s: usize, _a: &[f64]| cmd.clone();
+        let mut user = UserCalls {
+            function: &mut function,
+            subroutine: &mut subroutine,
+        };
         let dx = it
-            .derivatives(s["t"].as_f64().unwrap(), &x, &[], &mut user, &mut sub)
+            .derivatives(s["t"].as_f64().unwrap(), &x, &[], &mut user)
             .unwrap();
         let e_dq = rel_err(&dx[..n], &floats(&s["dq"]));
         let e_du = rel_err(&dx[n..], &floats(&s["du"]));

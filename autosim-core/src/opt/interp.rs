@@ -4,7 +4,7 @@
 
 use super::ir::{Leaf, Nid, Op};
 use super::program::{BlockKind, Program};
-use super::schedule::{Block, Stmt};
+use super::schedule::Stmt;
 use crate::expr::Func;
 use rustc_hash::FxHashMap;
 
@@ -13,6 +13,24 @@ use rustc_hash::FxHashMap;
 pub struct SolveError {
     /// The speed whose pivot was not positive.
     pub speed: usize,
+}
+
+/// The user code a program calls, for the interpreter: user function
+/// `f` at `args` and user subroutine `s` at `args`, by index.
+pub struct UserCalls<'u> {
+    /// `function(f, args)`: the value of user function `f`.
+    pub function: &'u mut dyn FnMut(usize, &[f64]) -> f64,
+    /// `subroutine(s, args)`: the outputs of user subroutine `s`.
+    pub subroutine: &'u mut dyn FnMut(usize, &[f64]) -> Vec<f64>,
+}
+
+/// The values a block reads besides the parameters.
+#[derive(Clone, Copy, Default)]
+struct At<'x> {
+    t: f64,
+    x: &'x [f64],
+    inputs: &'x [f64],
+    accel: &'x [f64],
 }
 
 /// Runs a program's blocks with given parameter values.
@@ -37,66 +55,30 @@ impl<'a> Interpreter<'a> {
             params: params.to_vec(),
             constants: Vec::new(),
         };
-        let mut user = |_: usize, _: &[f64]| f64::NAN;
-        let mut sub = |_: usize, _: &[f64]| Vec::new();
-        let c = it
-            .run(
-                prog.block(BlockKind::Constants),
-                0.0,
-                &[],
-                &[],
-                &[],
-                prog.hoisted.len(),
-                false,
-                &mut user,
-                &mut sub,
-            )
-            .unwrap_or_default();
-        it.constants = c;
+        it.constants = it.run_alone(BlockKind::Constants);
         it
     }
 
     /// The initial state.
     pub fn initial_state(&self) -> Vec<f64> {
-        let mut user = |_: usize, _: &[f64]| f64::NAN;
-        let mut sub = |_: usize, _: &[f64]| Vec::new();
-        let len = self.prog.states().len();
-        self.run(
-            self.prog.block(BlockKind::Initial),
-            0.0,
-            &[],
-            &[],
-            &[],
-            len,
-            false,
-            &mut user,
-            &mut sub,
-        )
-        .unwrap_or_default()
+        self.run_alone(BlockKind::Initial)
     }
 
-    /// dx/dt at `(t, x)` with `inputs`; `user(f, args)` evaluates user
-    /// function `f`, `sub(s, args)` user subroutine `s`.
+    /// dx/dt at `(t, x)` with `inputs`.
     pub fn derivatives(
         &self,
         t: f64,
         x: &[f64],
         inputs: &[f64],
-        user: &mut dyn FnMut(usize, &[f64]) -> f64,
-        sub: &mut dyn FnMut(usize, &[f64]) -> Vec<f64>,
+        user: &mut UserCalls<'_>,
     ) -> Result<Vec<f64>, SolveError> {
-        let len = self.prog.states().len();
-        self.run(
-            self.prog.block(BlockKind::Derivatives),
+        let at = At {
             t,
             x,
             inputs,
-            &[],
-            len,
-            true,
-            user,
-            sub,
-        )
+            accel: &[],
+        };
+        self.run(BlockKind::Derivatives, at, user)
     }
 
     /// The outputs (computing the derivatives first if they need them).
@@ -105,28 +87,22 @@ impl<'a> Interpreter<'a> {
         t: f64,
         x: &[f64],
         inputs: &[f64],
-        user: &mut dyn FnMut(usize, &[f64]) -> f64,
-        sub: &mut dyn FnMut(usize, &[f64]) -> Vec<f64>,
+        user: &mut UserCalls<'_>,
     ) -> Result<Vec<f64>, SolveError> {
-        let accel = if self.prog.outputs_need_derivatives {
-            let dx = self.derivatives(t, x, inputs, user, sub)?;
-            let n = self.prog.n();
-            dx[n..2 * n].to_vec()
-        } else {
-            Vec::new()
+        let accel = match self.prog.outputs_need_derivatives {
+            true => {
+                let n = self.prog.n();
+                self.derivatives(t, x, inputs, user)?[n..2 * n].to_vec()
+            }
+            false => Vec::new(),
         };
-        let len = self.prog.interface.outputs.len();
-        self.run(
-            self.prog.block(BlockKind::Outputs),
+        let at = At {
             t,
             x,
             inputs,
-            &accel,
-            len,
-            true,
-            user,
-            sub,
-        )
+            accel: &accel,
+        };
+        self.run(BlockKind::Outputs, at, user)
     }
 
     /// The mass matrix (row-major) and the forcing vector.
@@ -135,102 +111,85 @@ impl<'a> Interpreter<'a> {
         t: f64,
         x: &[f64],
         inputs: &[f64],
-        user: &mut dyn FnMut(usize, &[f64]) -> f64,
-        sub: &mut dyn FnMut(usize, &[f64]) -> Vec<f64>,
+        user: &mut UserCalls<'_>,
     ) -> (Vec<f64>, Vec<f64>) {
-        let n = self.prog.n();
-        let m = self
-            .run(
-                self.prog.block(BlockKind::MassMatrix),
-                t,
-                x,
-                inputs,
-                &[],
-                n * n,
-                true,
-                user,
-                sub,
-            )
-            .unwrap_or_default();
-        let f = self
-            .run(
-                self.prog.block(BlockKind::Forcing),
-                t,
-                x,
-                inputs,
-                &[],
-                n,
-                true,
-                user,
-                sub,
-            )
-            .unwrap_or_default();
-        (m, f)
+        let at = At {
+            t,
+            x,
+            inputs,
+            accel: &[],
+        };
+        let m = self.run(BlockKind::MassMatrix, at, user);
+        let f = self.run(BlockKind::Forcing, at, user);
+        (m.unwrap_or_default(), f.unwrap_or_default())
     }
 
-    #[allow(clippy::too_many_arguments)]
+    /// A block that reads the parameters only.
+    fn run_alone(&self, kind: BlockKind) -> Vec<f64> {
+        let mut function = |_: usize, _: &[f64]| f64::NAN;
+        let mut subroutine = |_: usize, _: &[f64]| Vec::new();
+        let mut user = UserCalls {
+            function: &mut function,
+            subroutine: &mut subroutine,
+        };
+        self.run(kind, At::default(), &mut user).unwrap_or_default()
+    }
+
     fn run(
         &self,
-        block: &Block,
-        t: f64,
-        x: &[f64],
-        inputs: &[f64],
-        accel: &[f64],
-        len: usize,
-        hoisted: bool,
-        user: &mut dyn FnMut(usize, &[f64]) -> f64,
-        sub: &mut dyn FnMut(usize, &[f64]) -> Vec<f64>,
+        kind: BlockKind,
+        at: At<'_>,
+        user: &mut UserCalls<'_>,
     ) -> Result<Vec<f64>, SolveError> {
         let mut env = Env {
             values: FxHashMap::default(),
             leaves: FxHashMap::default(),
-            constants: hoisted.then_some(self.constants.as_slice()),
+            constants: kind.reads_constants().then_some(self.constants.as_slice()),
             hoisted: &self.prog.hoisted,
         };
-        env.leaves.insert(Leaf::Time, t);
-        for (i, v) in self.params.iter().enumerate() {
-            env.leaves.insert(Leaf::Param(i), *v);
+        env.leaves.insert(Leaf::Time, at.t);
+        let values = [
+            (&self.params[..], Leaf::Param as fn(usize) -> Leaf),
+            (at.x, Leaf::State),
+            (at.inputs, Leaf::Input),
+            (at.accel, Leaf::Accel),
+        ];
+        for (vals, leaf) in values {
+            for (i, v) in vals.iter().enumerate() {
+                env.leaves.insert(leaf(i), *v);
+            }
         }
-        for (i, v) in x.iter().enumerate() {
-            env.leaves.insert(Leaf::State(i), *v);
-        }
-        for (i, v) in inputs.iter().enumerate() {
-            env.leaves.insert(Leaf::Input(i), *v);
-        }
-        for (i, v) in accel.iter().enumerate() {
-            env.leaves.insert(Leaf::Accel(i), *v);
-        }
-        let mut out = vec![0.0; len];
-        for st in &block.stmts {
+        let mut out = vec![0.0; self.prog.slots(kind)];
+        for st in &self.prog.block(kind).stmts {
             match st {
                 Stmt::Let(n) => {
-                    let v = self.eval(*n, &mut env, user);
+                    let v = self.eval(*n, &mut env, user.function);
                     env.values.insert(*n, v);
                 }
                 Stmt::SinCos { sin, cos } => {
                     for n in [*sin, *cos] {
-                        let v = self.eval(n, &mut env, user);
+                        let v = self.eval(n, &mut env, user.function);
                         env.values.insert(n, v);
                     }
                 }
                 Stmt::CallSub(k) => {
                     let args: Vec<f64> = self.prog.sub_args[*k]
                         .iter()
-                        .map(|a| self.eval(*a, &mut env, user))
+                        .map(|a| self.eval(*a, &mut env, user.function))
                         .collect();
-                    let r = sub(*k, &args);
+                    let r = (user.subroutine)(*k, &args);
                     for (j, v) in r.iter().enumerate() {
                         env.leaves.insert(Leaf::SubOut(*k, j), *v);
                     }
                 }
                 Stmt::Check { pivot, speed } => {
-                    let v = self.eval(*pivot, &mut env, user);
+                    let v = self.eval(*pivot, &mut env, user.function);
                     if v.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
                         return Err(SolveError { speed: *speed });
                     }
                 }
                 Stmt::Store { slot, value } => {
-                    let v = self.eval(*value, &mut env, user);
+                    let v = self.eval(*value, &mut env, user.function);
                     if let Some(o) = out.get_mut(*slot) {
                         *o = v;
                     }

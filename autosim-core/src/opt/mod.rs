@@ -14,7 +14,7 @@ mod text;
 mod verify;
 
 pub use interface::{Interface, Quantity, StateLayout, StateVar, UserCode};
-pub use interp::{Interpreter, SolveError};
+pub use interp::{Interpreter, SolveError, UserCalls};
 pub use ir::{Ir, Leaf, Nid, Op};
 pub use lower::{Lowering, UnboundSymbol};
 pub use program::{BlockKind, Program, ProgramError, build};

@@ -7,8 +7,8 @@ use syn::Token;
 use syn::parse::ParseStream;
 
 use super::ast::{
-    Block, Body, ExternFn, ExternSub, Force, Gravity, Input, Inputs, Item, Let, Model, Moment,
-    Name, Output, Parameters, Point, SettingKey, Settings, State, StateKey, SubOutput,
+    Block, Body, Expr, ExternFn, ExternSub, Force, Gravity, Input, Inputs, Item, Let, Model,
+    Moment, Name, Output, Parameters, Point, SettingKey, Settings, State, StateKey, SubOutput,
 };
 use super::cx::{Cx, PResult, at_item_start, expected, in_group, peek_group, recover};
 use super::keys::OptionKey;
@@ -246,14 +246,7 @@ fn point(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Point> {
 fn let_item(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Let> {
     let keyword: Token![let] = input.parse()?;
     let name = name(input, cx, "a name to define")?;
-    equals(input, cx, &name.text)?;
-    let value = expr(input, cx)?;
-    semi(
-        input,
-        cx,
-        &format!("the value of `{}`", name.text),
-        value.span(),
-    )?;
+    let value = assigned_value(input, cx, &name)?;
     Ok(Let {
         docs,
         span: cx.span(keyword.span).to(name.span),
@@ -449,14 +442,7 @@ fn output(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Output> {
     let keyword: kw::output = input.parse()?;
     let name = name(input, cx, "an output name")?;
     let unit = unit(input, cx)?;
-    equals(input, cx, &name.text)?;
-    let value = expr(input, cx)?;
-    semi(
-        input,
-        cx,
-        &format!("the value of `{}`", name.text),
-        value.span(),
-    )?;
+    let value = assigned_value(input, cx, &name)?;
     Ok(Output {
         docs,
         span: cx.span(keyword.span).to(name.span),
@@ -485,4 +471,17 @@ fn block<K: OptionKey>(
         label,
         options,
     })
+}
+
+/// `= <expression>;` after `name`.
+fn assigned_value(input: ParseStream, cx: &Cx, name: &Name) -> PResult<Expr> {
+    equals(input, cx, &name.text)?;
+    let value = expr(input, cx)?;
+    semi(
+        input,
+        cx,
+        &format!("the value of `{}`", name.text),
+        value.span(),
+    )?;
+    Ok(value)
 }

@@ -5,7 +5,7 @@ use core::fmt;
 
 use super::explicit::rk4_tail;
 use super::vector::{check_step, combine, eval, same};
-use super::{StepInfo, Stepper};
+use super::{StepInfo, StepResult, Stepper};
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 
 /// The order of an [`AdamsBashforthMoulton`] pair.
@@ -134,13 +134,7 @@ impl<M: Model> fmt::Debug for AdamsBashforthMoulton<M> {
 }
 
 impl<M: Model> Stepper<M> for AdamsBashforthMoulton<M> {
-    fn step(
-        &mut self,
-        model: &mut M,
-        t: M::Float,
-        x: &mut M::State,
-        h: M::Float,
-    ) -> Result<StepInfo<M::Float>, IntegrationError> {
+    fn step(&mut self, model: &mut M, t: M::Float, x: &mut M::State, h: M::Float) -> StepResult<M> {
         check_step(h)?;
         let evals_before = self.evals;
         self.validate_history(t, x, h);

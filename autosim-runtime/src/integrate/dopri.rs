@@ -3,7 +3,7 @@
 use core::fmt;
 
 use super::vector::{combine, eval, same, weighted_rms};
-use super::{StepInfo, Stepper};
+use super::{StepInfo, StepResult, Stepper};
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 
 /// Tolerances and step-size controller of [`DormandPrince`].
@@ -397,13 +397,7 @@ impl<M: Model> fmt::Debug for DormandPrince<M> {
 }
 
 impl<M: Model> Stepper<M> for DormandPrince<M> {
-    fn step(
-        &mut self,
-        model: &mut M,
-        t: M::Float,
-        x: &mut M::State,
-        h: M::Float,
-    ) -> Result<StepInfo<M::Float>, IntegrationError> {
+    fn step(&mut self, model: &mut M, t: M::Float, x: &mut M::State, h: M::Float) -> StepResult<M> {
         let zero = M::Float::ZERO;
         let one = M::Float::ONE;
         if !(h > zero && h.is_finite()) {

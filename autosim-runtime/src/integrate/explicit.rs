@@ -6,7 +6,7 @@
 use core::fmt;
 
 use super::vector::{check_step, combine, eval};
-use super::{StepInfo, Stepper};
+use super::{StepInfo, StepResult, Stepper};
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 
 /// A fixed-step method that carries nothing from one step to the next.
@@ -82,13 +82,7 @@ macro_rules! fixed_stepper {
         }
 
         impl<M: Model> Stepper<M> for $ty<M> {
-            fn step(
-                &mut self,
-                model: &mut M,
-                t: M::Float,
-                x: &mut M::State,
-                h: M::Float,
-            ) -> Result<StepInfo<M::Float>, IntegrationError> {
+            fn step(&mut self, model: &mut M, t: M::Float, x: &mut M::State, h: M::Float) -> StepResult<M> {
                 fixed_step(self, model, t, x, h)
             }
             fn evaluations(&self) -> u64 {

@@ -54,6 +54,9 @@ pub struct StepInfo<F> {
     pub evaluations: u32,
 }
 
+/// What [`Stepper::step`] returns for a model `M`.
+pub type StepResult<M> = Result<StepInfo<<M as Model>::Float>, IntegrationError>;
+
 /// A one-step (or multistep) integrator for a [`Model`].
 ///
 /// Implement it to plug your own method into the [`run`](crate::run())
@@ -65,13 +68,7 @@ pub trait Stepper<M: Model> {
     ///
     /// # Errors
     /// Any [`IntegrationError`] the method can detect; `x` is left unchanged.
-    fn step(
-        &mut self,
-        model: &mut M,
-        t: M::Float,
-        x: &mut M::State,
-        h: M::Float,
-    ) -> Result<StepInfo<M::Float>, IntegrationError>;
+    fn step(&mut self, model: &mut M, t: M::Float, x: &mut M::State, h: M::Float) -> StepResult<M>;
 
     /// Total derivative evaluations since the stepper was created.
     fn evaluations(&self) -> u64;
@@ -96,13 +93,7 @@ pub trait Stepper<M: Model> {
 }
 
 impl<M: Model, S: Stepper<M> + ?Sized> Stepper<M> for &mut S {
-    fn step(
-        &mut self,
-        model: &mut M,
-        t: M::Float,
-        x: &mut M::State,
-        h: M::Float,
-    ) -> Result<StepInfo<M::Float>, IntegrationError> {
+    fn step(&mut self, model: &mut M, t: M::Float, x: &mut M::State, h: M::Float) -> StepResult<M> {
         (**self).step(model, t, x, h)
     }
     fn evaluations(&self) -> u64 {

@@ -1,0 +1,42 @@
+//! The models whose speed is measured (`examples/perf.rs` and `cargo bench
+//! --bench derivatives`), and quiet user code for the satellite: thrusters
+//! on a dead band, fixed commands (the cost of the model, not of user code).
+
+pub mod models {
+    autosim::model!(file = "examples/models/chain_spatial_1.sim");
+    autosim::model!(file = "examples/models/chain_spatial_2.sim");
+    autosim::model!(file = "examples/models/chain_spatial_3.sim");
+    autosim::model!(file = "examples/models/chain_spatial_5.sim");
+    autosim::model!(file = "examples/models/chain_spatial_7.sim");
+    autosim::model!(file = "examples/models/chain_spatial_10.sim");
+    autosim::model!(file = "examples/models/chain_spatial_20.sim");
+    autosim::model!(file = "examples/models/chain_planar_10.sim");
+    autosim::model!(file = "examples/models/satellite.sim");
+    autosim::model!(file = "examples/models/satellite_small.sim");
+}
+
+/// Thrusters on a dead band, fixed commands.
+#[derive(Clone, Copy)]
+pub struct Quiet;
+
+/// The same user code for both satellite models.
+macro_rules! quiet {
+    ($($module:ident),+) => {
+        $(impl models::$module::Externs for Quiet {
+            fn thrust(&mut self, _t: f64, _axis: f64, error: f64) -> f64 {
+                if error > 0.0025 {
+                    -1.0
+                } else if error < -0.0025 {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+            fn cmd(&mut self, _t: f64) -> [f64; 2] {
+                [0.8584074, -0.5]
+            }
+        })+
+    };
+}
+
+quiet!(satellite, satellite_small);

@@ -3,6 +3,7 @@
 
 mod body;
 mod body_check;
+mod declare;
 mod error;
 mod frames;
 mod framevec;

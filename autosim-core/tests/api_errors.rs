@@ -2,7 +2,9 @@
 //! message names the problem, and random body specifications never panic.
 
 use autosim_core::expr::ExprId;
-use autosim_core::mech::{Axis, BodyId, BodySpec, Direction, ModelError, Rotation, System};
+use autosim_core::mech::{
+    Axis, BodyId, BodySpec, Direction, FixedTurn, ModelError, Rotation, System,
+};
 use proptest::prelude::*;
 
 fn err_text(e: &ModelError) -> String {
@@ -128,7 +130,7 @@ fn fixed_rotation_angles() {
     let mut s = sys();
     let q = a_coordinate(&mut s);
     let mut b = spec("A", "N");
-    b.fixed_rotations = vec![(Axis::A1, q)];
+    b.fixed_rotations = vec![(FixedTurn::Axis(Axis::A1), q)];
     assert_err(s.add_body(b), &["fixed rotation", "`A`", "constant"]);
 }
 

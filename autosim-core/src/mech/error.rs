@@ -58,6 +58,8 @@ pub enum BodyField {
     Translation(usize),
     /// The rotation.
     Rotation,
+    /// The reference direction of a rotation about a direction.
+    Reference,
     /// A constant rotation (by position).
     FixedRotation(usize),
     /// The joint point.

@@ -18,7 +18,7 @@ mod vector_ops;
 pub use error::{BodyField, ItemRef, LocatedError, ModelError};
 pub use frames::{Frame, FrameId, Frames, Uv, UvId};
 pub use framevec::{Fv, Mat3};
-pub use joint::{Axis, Direction, DofKind, Joint, Rotation, UnitMotion};
+pub use joint::{Axis, Direction, DofKind, FixedTurn, Joint, Rotation, UnitMotion};
 pub use kane::Equations;
 pub use system::{
     Body, BodyId, BodySpec, Coordinate, ExtraState, Force, Moment, Output, Point, PointId,

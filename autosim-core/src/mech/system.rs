@@ -5,7 +5,7 @@
 use super::error::ModelError;
 use super::frames::{FrameId, Frames};
 use super::framevec::{Fv, Mat3};
-use super::joint::{Axis, DofKind, Joint};
+use super::joint::{DofKind, FixedTurn, Joint};
 use super::vector::Vector;
 use crate::expr::{Arena, ExprId, SymId, SymbolKind};
 
@@ -42,7 +42,7 @@ pub struct BodySpec {
     pub joint: Joint,
     /// Constant rotations (axis, angle) applied at the joint before the
     /// free rotation (what locked rotations become).
-    pub fixed_rotations: Vec<(Axis, ExprId)>,
+    pub fixed_rotations: Vec<(FixedTurn, ExprId)>,
     /// Degrees of freedom locked at compile time (translations first, then
     /// rotations; empty means none): each becomes a parameter named after
     /// its coordinate, with its initial value as default, and has no speed.

@@ -148,7 +148,7 @@ impl<'a> Resolver<'a> {
         for opt in &b.options.entries {
             let v = &opt.value;
             let good = match opt.key {
-                BodyKey::Parent | BodyKey::Small | BodyKey::Lock => true,
+                BodyKey::Parent | BodyKey::Small | BodyKey::Lock | BodyKey::Reference => true,
                 BodyKey::Joint => self
                     .list3(v, "the joint point", true)
                     .map(|c| spec.joint_point = Some(c))
@@ -163,7 +163,7 @@ impl<'a> Resolver<'a> {
                     .is_some(),
                 BodyKey::Inertia => self.inertia(v).map(|m| spec.inertia = Some(m)).is_some(),
                 BodyKey::Rotate => self
-                    .rotation(v, &name)
+                    .rotation(b, v)
                     .map(|r| spec.joint.rotation = r)
                     .is_some(),
                 BodyKey::Translate => self
@@ -189,16 +189,47 @@ impl<'a> Resolver<'a> {
             };
             ok &= good;
         }
+        if let Some(opt) = b.options.get(BodyKey::Reference)
+            && !matches!(
+                spec.joint.rotation,
+                Rotation::About {
+                    reference: Some(_),
+                    ..
+                }
+            )
+            && ok
+        {
+            self.push(
+                Diagnostic::error(
+                    opt.value.span(),
+                    "`reference` only applies to a rotation about a direction",
+                )
+                .help("write the rotation as `rotate: [[x, y, z]]`, or remove `reference`"),
+            );
+            ok = false;
+        }
         ok &= self.flags(b, &mut spec);
         ok.then_some(spec)
     }
 
-    /// `rotate: quaternion`, or 0, 1 or 3 axes.
-    fn rotation(&mut self, v: &Expr, body: &str) -> Option<Rotation> {
+    /// `rotate: quaternion`, `rotate: [[x, y, z]]` (with the body's
+    /// `reference`), or 0, 1 or 3 axes.
+    fn rotation(&mut self, b: &ast::Body, v: &Expr) -> Option<Rotation> {
+        let body = &b.name.text;
         if let Expr::Name(n) = v
             && n.text == "quaternion"
         {
             return Some(Rotation::Quaternion);
+        }
+        if let Expr::List { items, .. } = v
+            && let [direction @ Expr::List { .. }] = items.as_slice()
+        {
+            let d = self.list3(direction, "a rotation axis", true);
+            let r = match b.options.get(BodyKey::Reference) {
+                Some(opt) => Some(self.list3(&opt.value, "a reference direction", true)?),
+                None => None,
+            };
+            return Some(Rotation::about(d?, r, &self.sys.arena));
         }
         let axes = self.axes(v, "a rotation axis")?;
         let rotation = Rotation::from_axes(&axes);
@@ -273,6 +304,7 @@ fn field_span(b: &ast::Body, e: &ModelError) -> Span {
     let key = match field {
         BodyField::Translations | BodyField::Translation(_) => BodyKey::Translate,
         BodyField::Rotation => BodyKey::Rotate,
+        BodyField::Reference => BodyKey::Reference,
         BodyField::FixedRotation(_) => return b.name.span,
         BodyField::JointPoint => BodyKey::Joint,
         BodyField::Cm => BodyKey::Cm,

@@ -50,8 +50,12 @@ option_keys! {
         Joint = "joint",
         /// `translate: [1, 2, 3]` — translation directions (axis index or vector).
         Translate = "translate",
-        /// `rotate: [1, 2, 3]` — body-fixed rotation axes.
+        /// `rotate: [1, 2, 3]` — body-fixed rotation axes; `rotate: [[x, y, z]]`
+        /// — a rotation about a constant direction of the parent.
         Rotate = "rotate",
+        /// `reference: [x, y, z]` — the reference direction of a rotation
+        /// about a direction (the body's axis 2 is along `axis × reference`).
+        Reference = "reference",
         /// `small: [translations, rotations]` — small-motion assumptions.
         Small = "small",
         /// `lock: [q9]` — degrees of freedom locked at compile time.
@@ -137,7 +141,7 @@ mod tests {
             assert_eq!(key.as_str(), text);
             assert_eq!(BodyKey::from_str(text), Some(key));
         }
-        assert_eq!(BodyKey::ALL.len(), 13);
+        assert_eq!(BodyKey::ALL.len(), 14);
         assert_eq!(ForceKey::from_str("along"), Some(ForceKey::Along));
         assert_eq!(MomentKey::from_str("along"), None);
         assert_eq!(SettingKey::Float.as_str(), "float");

@@ -4,7 +4,7 @@
 //! velocities of the new frames (the paper's Eqs. 8-10).
 
 use super::quaternion::QuaternionBody;
-use super::{DofKind, Rotation};
+use super::{DofKind, FixedTurn, Rotation};
 use crate::expr::{ExprId, SymId, SymbolKind};
 use crate::mech::error::ModelError;
 use crate::mech::frames::FrameId;
@@ -105,15 +105,21 @@ impl System {
         let name = &spec.name;
         let prefix = name.to_lowercase();
         let mut frame = parent_frame;
-        for (k, (axis, angle)) in spec.fixed_rotations.iter().enumerate() {
-            frame = self.frames.add_rotated(
-                &mut self.arena,
-                frame,
-                *axis,
-                *angle,
-                &format!("{name}#{k}"),
-                &format!("{prefix}#{k}_"),
-            );
+        for (k, (turn, angle)) in spec.fixed_rotations.iter().enumerate() {
+            let (tag, uv) = (format!("{name}#{k}"), format!("{prefix}#{k}_"));
+            frame = match turn {
+                FixedTurn::Axis(axis) => {
+                    self.frames
+                        .add_rotated(&mut self.arena, frame, *axis, *angle, &tag, &uv)
+                }
+                FixedTurn::About {
+                    direction,
+                    reference,
+                } => {
+                    let about = (direction, reference.as_ref());
+                    self.about_frame((&tag, &uv), frame, about, *angle).0
+                }
+            };
             let w = self.frame_w[parent_frame.index()].clone();
             self.frame_w.push(w);
         }
@@ -130,6 +136,10 @@ impl System {
             },
             Rotation::Simple(axis) => self.simple_rotation(name, frame, *axis, rot[0]),
             Rotation::Sequence(axes) => self.rotation_sequence(name, frame, *axes, &rot),
+            Rotation::About {
+                direction,
+                reference,
+            } => self.rotation_about(name, frame, direction, reference.as_ref(), rot[0]),
             Rotation::Quaternion => {
                 let e0_name = spec
                     .coordinate_names

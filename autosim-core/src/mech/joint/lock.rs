@@ -25,7 +25,7 @@ impl System {
         }
         check_locks(&spec)?;
         let nt = spec.joint.translations.len();
-        let axes = spec.joint.rotation.axes();
+        let turns = spec.joint.rotation.locked_turns();
         let zero = self.arena.zero();
         let defaults = Bindings::with_defaults(&self.arena);
         let mut locked = Vec::new();
@@ -58,7 +58,7 @@ impl System {
                     joint_point[i] = self.arena.add(joint_point[i], t);
                 }
             } else {
-                spec.fixed_rotations.push((axes[k - nt], p));
+                spec.fixed_rotations.push((turns[k - nt].clone(), p));
             }
         }
         spec.joint_point = Some(joint_point);

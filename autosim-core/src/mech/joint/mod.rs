@@ -9,6 +9,7 @@
 //! file of its own (`simple.rs`, `euler.rs`, `quaternion.rs`); adding a kind
 //! is a variant of [`Rotation`], its file, and its arms in this one.
 
+mod about;
 mod build;
 mod euler;
 mod lock;
@@ -96,6 +97,17 @@ pub enum Rotation {
     /// Euler parameters `e0..e3` (no singularity): three speeds as for a
     /// sequence, four coordinates of which `e0` is an extra state.
     Quaternion,
+    /// About a constant direction fixed in the parent (components in the
+    /// parent's axes, normalized): one speed, `u = dq/dt`. Without a
+    /// `reference` the body's axes are the parent's at zero angle; with one,
+    /// the body's nominal axes are the paper's Eq. 8 (axis 3 along the
+    /// direction, axis 2 along `direction × reference`).
+    About {
+        /// The rotation axis, parent axes.
+        direction: [ExprId; 3],
+        /// The reference direction fixing the nominal orientation.
+        reference: Option<[ExprId; 3]>,
+    },
 }
 
 impl Rotation {
@@ -114,7 +126,7 @@ impl Rotation {
     pub fn dofs(&self) -> usize {
         match self {
             Rotation::None => 0,
-            Rotation::Simple(_) => 1,
+            Rotation::Simple(_) | Rotation::About { .. } => 1,
             Rotation::Sequence(_) | Rotation::Quaternion => 3,
         }
     }
@@ -122,7 +134,7 @@ impl Rotation {
     /// The axes rotated about in sequence (none for Euler parameters).
     pub fn axes(&self) -> Vec<Axis> {
         match self {
-            Rotation::None | Rotation::Quaternion => Vec::new(),
+            Rotation::None | Rotation::Quaternion | Rotation::About { .. } => Vec::new(),
             Rotation::Simple(a) => vec![*a],
             Rotation::Sequence(s) => s.to_vec(),
         }
@@ -217,6 +229,13 @@ impl Joint {
                 errors.push(e);
             }
         }
+        if let Rotation::About {
+            direction,
+            reference,
+        } = &self.rotation
+        {
+            about_check(body, direction, reference.as_ref(), arena, errors);
+        }
         if let Rotation::Sequence([a, b, c]) = self.rotation
             && (a == b || b == c)
         {
@@ -237,6 +256,111 @@ impl Joint {
     }
 }
 
+/// A constant turn of a joint, before its free rotation: what a locked
+/// rotation becomes.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FixedTurn {
+    /// About one of the axes.
+    Axis(Axis),
+    /// About a constant direction (see [`Rotation::About`]).
+    About {
+        /// The direction, parent axes.
+        direction: [ExprId; 3],
+        /// The reference direction, if any.
+        reference: Option<[ExprId; 3]>,
+    },
+}
+
+/// A rotation about a direction needs a constant, nonzero direction, and a
+/// constant reference direction that is not along it.
+fn about_check(
+    body: &str,
+    direction: &[ExprId; 3],
+    reference: Option<&[ExprId; 3]>,
+    arena: &Arena,
+    errors: &mut Vec<ModelError>,
+) {
+    let constant = |v: &[ExprId; 3]| v.iter().all(|x| arena.is_constant(*x));
+    let zero = |v: &[ExprId; 3]| v.iter().all(|x| arena.is_zero(*x));
+    if !constant(direction) || reference.is_some_and(|r| !constant(r)) {
+        errors.push(ModelError::NotConstant {
+            what: format!("rotation direction of body `{body}`"),
+        });
+        return;
+    }
+    if zero(direction) {
+        errors.push(ModelError::body(
+            body,
+            BodyField::Rotation,
+            "the rotation axis cannot be the zero vector".to_string(),
+        ));
+    }
+    let Some(r) = reference else { return };
+    // |d × r| at the parameters' default values.
+    let defaults = crate::expr::Bindings::with_defaults(arena);
+    let value = |x: ExprId| arena.eval(x, &defaults, &mut crate::expr::NoUserFunctions);
+    let (d, r) = (direction.map(value), r.map(value));
+    let cross: f64 = (0..3)
+        .map(|i| {
+            let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+            (d[j] * r[k] - d[k] * r[j]).powi(2)
+        })
+        .sum();
+    let norms = d.iter().map(|x| x * x).sum::<f64>() * r.iter().map(|x| x * x).sum::<f64>();
+    let parallel = cross.partial_cmp(&(1e-24 * norms)) != Some(std::cmp::Ordering::Greater);
+    if parallel {
+        errors.push(
+            ModelError::body(
+                body,
+                BodyField::Reference,
+                "the reference direction must not be zero or along the rotation axis".to_string(),
+            )
+            .with_help(
+                "give a direction across the axis: the body's axis 2 is along `axis × reference`",
+            ),
+        );
+    }
+}
+
+impl Rotation {
+    /// A rotation about `direction` (parent axes): a simple rotation when it
+    /// is one of the axes (sharing the axis makes products cheaper), else
+    /// [`Rotation::About`].
+    pub fn about(
+        direction: [ExprId; 3],
+        reference: Option<[ExprId; 3]>,
+        arena: &Arena,
+    ) -> Rotation {
+        let positive_axis = direction
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| !arena.is_zero(**x))
+            .map(|(i, x)| (i, arena.as_number(*x).is_some_and(|n| !n.is_negative())))
+            .collect::<Vec<_>>();
+        match (positive_axis.as_slice(), reference) {
+            ([(i, true)], None) => Rotation::Simple(Axis::from_index(*i)),
+            _ => Rotation::About {
+                direction,
+                reference,
+            },
+        }
+    }
+
+    /// The constant turns that lock this rotation, one per coordinate.
+    pub(crate) fn locked_turns(&self) -> Vec<FixedTurn> {
+        match self {
+            Rotation::About {
+                direction,
+                reference,
+            } => vec![FixedTurn::About {
+                direction: *direction,
+                reference: *reference,
+            }],
+            other => other.axes().into_iter().map(FixedTurn::Axis).collect(),
+        }
+    }
+}
+
 /// How a generalized speed moves its body.
 #[derive(Clone, Debug, PartialEq)]
 pub enum DofKind {
@@ -250,5 +374,12 @@ pub enum DofKind {
     Rotation {
         /// The body axis of the angular-velocity component.
         axis: Axis,
+    },
+    /// Rotation about a unit direction (components in the body's axes,
+    /// which are also its components in the parent's): the speed is the
+    /// angular velocity relative to the parent along it.
+    RotationAbout {
+        /// The unit direction.
+        direction: [ExprId; 3],
     },
 }

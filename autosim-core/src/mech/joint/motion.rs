@@ -35,6 +35,10 @@ impl System {
                 e.c[axis.index()] = self.arena.one();
                 UnitMotion { w: e, v: zero }
             }
+            DofKind::RotationAbout { direction } => UnitMotion {
+                w: Fv::new(frame, direction),
+                v: zero,
+            },
         }
     }
 
@@ -54,6 +58,10 @@ impl System {
                     v_rel = v_rel.add(&mut self.arena, &t);
                 }
                 DofKind::Rotation { axis } => w_rel.c[axis.index()] = u,
+                DofKind::RotationAbout { direction } => {
+                    let t = Fv::new(body.frame, direction).scale(&mut self.arena, u);
+                    w_rel = w_rel.add(&mut self.arena, &t);
+                }
             }
         }
         (v_rel, w_rel)

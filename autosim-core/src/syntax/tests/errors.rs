@@ -46,7 +46,7 @@ test.sim:2:29: error: unknown body option `rotat`
 2 | body C "clock" { parent: B, rotat: 3 }
   |                             ^^^^^
   = help: did you mean `rotate`?
-  = note: the body options are: parent, joint, translate, rotate, small, lock, mass, inertia, cm, q, u, initial, initial_speeds
+  = note: the body options are: parent, joint, translate, rotate, reference, small, lock, mass, inertia, cm, q, u, initial, initial_speeds
 "#,
     );
     check(
@@ -411,7 +411,7 @@ test.sim:2:10: error: unknown body option `rotat`
 2 | body B { rotat: 1 }
   |          ^^^^^
   = help: did you mean `rotate`?
-  = note: the body options are: parent, joint, translate, rotate, small, lock, mass, inertia, cm, q, u, initial, initial_speeds
+  = note: the body options are: parent, joint, translate, rotate, reference, small, lock, mass, inertia, cm, q, u, initial, initial_speeds
 test.sim:4:1: error: expected `;` after the parameter, found `@`
   |
 4 | @ junk;
@@ -448,7 +448,7 @@ test.sim:3:42: error: unknown body option `bogus`
   |
 3 | body B { parent: , rotate: 3, rotate: 1, bogus: 2 }
   |                                          ^^^^^
-  = note: the body options are: parent, joint, translate, rotate, small, lock, mass, inertia, cm, q, u, initial, initial_speeds
+  = note: the body options are: parent, joint, translate, rotate, reference, small, lock, mass, inertia, cm, q, u, initial, initial_speeds
 "#,
     );
 }
@@ -463,7 +463,7 @@ test.sim:3:3: error: unknown body option `rotat`
 3 |   rotat: 1 }
   |   ^^^^^
   = help: did you mean `rotate`?
-  = note: the body options are: parent, joint, translate, rotate, small, lock, mass, inertia, cm, q, u, initial, initial_speeds
+  = note: the body options are: parent, joint, translate, rotate, reference, small, lock, mass, inertia, cm, q, u, initial, initial_speeds
 "#,
     );
     check("\u{feff}model M;\r\nlet x = é + 1;\r\n", "OK\n");
@@ -502,7 +502,7 @@ fn token_input_reports_through_syn_errors() {
         messages,
         [
             "unknown body option `rotat`\n= help: did you mean `rotate`?\n= note: the body options are: parent, joint, \
-             translate, rotate, small, lock, mass, inertia, cm, q, u, initial, initial_speeds",
+             translate, rotate, reference, small, lock, mass, inertia, cm, q, u, initial, initial_speeds",
             "duplicate body option `rotate`\n= note: `rotate` was already given earlier in this block",
             "expected an expression, found `;`",
         ]

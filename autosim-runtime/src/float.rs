@@ -385,4 +385,10 @@ pub mod math {
     pub fn is_positive<F: Float>(x: F) -> bool {
         x > F::ZERO
     }
+    /// `true` if `|x|` is above a few rounding errors (false for NaN and
+    /// infinity): the pivot test of the generated constraint solves.
+    #[inline(always)]
+    pub fn is_regular<F: Float>(x: F) -> bool {
+        x.is_finite() && x.abs() > F::from_f64(16.0) * F::EPSILON
+    }
 }

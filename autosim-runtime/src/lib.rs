@@ -108,6 +108,7 @@
 #[cfg(feature = "std")]
 extern crate std;
 
+pub mod assembly;
 mod error;
 mod float;
 pub mod integrate;

@@ -33,6 +33,31 @@ pub enum ModelError {
         /// Name of that speed.
         name: &'static str,
     },
+    /// The constraints restrict the speeds in a way the chosen dependent
+    /// speeds cannot express at this state (the constraint matrix is
+    /// singular here): `constraint` is the index of the constraint whose
+    /// pivot vanished (declaration order).
+    SingularConstraints {
+        /// Index of the constraint (0-based, declaration order).
+        constraint: usize,
+        /// Its name.
+        name: &'static str,
+    },
+    /// Assembly (solving the position constraints for the dependent
+    /// coordinates) did not converge: the configuration is far from one
+    /// that closes the constraints, or none exists near it.
+    NotAssembled {
+        /// The constraint with the largest residual.
+        name: &'static str,
+    },
+    /// Projecting a state back onto the position constraints moved a
+    /// dependent coordinate far (more than a tenth of `1 + |q|`): the
+    /// mechanism went through a singular configuration or the integration
+    /// step was too large, and the closure jumped to another branch.
+    LostBranch {
+        /// The dependent coordinate that jumped.
+        coordinate: &'static str,
+    },
 }
 
 impl core::fmt::Display for ModelError {
@@ -41,6 +66,18 @@ impl core::fmt::Display for ModelError {
             ModelError::SingularMassMatrix { speed, name } => write!(
                 f,
                 "the mass matrix is singular at this state: pivot of speed {name} (#{speed}) is not positive"
+            ),
+            ModelError::SingularConstraints { constraint, name } => write!(
+                f,
+                "the constraints are singular at this state: the pivot of constraint {name} (#{constraint}) vanishes (name other dependent speeds with `dependent:`, or the mechanism is at a singular configuration)"
+            ),
+            ModelError::NotAssembled { name } => write!(
+                f,
+                "the position constraints could not be closed (constraint {name} has the largest residual): start nearer a configuration that satisfies them"
+            ),
+            ModelError::LostBranch { coordinate } => write!(
+                f,
+                "projection onto the position constraints moved {coordinate} too far: the mechanism jumped to another branch (take smaller steps, or avoid the singular configuration)"
             ),
         }
     }
@@ -114,6 +151,41 @@ pub trait Model {
     /// sets nothing: for models without parameters.
     fn set_parameter_values(&mut self, values: &[Self::Float]) {
         let _ = values;
+    }
+
+    /// Solves the position constraints for the dependent coordinates,
+    /// holding the others (Newton's method from the values in `x`, see
+    /// [`assembly`](crate::assembly)). Models without position constraints
+    /// have nothing to do (the default). The [`run`](crate::run()) driver
+    /// assembles the initial state.
+    ///
+    /// # Errors
+    /// [`ModelError::NotAssembled`] when Newton's method does not converge;
+    /// [`ModelError::SingularConstraints`] at a singular configuration.
+    fn assemble(&mut self, t: Self::Float, x: &mut Self::State) -> Result<(), ModelError> {
+        let _ = (t, x);
+        Ok(())
+    }
+
+    /// Brings a state drifted by integration back onto the position
+    /// constraints (solving them for the dependent coordinates) when the
+    /// drift exceeds `tolerance` (relative to `1 + |q|`; 0 projects any
+    /// drift above rounding), and tells whether it changed the state. The
+    /// [`run`](crate::run()) driver calls it after every accepted step.
+    /// Models without position constraints have nothing to do (the
+    /// default).
+    ///
+    /// # Errors
+    /// As [`Model::assemble`], and [`ModelError::LostBranch`] when the
+    /// correction is too large to be drift.
+    fn project(
+        &mut self,
+        t: Self::Float,
+        x: &mut Self::State,
+        tolerance: Self::Float,
+    ) -> Result<bool, ModelError> {
+        let _ = (t, x, tolerance);
+        Ok(false)
     }
 
     /// The default initial state written in the model (zeros where none

@@ -28,6 +28,13 @@ pub struct RunSettings<F> {
     /// Steps allowed before the run stops with
     /// [`IntegrationError::TooManySteps`].
     pub max_steps: u64,
+    /// How far the dependent coordinates of a model with position
+    /// constraints may drift (relative to `1 + |q|`) before the driver
+    /// projects the state back onto the constraints after a step (see
+    /// [`Model::project`]); 0 (the default) projects any drift above
+    /// rounding. Steppers that carry derivatives from step to step restart
+    /// after a projection, so a looser tolerance saves evaluations.
+    pub projection_tolerance: F,
 }
 
 impl<F: Float> RunSettings<F> {
@@ -39,6 +46,7 @@ impl<F: Float> RunSettings<F> {
             step,
             output_interval,
             max_steps: u64::MAX,
+            projection_tolerance: F::ZERO,
         }
     }
 
@@ -46,6 +54,15 @@ impl<F: Float> RunSettings<F> {
     /// that crawl).
     pub fn with_max_steps(self, max_steps: u64) -> Self {
         Self { max_steps, ..self }
+    }
+
+    /// The same settings with a drift tolerance for the position
+    /// constraints (see [`RunSettings::projection_tolerance`]).
+    pub fn with_projection_tolerance(self, projection_tolerance: F) -> Self {
+        Self {
+            projection_tolerance,
+            ..self
+        }
     }
 
     /// Checks the settings, naming the first wrong one.
@@ -63,6 +80,9 @@ impl<F: Float> RunSettings<F> {
         }
         if !(self.output_interval > F::ZERO && self.output_interval.is_finite()) {
             return bad("output_interval must be positive and finite");
+        }
+        if !(self.projection_tolerance >= F::ZERO && self.projection_tolerance.is_finite()) {
+            return bad("projection_tolerance must be finite and not negative");
         }
         Ok(())
     }
@@ -169,6 +189,12 @@ impl<E: core::error::Error + 'static> core::error::Error for RunError<E> {
 /// [`Stepper::step`] only when something must happen between steps. The
 /// driver itself never allocates.
 ///
+/// A model with position constraints is assembled first
+/// ([`Model::assemble`]: the dependent coordinates solved for the others)
+/// and projected back onto its constraints after every accepted step
+/// ([`Model::project`], within [`RunSettings::projection_tolerance`]); for
+/// other models both do nothing. Own the loop? Call them yourself.
+///
 /// # Errors
 /// [`RunError::Integration`] with the first [`IntegrationError`] (a
 /// non-finite state names the time and the state; `x` then holds the last
@@ -187,6 +213,12 @@ where
 {
     settings.validate()?;
     check_finite::<M>(settings.start, x)?;
+    model
+        .assemble(settings.start, x)
+        .map_err(|error| IntegrationError::Model {
+            t: settings.start.to_f64(),
+            error,
+        })?;
     let mut driver = Driver {
         evals_at_start: stepper.evaluations(),
         summary: RunSummary {
@@ -202,6 +234,7 @@ where
         h: settings.step,
         y: M::Outputs::zeros(),
         max_steps: settings.max_steps,
+        projection_tolerance: settings.projection_tolerance,
         start: settings.start,
         fixed_steps: 0,
     };
@@ -235,6 +268,8 @@ struct Driver<M: Model> {
     h: M::Float,
     y: M::Outputs,
     max_steps: u64,
+    /// Drift allowed before projecting onto the position constraints.
+    projection_tolerance: M::Float,
     /// Start time of the run.
     start: M::Float,
     /// Fixed steps of exactly `step` taken since the start.
@@ -276,6 +311,17 @@ impl<M: Model> Driver<M> {
         Ok(())
     }
 
+    /// Projects `x` onto the position constraints after a step at `self.t`.
+    fn project(&self, model: &mut M, x: &mut M::State) -> Result<(), IntegrationError> {
+        model
+            .project(self.t, x, self.projection_tolerance)
+            .map(|_| ())
+            .map_err(|error| IntegrationError::Model {
+                t: self.t.to_f64(),
+                error,
+            })
+    }
+
     /// Books an accepted step of length `h`.
     fn count_step(&mut self, h: M::Float, rejected: u32) {
         let s = &mut self.summary;
@@ -315,6 +361,7 @@ impl<M: Model> Driver<M> {
                 stepper.step(model, self.t, x, step)?;
                 self.fixed_steps += 1;
                 self.t = self.start + M::Float::from_f64(self.fixed_steps as f64) * step;
+                self.project(model, x)?;
                 self.count_step(step, 0);
             }
             return Ok(());
@@ -328,6 +375,7 @@ impl<M: Model> Driver<M> {
             } else {
                 t0 + M::Float::from_f64(j as f64) * h
             };
+            self.project(model, x)?;
             self.count_step(h, 0);
         }
         Ok(())
@@ -365,6 +413,7 @@ impl<M: Model> Driver<M> {
             } else {
                 info.h_next
             };
+            self.project(model, x)?;
             self.count_step(info.h, info.rejected);
             if landed {
                 return Ok(());

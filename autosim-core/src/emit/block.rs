@@ -3,7 +3,7 @@
 
 use super::expr::{ExprPrinter, Locals, ident};
 use crate::model::FloatType;
-use crate::opt::{Block, Leaf, Nid, Program, Stmt};
+use crate::opt::{Block, Guard, Leaf, Nid, Program, Stmt};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 use rustc_hash::FxHashMap;
@@ -66,8 +66,8 @@ impl BlockEmitter<'_> {
                     out.extend(quote!(let (#s, #c) = #m::sin_cos(#arg);));
                 }
                 Stmt::CallSub(k) => out.extend(self.call_subroutine(block, &printer, *k)),
-                Stmt::Check { pivot, speed } => {
-                    out.extend(self.pivot_check(&printer, *pivot, *speed))
+                Stmt::Check { pivot, guard } => {
+                    out.extend(self.pivot_check(&printer, *pivot, *guard))
                 }
                 Stmt::Store { slot, value } => {
                     let e = printer.expr(*value);
@@ -154,16 +154,31 @@ impl BlockEmitter<'_> {
     }
 
     /// A pivot of the mass matrix that must be positive, or the model
-    /// returns `SingularMassMatrix` naming the speed.
-    fn pivot_check(&self, printer: &ExprPrinter<'_>, pivot: Nid, speed: usize) -> TokenStream {
+    /// returns `SingularMassMatrix` naming the speed; a pivot of a
+    /// constraint solve that must not vanish, or `SingularConstraints`
+    /// naming the constraint.
+    fn pivot_check(&self, printer: &ExprPrinter<'_>, pivot: Nid, guard: Guard) -> TokenStream {
         let e = printer.expr(pivot);
         let m = &self.math;
         let rt = &self.rt;
-        let k = Literal::usize_unsuffixed(speed);
-        let name = &self.prog.states().speeds[speed].name;
-        quote! {
-            if !#m::is_positive(#e) {
-                return Err(#rt::ModelError::SingularMassMatrix { speed: #k, name: #name });
+        match guard {
+            Guard::Positive { speed } => {
+                let k = Literal::usize_unsuffixed(speed);
+                let name = &self.prog.states().speeds[speed].name;
+                quote! {
+                    if !#m::is_positive(#e) {
+                        return Err(#rt::ModelError::SingularMassMatrix { speed: #k, name: #name });
+                    }
+                }
+            }
+            Guard::Regular { constraint } => {
+                let k = Literal::usize_unsuffixed(constraint);
+                let name = &self.prog.interface.constraints[constraint].name;
+                quote! {
+                    if !#m::is_regular(#e) {
+                        return Err(#rt::ModelError::SingularConstraints { constraint: #k, name: #name });
+                    }
+                }
             }
         }
     }

@@ -158,6 +158,8 @@ pub struct Locals {
     pub f: Ident,
     /// The initial state.
     pub x0: Ident,
+    /// The Newton step of assembly.
+    pub step: Ident,
 }
 
 impl Locals {
@@ -193,6 +195,7 @@ impl Locals {
             m: pick("m"),
             f: pick("f"),
             x0: pick("x0"),
+            step: pick("step"),
         }
     }
 }

@@ -26,6 +26,15 @@ pub enum ModelError {
         /// How to fix it, if there is more to say than the message.
         help: Option<String>,
     },
+    /// A mistake in one option of a constraint or motion.
+    Option {
+        /// The item's name.
+        item: String,
+        /// The option at fault, as written (`position`, `dependent`, ...).
+        key: &'static str,
+        /// What is wrong.
+        message: String,
+    },
     /// A quantity that must be constant (parameters and numbers only) is not.
     NotConstant {
         /// What it is, e.g. "joint coordinates of body B".
@@ -159,6 +168,7 @@ impl fmt::Display for ModelError {
                     write!(f, "body `{body}`: {message}")
                 }
             }
+            ModelError::Option { message, .. } => write!(f, "{message}"),
             ModelError::NotConstant { what } => write!(
                 f,
                 "the {what} must be constant (parameters and numbers only)"
@@ -195,6 +205,10 @@ pub enum ItemRef {
     Output(usize),
     /// A user subroutine, by index.
     Subroutine(usize),
+    /// A constraint, by index in [`System::constraints`](super::System::constraints).
+    Constraint(usize),
+    /// A prescribed motion, by index in [`System::motions`](super::System::motions).
+    Motion(usize),
 }
 
 /// An error of an analysis of the system, with the item that caused it.

@@ -3,6 +3,7 @@
 
 mod body;
 mod body_check;
+mod constraint;
 mod declare;
 mod error;
 mod frames;
@@ -15,11 +16,12 @@ mod tree;
 mod vector;
 mod vector_ops;
 
+pub use constraint::{Constraint, ConstraintKind, Motion};
 pub use error::{BodyField, ItemRef, LocatedError, ModelError};
 pub use frames::{Frame, FrameId, Frames, Uv, UvId};
 pub use framevec::{Fv, Mat3};
 pub use joint::{Axis, Direction, DofKind, FixedTurn, Joint, Rotation, UnitMotion};
-pub use kane::Equations;
+pub use kane::{ConstraintEquations, ConstraintRow, Equations, Prescribed};
 pub use system::{
     Body, BodyId, BodySpec, Coordinate, ExtraState, Force, Moment, Output, Point, PointId,
     Subroutine, System,

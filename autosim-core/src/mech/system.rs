@@ -2,6 +2,7 @@
 //! user functions and subroutines, bodies, points, forces, moments, gravity,
 //! added state variables and outputs.
 
+use super::constraint::{Constraint, Motion};
 use super::error::ModelError;
 use super::frames::{FrameId, Frames};
 use super::framevec::{Fv, Mat3};
@@ -258,6 +259,8 @@ pub struct System {
     pub(crate) states: Vec<ExtraState>,
     pub(crate) outputs: Vec<Output>,
     pub(crate) subroutines: Vec<Subroutine>,
+    pub(crate) constraints: Vec<Constraint>,
+    pub(crate) motions: Vec<Motion>,
     pub(crate) inputs: Vec<SymId>,
     pub(crate) parameters: Vec<SymId>,
     pub(crate) time: SymId,
@@ -323,6 +326,8 @@ impl System {
             states: Vec::new(),
             outputs: Vec::new(),
             subroutines: Vec::new(),
+            constraints: Vec::new(),
+            motions: Vec::new(),
             inputs: Vec::new(),
             parameters: Vec::new(),
             time,

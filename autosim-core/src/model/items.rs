@@ -1,6 +1,7 @@
 //! Items that use expressions, resolved in model order once every name is
 //! declared: points and `let`s (if nothing used them first), subroutine
-//! arguments, added states, gravity, loads and outputs.
+//! arguments, added states, gravity, loads, outputs, constraints and
+//! motions.
 
 use super::ResolvedModel;
 use super::loads::{coefficients, force, moment};
@@ -45,6 +46,8 @@ pub(super) fn resolve_items(
             Item::Force(f) => force(r, f),
             Item::Moment(m) => moment(r, m),
             Item::Output(o) => output(r, out, o, outputs),
+            Item::Constraint(c) => constraint(r, out, c),
+            Item::Motion(m) => motion(r, out, m),
             _ => {}
         }
     }
@@ -123,4 +126,146 @@ fn output(
         }
     }
     out.item_docs.insert(o.name.text.clone(), o.docs.clone());
+}
+
+/// Where a mistake in option `key` of an item is written (its value), or
+/// the item's name.
+fn option_span<K: crate::syntax::ast::OptionKey>(
+    item: &crate::syntax::ast::Block<K>,
+    key: &str,
+) -> crate::diag::Span {
+    item.options
+        .entries
+        .iter()
+        .find(|e| e.key.as_str() == key)
+        .map_or(item.name.span, |e| e.value.span())
+}
+
+/// Reports an error of `mech` about an item at the option it names.
+fn report<K: crate::syntax::ast::OptionKey>(
+    r: &mut Resolver<'_>,
+    item: &crate::syntax::ast::Block<K>,
+    e: crate::mech::ModelError,
+) {
+    let span = match &e {
+        crate::mech::ModelError::Option { key, .. } => option_span(item, key),
+        _ => item.name.span,
+    };
+    r.error(span, e.to_string());
+}
+
+/// The symbol a plain name stands for, or a diagnostic.
+fn symbol_named(r: &mut Resolver<'_>, e: &ast::Expr, what: &str) -> Option<crate::expr::SymId> {
+    match e {
+        ast::Expr::Name(n) => match r.names.get(&n.text).cloned() {
+            Some((Named::Symbol(s), _)) => Some(s),
+            Some(_) => {
+                r.error(n.span, format!("`{}` is not a {what}", n.text));
+                None
+            }
+            None => {
+                r.unknown(n, what);
+                None
+            }
+        },
+        other => {
+            r.error(other.span(), format!("give the {what} by its name"));
+            None
+        }
+    }
+}
+
+fn constraint(r: &mut Resolver<'_>, out: &mut ResolvedModel, c: &ast::Constraint) {
+    use crate::mech::ConstraintKind;
+    use crate::syntax::ast::ConstraintKey;
+    if !r.declare(&c.name, Named::Load) {
+        return;
+    }
+    let (kind, value) = match (
+        c.options.get(ConstraintKey::Position),
+        c.options.get(ConstraintKey::Speed),
+    ) {
+        (Some(p), None) => (ConstraintKind::Position, &p.value),
+        (None, Some(s)) => (ConstraintKind::Speed, &s.value),
+        (Some(p), Some(_)) => {
+            r.push(
+                Diagnostic::error(
+                    p.key_span,
+                    format!(
+                        "the constraint `{}` has both `position` and `speed`",
+                        c.name.text
+                    ),
+                )
+                .help("a constraint is on positions or on speeds: split it into two constraints"),
+            );
+            return;
+        }
+        (None, None) => {
+            r.push(
+                Diagnostic::error(c.name.span, format!("the constraint `{}` has no expression", c.name.text))
+                    .help("add `position: <expression>` (a configuration that must hold) or `speed: <expression>` (linear in the speeds)"),
+            );
+            return;
+        }
+    };
+    let what = match kind {
+        ConstraintKind::Position => "a position constraint",
+        ConstraintKind::Speed => "a speed constraint",
+    };
+    let value = r.scalar(value, what);
+    let dependent = match c.options.get(ConstraintKey::Dependent) {
+        Some(d) => symbol_named(r, &d.value, "coordinate or speed").map(Some),
+        None => Some(None),
+    };
+    let (Some(value), Some(dependent)) = (value, dependent) else {
+        return;
+    };
+    let constraint = crate::mech::Constraint {
+        name: c.name.text.clone(),
+        kind,
+        value,
+        dependent,
+        unit: c.unit.as_ref().map(|u| u.text.clone()),
+    };
+    if let Err(e) = r.sys.add_constraint(constraint) {
+        report(r, c, e);
+    }
+    out.item_docs.insert(c.name.text.clone(), c.docs.clone());
+}
+
+fn motion(r: &mut Resolver<'_>, out: &mut ResolvedModel, m: &ast::Motion) {
+    use crate::syntax::ast::MotionKey;
+    if !r.declare(&m.name, Named::Load) {
+        return;
+    }
+    let missing = |r: &mut Resolver<'_>, key: &str| {
+        r.push(
+            Diagnostic::error(
+                m.name.span,
+                format!("the motion `{}` has no `{key}`", m.name.text),
+            )
+            .help("write `motion name { coordinate: q, value: <function of t> }`"),
+        );
+    };
+    let coordinate = match m.options.get(MotionKey::Coordinate) {
+        Some(o) => symbol_named(r, &o.value, "coordinate"),
+        None => {
+            missing(r, "coordinate");
+            None
+        }
+    };
+    let value = match m.options.get(MotionKey::Value) {
+        Some(o) => r.scalar(&o.value, "a motion"),
+        None => {
+            missing(r, "value");
+            None
+        }
+    };
+    let (Some(q), Some(value)) = (coordinate, value) else {
+        return;
+    };
+    if let Err(e) = r.sys.add_motion(&m.name.text, q, value) {
+        report(r, m, e);
+    }
+    out.item_docs.insert(m.name.text.clone(), m.docs.clone());
 }

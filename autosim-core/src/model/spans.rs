@@ -42,6 +42,8 @@ impl ItemSpans {
             ItemRef::State(s) => sys.arena.symbol(s).name.as_str(),
             ItemRef::Output(k) => sys.outputs()[k].name.as_str(),
             ItemRef::Subroutine(k) => sys.subroutines()[k].name.as_str(),
+            ItemRef::Constraint(k) => sys.constraints()[k].name.as_str(),
+            ItemRef::Motion(k) => sys.motions()[k].name.as_str(),
         };
         self.named(name)
     }

@@ -3,9 +3,10 @@
 //! user code, and the layout of its state vector. The emitter and the
 //! documentation read this and the program, nothing else.
 
+use super::split::Split;
 use crate::diag::Span;
 use crate::expr::{SymId, SymbolKind};
-use crate::mech::Equations;
+use crate::mech::{ConstraintKind, Equations};
 use crate::model::{FloatType, ResolvedModel};
 
 /// One state variable.
@@ -17,21 +18,24 @@ pub struct StateVar {
     pub unit: String,
 }
 
-/// The state vector: generalized coordinates, then one generalized speed
-/// per coordinate, then extra states (the model's `state` items and the
-/// scalar part `e0` of quaternion bodies), in that order.
+/// The state vector: generalized coordinates, then the independent
+/// generalized speeds, then extra states (the model's `state` items and the
+/// scalar part `e0` of quaternion bodies), in that order. A tree has one
+/// speed per coordinate; a constrained model has fewer (the dependent
+/// speeds are solved from the constraints), and a prescribed coordinate is
+/// no state at all.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct StateLayout {
     /// Generalized coordinates.
     pub coordinates: Vec<StateVar>,
-    /// Generalized speeds, one per coordinate.
+    /// Independent generalized speeds.
     pub speeds: Vec<StateVar>,
     /// States with their own differential equations.
     pub extra: Vec<StateVar>,
 }
 
 impl StateLayout {
-    /// Number of generalized speeds (= coordinates).
+    /// Number of independent generalized speeds (= coordinates in a tree).
     pub fn n_speeds(&self) -> usize {
         self.speeds.len()
     }
@@ -110,6 +114,49 @@ pub struct UserCode {
     pub span: Span,
 }
 
+/// A constraint, as generated code and its documentation name it.
+#[derive(Clone, Debug)]
+pub struct ConstraintInfo {
+    /// Name.
+    pub name: String,
+    /// Position or speed.
+    pub kind: ConstraintKind,
+    /// The speed it determines.
+    pub dependent_speed: String,
+    /// The coordinate it determines (position constraints).
+    pub dependent_coordinate: Option<String>,
+    /// Unit of its expression (empty when not given).
+    pub unit: String,
+    /// Doc comments.
+    pub docs: Vec<String>,
+    /// Where it is declared.
+    pub span: Span,
+}
+
+/// A prescribed motion.
+#[derive(Clone, Debug)]
+pub struct MotionInfo {
+    /// Name (also the output of the generalized force that enforces it).
+    pub name: String,
+    /// The coordinate it drives.
+    pub coordinate: String,
+    /// Doc comments.
+    pub docs: Vec<String>,
+    /// Where it is declared.
+    pub span: Span,
+}
+
+/// What assembly solves: each position constraint (an index into
+/// [`Interface::constraints`]) for its dependent coordinate (a position in
+/// the state vector), in the order of the assembly block's slots.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Closure {
+    /// The position constraint.
+    pub constraint: usize,
+    /// Its dependent coordinate's position in the state vector.
+    pub slot: usize,
+}
+
 /// Everything about a model's interface that generated code and its
 /// documentation name.
 #[derive(Clone, Debug)]
@@ -132,11 +179,20 @@ pub struct Interface {
     pub extern_fns: Vec<UserCode>,
     /// User subroutines in declaration order.
     pub subroutines: Vec<UserCode>,
+    /// Constraints in declaration order (`Guard::Regular` indices).
+    pub constraints: Vec<ConstraintInfo>,
+    /// Prescribed motions in declaration order.
+    pub motions: Vec<MotionInfo>,
+    /// The position constraints and their dependent coordinates, in the
+    /// order of the assembly block's slots (empty without position
+    /// constraints).
+    pub closures: Vec<Closure>,
 }
 
 impl Interface {
-    /// The interface of a resolved model with these equations.
-    pub fn new(model: &ResolvedModel, eqs: &Equations) -> Interface {
+    /// The interface of a resolved model with these equations, its speeds
+    /// split as `split` says.
+    pub fn new(model: &ResolvedModel, eqs: &Equations, split: &Split) -> Interface {
         let sys = &model.system;
         let a = &sys.arena;
         let state = |s: &SymId| StateVar {
@@ -151,11 +207,12 @@ impl Interface {
             };
             model.quantity(&sym.name, sym.unit.as_deref(), default)
         };
-        let outputs = sys
+        let mut outputs: Vec<Quantity> = sys
             .outputs()
             .iter()
             .map(|o| model.quantity(&o.name, o.unit.as_deref(), 0.0))
             .collect();
+        outputs.extend(model.constraint_outputs(eqs));
         let subroutines = sys
             .subroutines()
             .iter()
@@ -180,13 +237,20 @@ impl Interface {
             parameters: sys.parameters().iter().map(symbol).collect(),
             inputs: sys.inputs().iter().map(symbol).collect(),
             states: StateLayout {
-                coordinates: eqs.coordinates.iter().map(state).collect(),
-                speeds: eqs.speeds.iter().map(state).collect(),
+                coordinates: split
+                    .coordinates
+                    .iter()
+                    .map(|&k| state(&eqs.coordinates[k]))
+                    .collect(),
+                speeds: split.free.iter().map(|&k| state(&eqs.speeds[k])).collect(),
                 extra: eqs.states.iter().map(state).collect(),
             },
             outputs,
             extern_fns,
             subroutines,
+            constraints: model.constraint_infos(eqs),
+            motions: model.motion_infos(),
+            closures: closures(eqs, split),
         }
     }
 
@@ -197,7 +261,105 @@ impl Interface {
     }
 }
 
+/// Each position constraint with the state slot of its dependent
+/// coordinate, in assembly order.
+fn closures(eqs: &Equations, split: &Split) -> Vec<Closure> {
+    let c = &eqs.constraints;
+    c.positions
+        .iter()
+        .zip(&c.dependent_coordinates)
+        .map(|(&constraint, q)| Closure {
+            constraint,
+            slot: split.coordinates.iter().position(|k| k == q).unwrap_or(0),
+        })
+        .collect()
+}
+
 impl ResolvedModel {
+    /// The constraints with their dependents.
+    fn constraint_infos(&self, eqs: &Equations) -> Vec<ConstraintInfo> {
+        let sys = &self.system;
+        let name = |s: SymId| sys.arena.symbol(s).name.clone();
+        let c = &eqs.constraints;
+        sys.constraints()
+            .iter()
+            .enumerate()
+            .map(|(k, con)| ConstraintInfo {
+                name: con.name.clone(),
+                kind: con.kind,
+                dependent_speed: name(eqs.speeds[c.dependent_speeds[k]]),
+                dependent_coordinate: c
+                    .positions
+                    .iter()
+                    .position(|&p| p == k)
+                    .map(|i| name(eqs.coordinates[c.dependent_coordinates[i]])),
+                unit: con.unit.clone().unwrap_or_default(),
+                docs: self.item_docs.get(&con.name).cloned().unwrap_or_default(),
+                span: self.spans.named(&con.name),
+            })
+            .collect()
+    }
+
+    /// The prescribed motions.
+    fn motion_infos(&self) -> Vec<MotionInfo> {
+        let sys = &self.system;
+        sys.motions()
+            .iter()
+            .map(|m| MotionInfo {
+                name: m.name.clone(),
+                coordinate: sys
+                    .arena
+                    .symbol(sys.coordinates()[m.coordinate].q)
+                    .name
+                    .clone(),
+                docs: self.item_docs.get(&m.name).cloned().unwrap_or_default(),
+                span: self.spans.named(&m.name),
+            })
+            .collect()
+    }
+
+    /// The outputs every constrained model adds after the model's own: the
+    /// residual of each position constraint, then the generalized force
+    /// that enforces each motion (N for a translation, N m for a
+    /// rotation).
+    fn constraint_outputs(&self, eqs: &Equations) -> Vec<Quantity> {
+        let sys = &self.system;
+        let mut out = Vec::new();
+        for &k in &eqs.constraints.positions {
+            let c = &sys.constraints()[k];
+            out.push(Quantity {
+                name: c.name.clone(),
+                unit: c.unit.clone().unwrap_or_default(),
+                default: 0.0,
+                docs: Some(vec![format!(
+                    "Residual of the position constraint `{}` (zero when the configuration satisfies it).",
+                    c.name
+                )]),
+                span: self.spans.named(&c.name),
+            });
+        }
+        for m in sys.motions() {
+            let coordinate = &sys.coordinates()[m.coordinate];
+            let unit = match sys.arena.symbol(coordinate.q).unit.as_deref() {
+                Some("m") => "N",
+                Some("rad") => "N m",
+                _ => "",
+            };
+            let q = &sys.arena.symbol(coordinate.q).name;
+            out.push(Quantity {
+                name: m.name.clone(),
+                unit: unit.to_string(),
+                default: 0.0,
+                docs: Some(vec![format!(
+                    "Generalized force along `{q}` that enforces the motion `{}`.",
+                    m.name
+                )]),
+                span: self.spans.named(&m.name),
+            });
+        }
+        out
+    }
+
     /// The interface entry of a named value declared by the model.
     fn quantity(&self, name: &str, unit: Option<&str>, default: f64) -> Quantity {
         Quantity {

@@ -4,15 +4,16 @@
 
 use super::ir::{Leaf, Nid, Op};
 use super::program::{BlockKind, Program};
-use super::schedule::Stmt;
+use super::schedule::{Guard, Stmt};
 use crate::expr::Func;
 use rustc_hash::FxHashMap;
 
-/// A failed pivot of the mass matrix.
+/// A pivot that failed its guard: the guard says which (the mass matrix's
+/// pivot of a speed, or a constraint solve's pivot of a constraint).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SolveError {
-    /// The speed whose pivot was not positive.
-    pub speed: usize,
+    /// The failed test.
+    pub guard: Guard,
 }
 
 /// The user code a program calls, for the interpreter: user function
@@ -91,8 +92,9 @@ impl<'a> Interpreter<'a> {
     ) -> Result<Vec<f64>, SolveError> {
         let accel = match self.prog.outputs_need_derivatives {
             true => {
-                let n = self.prog.n();
-                self.derivatives(t, x, inputs, user)?[n..2 * n].to_vec()
+                let first = self.prog.states().speed_slot(0);
+                let rates = first..first + self.prog.n();
+                self.derivatives(t, x, inputs, user)?[rates].to_vec()
             }
             false => Vec::new(),
         };
@@ -103,6 +105,28 @@ impl<'a> Interpreter<'a> {
             accel: &accel,
         };
         self.run(BlockKind::Outputs, at, user)
+    }
+
+    /// One Newton step of assembly at `(t, x)`: the corrections of the
+    /// dependent coordinates, then the residuals of the position
+    /// constraints (empty without them).
+    pub fn assembly_step(
+        &self,
+        t: f64,
+        x: &[f64],
+        inputs: &[f64],
+        user: &mut UserCalls<'_>,
+    ) -> Result<Vec<f64>, SolveError> {
+        if self.prog.try_block(BlockKind::Assembly).is_none() {
+            return Ok(Vec::new());
+        }
+        let at = At {
+            t,
+            x,
+            inputs,
+            accel: &[],
+        };
+        self.run(BlockKind::Assembly, at, user)
     }
 
     /// The mass matrix (row-major) and the forcing vector.
@@ -182,10 +206,14 @@ impl<'a> Interpreter<'a> {
                         env.leaves.insert(Leaf::SubOut(*k, j), *v);
                     }
                 }
-                Stmt::Check { pivot, speed } => {
+                Stmt::Check { pivot, guard } => {
                     let v = self.eval(*pivot, &mut env, user.function);
-                    if v.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
-                        return Err(SolveError { speed: *speed });
+                    let pass = match guard {
+                        Guard::Positive { .. } => v > 0.0,
+                        Guard::Regular { .. } => v.is_finite() && v.abs() > 16.0 * f64::EPSILON,
+                    };
+                    if !pass {
+                        return Err(SolveError { guard: *guard });
                     }
                 }
                 Stmt::Store { slot, value } => {

@@ -3,6 +3,8 @@
 //! call order) and operation counts (the paper's Eqs. 12-23), with the
 //! interface generated code exposes, a text form and a verifier.
 
+mod constrained;
+mod elim;
 mod interface;
 mod interp;
 mod ir;
@@ -10,12 +12,16 @@ mod lower;
 mod program;
 mod schedule;
 mod solve;
+mod split;
 mod text;
 mod verify;
 
-pub use interface::{Interface, Quantity, StateLayout, StateVar, UserCode};
+pub use interface::{
+    Closure, ConstraintInfo, Interface, MotionInfo, Quantity, StateLayout, StateVar, UserCode,
+};
 pub use interp::{Interpreter, SolveError, UserCalls};
 pub use ir::{Ir, Leaf, Nid, Op};
 pub use lower::{Lowering, UnboundSymbol};
 pub use program::{BlockKind, Program, ProgramError, build};
-pub use schedule::{Block, Ops, Stmt, Task};
+pub use schedule::{Block, Guard, Ops, Stmt, Task};
+pub use split::Split;

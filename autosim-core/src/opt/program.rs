@@ -3,11 +3,13 @@
 //! unrolled solve of the mass matrix; outputs; the mass matrix and forcing
 //! alone; the initial state), plus the interface generated code exposes.
 
+use super::constrained;
 use super::interface::{Interface, StateLayout};
 use super::ir::{Ir, Leaf, Nid, Op};
 use super::lower::{Lowering, UnboundSymbol};
-use super::schedule::{Block, Options, Task, schedule};
+use super::schedule::{Block, Guard, Options, Task, schedule};
 use super::solve::{Solve, ldlt_solve};
+use super::split::Split;
 use crate::expr::{ExprId, Func, SymId};
 use crate::mech::{Equations, ItemRef};
 use crate::model::ResolvedModel;
@@ -28,6 +30,10 @@ pub enum BlockKind {
     Forcing,
     /// The initial state from the parameters.
     Initial,
+    /// One Newton step of assembly (models with position constraints):
+    /// slots `0..k` the corrections of the dependent coordinates, `k..2k`
+    /// the residuals of the `k` position constraints.
+    Assembly,
 }
 
 impl BlockKind {
@@ -40,6 +46,7 @@ impl BlockKind {
             BlockKind::MassMatrix => "mass_matrix",
             BlockKind::Forcing => "forcing",
             BlockKind::Initial => "initial",
+            BlockKind::Assembly => "assembly",
         }
     }
 
@@ -70,13 +77,16 @@ pub struct Program {
 }
 
 impl Program {
-    /// The block of a kind (every program has one of each).
+    /// The block of a kind (every program has one of each, but the
+    /// assembly block only with position constraints).
     pub fn block(&self, kind: BlockKind) -> &Block {
-        self.blocks
-            .iter()
-            .find(|(k, _)| *k == kind)
-            .map(|(_, b)| b)
-            .unwrap_or_else(|| unreachable!("every program has a {} block", kind.name()))
+        self.try_block(kind)
+            .unwrap_or_else(|| unreachable!("the program has no {} block", kind.name()))
+    }
+
+    /// The block of a kind, if the program has one.
+    pub fn try_block(&self, kind: BlockKind) -> Option<&Block> {
+        self.blocks.iter().find(|(k, _)| *k == kind).map(|(_, b)| b)
     }
 
     /// The state vector's layout.
@@ -84,7 +94,7 @@ impl Program {
         &self.interface.states
     }
 
-    /// Number of generalized speeds.
+    /// Number of independent generalized speeds.
     pub fn n(&self) -> usize {
         self.interface.states.n_speeds()
     }
@@ -98,6 +108,7 @@ impl Program {
             BlockKind::Constants => self.hoisted.len(),
             BlockKind::MassMatrix => n * n,
             BlockKind::Forcing => n,
+            BlockKind::Assembly => 2 * self.interface.closures.len(),
         }
     }
 }
@@ -135,63 +146,132 @@ impl std::fmt::Display for ProgramError {
 
 /// Builds the program of a resolved model from its equations.
 pub fn build(model: &mut ResolvedModel, eqs: &Equations) -> Result<Program, ProgramError> {
-    let interface = Interface::new(model, eqs);
+    let split = Split::new(eqs);
+    let interface = Interface::new(model, eqs, &split);
     let mut ir = Ir::new();
-    let leaves = leaves(model, eqs, &mut ir);
-    let lowered = lower(model, eqs, &mut ir, &leaves)?;
+    let lowered = match split.is_tree() {
+        true => {
+            let leaves = leaves(model, eqs, &split, &mut ir)?;
+            lower(model, eqs, &mut ir, &leaves)?
+        }
+        false => constrained::lower(model, eqs, &split, &mut ir)?,
+    };
     let names = Naming::new(&ir, &interface, &lowered);
     let program = schedule_blocks(ir, lowered, &names, interface);
     debug_assert_eq!(program.verify(), Ok(()));
     Ok(program)
 }
 
-/// The IR leaf of every symbol with a value at run time.
-fn leaves(model: &ResolvedModel, eqs: &Equations, ir: &mut Ir) -> FxHashMap<SymId, Nid> {
+/// The leaf of every symbol with a value at run time (the state holds the
+/// coordinates but the prescribed, and the independent speeds), and the
+/// prescribed coordinates and speeds as functions of time.
+pub(super) fn leaves(
+    model: &mut ResolvedModel,
+    eqs: &Equations,
+    split: &Split,
+    ir: &mut Ir,
+) -> Result<FxHashMap<SymId, Nid>, ProgramError> {
     let sys = &model.system;
-    let mut leaves: FxHashMap<SymId, Nid> = FxHashMap::default();
+    let mut env: FxHashMap<SymId, Nid> = FxHashMap::default();
     for (i, s) in sys.parameters().iter().enumerate() {
-        leaves.insert(*s, ir.leaf(Leaf::Param(i)));
+        env.insert(*s, ir.leaf(Leaf::Param(i)));
     }
-    let states = eqs.coordinates.iter().chain(&eqs.speeds).chain(&eqs.states);
+    let states = split
+        .coordinates
+        .iter()
+        .map(|&j| eqs.coordinates[j])
+        .chain(split.free.iter().map(|&k| eqs.speeds[k]))
+        .chain(eqs.states.iter().copied());
     for (i, s) in states.enumerate() {
-        leaves.insert(*s, ir.leaf(Leaf::State(i)));
+        env.insert(s, ir.leaf(Leaf::State(i)));
     }
     for (i, s) in sys.inputs().iter().enumerate() {
-        leaves.insert(*s, ir.leaf(Leaf::Input(i)));
+        env.insert(*s, ir.leaf(Leaf::Input(i)));
     }
-    leaves.insert(sys.time(), ir.leaf(Leaf::Time));
+    env.insert(sys.time(), ir.leaf(Leaf::Time));
     for (k, sub) in sys.subroutines().iter().enumerate() {
         for (j, o) in sub.outputs.iter().enumerate() {
-            leaves.insert(*o, ir.leaf(Leaf::SubOut(k, j)));
+            env.insert(*o, ir.leaf(Leaf::SubOut(k, j)));
         }
     }
-    leaves
+    if eqs.prescribed.is_empty() {
+        return Ok(env);
+    }
+    let mut lw = Lowering::new(&mut model.system.arena, ir, &env);
+    let mut known = Vec::new();
+    for (i, p) in eqs.prescribed.iter().enumerate() {
+        let value = lower_one(&mut lw, p.value, ItemRef::Motion(i))?;
+        let rate = lower_one(&mut lw, p.rate, ItemRef::Motion(i))?;
+        known.push((eqs.coordinates[p.speed], value));
+        known.push((eqs.speeds[p.speed], rate));
+    }
+    env.extend(known);
+    Ok(env)
 }
 
 /// The equations lowered to IR nodes.
-struct Lowered {
-    /// dq/dt.
-    kinematics: Vec<Nid>,
-    /// Lower triangle of the mass matrix (`None`: structurally zero).
-    mass: Vec<Vec<Option<Nid>>>,
-    /// The forcing vector.
-    forcing: Vec<Nid>,
+pub(super) struct Lowered {
+    /// dq/dt of the state's coordinates.
+    pub kinematics: Vec<Nid>,
+    /// Lower triangle of the mass matrix of the independent speeds
+    /// (`None`: structurally zero).
+    pub mass: Vec<Vec<Option<Nid>>>,
+    /// The forcing vector of the independent speeds.
+    pub forcing: Vec<Nid>,
     /// The solve of `M du/dt = f`.
-    solve: Solve,
+    pub solve: Solve,
+    /// Pivots of the constraint solve, with their constraint.
+    pub constraint_checks: Vec<(Nid, usize)>,
     /// d/dt of the extra states.
-    extra: Vec<Nid>,
+    pub extra: Vec<Nid>,
     /// The outputs.
-    outputs: Vec<Nid>,
+    pub outputs: Vec<Nid>,
     /// The initial state.
-    initial: Vec<Nid>,
+    pub initial: Vec<Nid>,
     /// Subroutine arguments.
-    sub_args: Vec<Vec<Nid>>,
+    pub sub_args: Vec<Vec<Nid>>,
     /// User-function calls in model order.
-    call_order: Vec<Nid>,
+    pub call_order: Vec<Nid>,
+    /// Values named after a symbol (the dependent speeds).
+    pub named: Vec<(String, Nid)>,
+    /// The Newton step of assembly (models with position constraints).
+    pub assembly: Option<Assembly>,
+}
+
+/// One Newton step of assembly.
+pub(super) struct Assembly {
+    /// The corrections of the dependent coordinates.
+    pub step: Vec<Nid>,
+    /// The residuals of the position constraints.
+    pub residuals: Vec<Nid>,
+    /// Pivots of the Jacobian's solve, with their constraint.
+    pub checks: Vec<(Nid, usize)>,
+}
+
+/// Lowers `e`, naming `item` on failure.
+pub(super) fn lower_one(
+    lw: &mut Lowering<'_>,
+    e: ExprId,
+    item: ItemRef,
+) -> Result<Nid, ProgramError> {
+    lw.lower(e)
+        .map_err(|UnboundSymbol(name)| ProgramError::Unbound { name, item })
+}
+
+/// User-function calls in model order (their creation order), once each.
+pub(super) fn collect_calls(mut calls: Vec<(ExprId, Nid)>) -> Vec<Nid> {
+    calls.sort();
+    let mut order: Vec<Nid> = Vec::new();
+    for (_, nid) in calls {
+        if !order.contains(&nid) {
+            order.push(nid);
+        }
+    }
+    order
 }
 
 /// Lowers `exprs` of `item` (errors name the item).
-fn lower_all(
+pub(super) fn lower_all(
     lw: &mut Lowering<'_>,
     exprs: &[ExprId],
     item: impl Fn(usize) -> ItemRef,
@@ -274,24 +354,19 @@ fn lower(
     let mut lw = Lowering::new(&mut sys.arena, ir, leaves);
     let initial = lower_all(&mut lw, &initial_exprs, |_| ItemRef::Model)?;
 
-    // User-function calls in model order (their creation order).
-    user_calls.sort();
-    let mut call_order: Vec<Nid> = Vec::new();
-    for (_, nid) in user_calls {
-        if !call_order.contains(&nid) {
-            call_order.push(nid);
-        }
-    }
     Ok(Lowered {
         kinematics,
         mass,
         forcing,
         solve,
+        constraint_checks: Vec::new(),
         extra,
         outputs,
         initial,
         sub_args,
-        call_order,
+        call_order: collect_calls(user_calls),
+        named: Vec::new(),
+        assembly: None,
     })
 }
 
@@ -345,20 +420,23 @@ fn hints(ir: &Ir, layout: &StateLayout, lowered: &Lowered) -> FxHashMap<Nid, Str
             hint(nid, format!("{pre}_{}", layout.state(*i).name));
         }
     }
-    for i in 0..layout.n_speeds() {
-        for j in 0..=i {
-            if let Some(m) = lowered.mass[i][j] {
-                hint(m, format!("m{}_{}", i + 1, j + 1));
+    let (nf, nq) = (layout.n_speeds(), layout.coordinates.len());
+    for i in 0..nf.max(nq) {
+        if i < nf {
+            for j in 0..=i {
+                if let Some(m) = lowered.mass[i][j] {
+                    hint(m, format!("m{}_{}", i + 1, j + 1));
+                }
             }
+            hint(lowered.forcing[i], format!("f{}", i + 1));
+            hint(lowered.solve.du[i], layout.speed_rate_name(i));
         }
-        hint(lowered.forcing[i], format!("f{}", i + 1));
-        hint(lowered.solve.du[i], layout.speed_rate_name(i));
-        hint(
-            lowered.kinematics[i],
-            format!("{}_dot", layout.coordinates[i].name),
-        );
+        if i < nq {
+            let name = &layout.coordinates[i].name;
+            hint(lowered.kinematics[i], format!("{name}_dot"));
+        }
     }
-    for (h, nid) in &lowered.solve.hints {
+    for (h, nid) in lowered.solve.hints.iter().chain(&lowered.named) {
         hint(*nid, h.clone());
     }
     hints
@@ -372,9 +450,33 @@ fn stores(values: &[Nid], first: usize) -> impl Iterator<Item = Task> + '_ {
     })
 }
 
+/// `Check` tasks of constraint pivots.
+fn regular(checks: &[(Nid, usize)]) -> impl Iterator<Item = Task> + '_ {
+    checks.iter().map(|&(pivot, constraint)| Task::Check {
+        pivot,
+        guard: Guard::Regular { constraint },
+    })
+}
+
+/// Whether any of `targets` is computed on the way to `roots`.
+fn reaches(ir: &Ir, roots: &[Nid], targets: &[Nid]) -> bool {
+    let mut seen: FxHashSet<Nid> = FxHashSet::default();
+    let mut stack = roots.to_vec();
+    while let Some(n) = stack.pop() {
+        if targets.contains(&n) {
+            return true;
+        }
+        if seen.insert(n) {
+            stack.extend(ir.children(n));
+        }
+    }
+    false
+}
+
 /// Schedules every block and assembles the program.
 fn schedule_blocks(mut ir: Ir, lowered: Lowered, names: &Naming, interface: Interface) -> Program {
     let n = interface.states.n_speeds();
+    let nq = interface.states.coordinates.len();
     let options = |hoist: bool, reserved| Options {
         hoist_constants: hoist,
         hints: &names.hints,
@@ -384,18 +486,24 @@ fn schedule_blocks(mut ir: Ir, lowered: Lowered, names: &Naming, interface: Inte
     };
     let all = options(true, &names.reserved);
 
-    let mut tasks: Vec<Task> = stores(&lowered.kinematics, 0).collect();
+    let mut tasks: Vec<Task> = regular(&lowered.constraint_checks).collect();
+    tasks.extend(stores(&lowered.kinematics, 0));
     for (pivot, speed) in &lowered.solve.pivots {
         tasks.push(Task::Check {
             pivot: *pivot,
-            speed: *speed,
+            guard: Guard::Positive { speed: *speed },
         });
     }
-    tasks.extend(stores(&lowered.solve.du, n));
-    tasks.extend(stores(&lowered.extra, 2 * n));
+    tasks.extend(stores(&lowered.solve.du, nq));
+    tasks.extend(stores(&lowered.extra, nq + n));
     let derivatives = schedule(&ir, &tasks, &all);
 
-    let out_tasks: Vec<Task> = stores(&lowered.outputs, 0).collect();
+    let pivots: Vec<Nid> = lowered.constraint_checks.iter().map(|c| c.0).collect();
+    let mut out_tasks: Vec<Task> = Vec::new();
+    if reaches(&ir, &lowered.outputs, &pivots) {
+        out_tasks.extend(regular(&lowered.constraint_checks));
+    }
+    out_tasks.extend(stores(&lowered.outputs, 0));
     let outputs = schedule(&ir, &out_tasks, &options(true, &names.output_reserved));
     let outputs_need_derivatives = outputs.leaves.iter().any(|l| matches!(l, Leaf::Accel(_)));
 
@@ -410,12 +518,21 @@ fn schedule_blocks(mut ir: Ir, lowered: Lowered, names: &Naming, interface: Inte
             });
         }
     }
+    // `mass_matrix` and `forcing` return no error: at a state where the
+    // constraints are singular their values are not finite.
     let mass_matrix = schedule(&ir, &mm_tasks, &all);
     let f_tasks: Vec<Task> = stores(&lowered.forcing, 0).collect();
     let forcing = schedule(&ir, &f_tasks, &all);
+    let assembly = lowered.assembly.as_ref().map(|a| {
+        let mut tasks: Vec<Task> = regular(&a.checks).collect();
+        tasks.extend(stores(&a.step, 0));
+        tasks.extend(stores(&a.residuals, a.step.len()));
+        schedule(&ir, &tasks, &all)
+    });
 
     let mut hoisted: Vec<Nid> = [&derivatives, &outputs, &mass_matrix, &forcing]
-        .iter()
+        .into_iter()
+        .chain(assembly.as_ref())
         .flat_map(|b| b.hoisted.iter().copied())
         .collect();
     hoisted.sort();
@@ -425,16 +542,18 @@ fn schedule_blocks(mut ir: Ir, lowered: Lowered, names: &Naming, interface: Inte
     let i_tasks: Vec<Task> = stores(&lowered.initial, 0).collect();
     let initial = schedule(&ir, &i_tasks, &options(false, &names.reserved));
 
+    let mut blocks = vec![
+        (BlockKind::Derivatives, derivatives),
+        (BlockKind::Outputs, outputs),
+        (BlockKind::Constants, constants),
+        (BlockKind::MassMatrix, mass_matrix),
+        (BlockKind::Forcing, forcing),
+        (BlockKind::Initial, initial),
+    ];
+    blocks.extend(assembly.map(|a| (BlockKind::Assembly, a)));
     Program {
         ir,
-        blocks: vec![
-            (BlockKind::Derivatives, derivatives),
-            (BlockKind::Outputs, outputs),
-            (BlockKind::Constants, constants),
-            (BlockKind::MassMatrix, mass_matrix),
-            (BlockKind::Forcing, forcing),
-            (BlockKind::Initial, initial),
-        ],
+        blocks,
         hoisted,
         sub_args: lowered.sub_args,
         outputs_need_derivatives,

@@ -21,12 +21,31 @@ pub enum Task {
         /// The value.
         value: Nid,
     },
-    /// Stop with an error naming speed `speed` unless `pivot > 0`.
+    /// Stop with the guard's error unless the pivot passes it.
     Check {
         /// The pivot.
         pivot: Nid,
-        /// Speed index (for the message).
+        /// What the pivot must be, and what to report when it is not.
+        guard: Guard,
+    },
+}
+
+/// A run-time test of a pivot, and the error it reports.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Guard {
+    /// A pivot of the mass matrix's LDLᵀ: positive, or
+    /// `SingularMassMatrix` naming speed `speed` (index in the state's
+    /// speeds).
+    Positive {
+        /// Speed index.
         speed: usize,
+    },
+    /// A pivot of a constraint solve: away from zero, or
+    /// `SingularConstraints` naming constraint `constraint` (declaration
+    /// order).
+    Regular {
+        /// Constraint index.
+        constraint: usize,
     },
 }
 
@@ -49,8 +68,8 @@ pub enum Stmt {
     Check {
         /// The pivot.
         pivot: Nid,
-        /// Speed index.
-        speed: usize,
+        /// Its test.
+        guard: Guard,
     },
     /// Write an output slot.
     Store {
@@ -379,9 +398,9 @@ impl Sched<'_> {
                     self.emit_node(value);
                     self.block.stmts.push(Stmt::Store { slot, value });
                 }
-                Task::Check { pivot, speed } => {
+                Task::Check { pivot, guard } => {
                     self.emit_node(pivot);
-                    self.block.stmts.push(Stmt::Check { pivot, speed });
+                    self.block.stmts.push(Stmt::Check { pivot, guard });
                 }
             }
         }

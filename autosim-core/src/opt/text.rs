@@ -6,7 +6,7 @@
 
 use super::ir::{Ir, Leaf, Nid, Op};
 use super::program::{BlockKind, Program};
-use super::schedule::Stmt;
+use super::schedule::{Guard, Stmt};
 use crate::expr::Func;
 use rustc_hash::FxHashMap;
 use std::fmt::{self, Write};
@@ -23,6 +23,16 @@ impl Program {
             BlockKind::Constants => format!("p{}", k + 1),
             BlockKind::MassMatrix => format!("M[{},{}]", k / n + 1, k % n + 1),
             BlockKind::Forcing => format!("f[{}]", k + 1),
+            BlockKind::Assembly => {
+                let closures = &self.interface.closures;
+                match closures.get(k) {
+                    Some(c) => format!("Δ{}", self.states().state(c.slot).name),
+                    None => {
+                        let c = closures[k - closures.len()].constraint;
+                        format!("{}(residual)", self.interface.constraints[c].name)
+                    }
+                }
+            }
         }
     }
 
@@ -60,11 +70,23 @@ impl Program {
                         args.join(", ")
                     )?;
                 }
-                Stmt::Check { pivot, speed } => writeln!(
+                Stmt::Check {
+                    pivot,
+                    guard: Guard::Positive { speed },
+                } => writeln!(
                     out,
                     "require {} > 0   (mass matrix pivot of {})",
                     p.expr(*pivot, 0),
                     self.states().speeds[*speed].name
+                )?,
+                Stmt::Check {
+                    pivot,
+                    guard: Guard::Regular { constraint },
+                } => writeln!(
+                    out,
+                    "require {} != 0   (pivot of constraint {})",
+                    p.expr(*pivot, 0),
+                    self.interface.constraints[*constraint].name
                 )?,
                 Stmt::Store { slot, value } => writeln!(
                     out,

@@ -3,7 +3,8 @@
 //! by the tests on every model.
 //!
 //! 1. The IR is topologically ordered: children have smaller ids.
-//! 2. The state layout has one speed per coordinate.
+//! 2. The state layout has at most one speed per coordinate (fewer with
+//!    constraints), and the assembly block solves for coordinates.
 //! 3. Every block writes each of its slots exactly once, and only slots
 //!    that exist.
 //! 4. Every value is defined before it is read: a named node by an
@@ -32,8 +33,15 @@ impl Program {
             }
         }
         let layout = self.states();
-        if layout.coordinates.len() != layout.speeds.len() {
-            return Err("the state layout has not one speed per coordinate".to_string());
+        if layout.coordinates.len() < layout.speeds.len() {
+            return Err("the state layout has more speeds than coordinates".to_string());
+        }
+        let nq = layout.coordinates.len();
+        if let Some(c) = self.interface.closures.iter().find(|c| c.slot >= nq) {
+            return Err(format!(
+                "assembly solves state {}, not a coordinate",
+                c.slot
+            ));
         }
         if self.hoisted.windows(2).any(|w| w[0] >= w[1]) {
             return Err("the hoisted constants are not sorted and unique".to_string());

@@ -9,7 +9,9 @@ use std::fmt;
 
 use crate::diag::Span;
 
-pub use super::keys::{BodyKey, ForceKey, MomentKey, OptionKey, SettingKey, StateKey};
+pub use super::keys::{
+    BodyKey, ConstraintKey, ForceKey, MomentKey, MotionKey, OptionKey, SettingKey, StateKey,
+};
 
 /// A whole model: `model Name;` plus its items in source order.
 #[derive(Clone, Debug)]
@@ -51,6 +53,10 @@ pub enum Item {
     State(State),
     /// `output tip_speed [m/s] = mag(vel(P));`
     Output(Output),
+    /// `constraint closure { position: dot(pos(E, T), n1), dependent: q3 }`
+    Constraint(Constraint),
+    /// `motion drive { coordinate: q1, value: omega*t }`
+    Motion(Motion),
 }
 
 impl Item {
@@ -70,6 +76,8 @@ impl Item {
             Item::ExternSub(x) => x.span,
             Item::State(x) => x.span,
             Item::Output(x) => x.span,
+            Item::Constraint(x) => x.span,
+            Item::Motion(x) => x.span,
         }
     }
 }
@@ -199,6 +207,9 @@ pub struct Block<K> {
     pub name: Name,
     /// Optional description.
     pub label: Option<Label>,
+    /// The unit of the item's value (constraints only: the unit of the
+    /// residual), if given.
+    pub unit: Option<Unit>,
     /// The options.
     pub options: Options<K>,
 }
@@ -211,6 +222,13 @@ pub type Force = Block<ForceKey>;
 
 /// `moment name "label" { on: ..., ... }`
 pub type Moment = Block<MomentKey>;
+
+/// `constraint name "label" { position: ..., dependent: q }` or
+/// `{ speed: ..., dependent: u }`
+pub type Constraint = Block<ConstraintKey>;
+
+/// `motion name "label" { coordinate: q, value: ... }`
+pub type Motion = Block<MotionKey>;
 
 /// `point P "tip" in F at [0, -L8, 0];`
 #[derive(Clone, Debug)]

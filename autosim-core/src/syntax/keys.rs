@@ -78,6 +78,28 @@ option_keys! {
 }
 
 option_keys! {
+    /// Keys of a `constraint` block.
+    ConstraintKey, "constraint option" {
+        /// `position: g` — the configuration must keep `g = 0`.
+        Position = "position",
+        /// `speed: c` — the motion must keep `c = 0` (linear in the speeds).
+        Speed = "speed",
+        /// `dependent: q` — the coordinate (or speed) the constraint determines.
+        Dependent = "dependent",
+    }
+}
+
+option_keys! {
+    /// Keys of a `motion` block.
+    MotionKey, "motion option" {
+        /// `coordinate: q` — the coordinate given as a function of time.
+        Coordinate = "coordinate",
+        /// `value: f(t)` — its value.
+        Value = "value",
+    }
+}
+
+option_keys! {
     /// Keys of a `force` block.
     ForceKey, "force option" {
         /// `on: P` — the point the force acts on.

@@ -15,6 +15,8 @@ syn::custom_keyword!(state);
 syn::custom_keyword!(output);
 syn::custom_keyword!(sub);
 syn::custom_keyword!(at);
+syn::custom_keyword!(constraint);
+syn::custom_keyword!(motion);
 
 /// Words that start an item: used for "did you mean", for error recovery
 /// (skip to the next item) and for the missing-`;` check.
@@ -33,4 +35,6 @@ pub(crate) const ITEM_STARTS: &[&str] = &[
     "extern",
     "state",
     "output",
+    "constraint",
+    "motion",
 ];

@@ -122,6 +122,12 @@ fn item(input: ParseStream, cx: &Cx, top: &mut Top) -> PResult<()> {
         Item::State(state(input, cx, docs)?)
     } else if input.peek(kw::output) {
         Item::Output(output(input, cx, docs)?)
+    } else if input.peek(kw::constraint) {
+        let keyword: kw::constraint = input.parse()?;
+        Item::Constraint(block(input, cx, docs, cx.span(keyword.span), "constraint")?)
+    } else if input.peek(kw::motion) {
+        let keyword: kw::motion = input.parse()?;
+        Item::Motion(block(input, cx, docs, cx.span(keyword.span), "motion")?)
     } else {
         return cx.fail(not_an_item(input, cx));
     };
@@ -462,6 +468,10 @@ fn block<K: OptionKey>(
     what: &str,
 ) -> PResult<Block<K>> {
     let name = name(input, cx, &format!("a {what} name"))?;
+    let unit = match what {
+        "constraint" => unit(input, cx)?,
+        _ => None,
+    };
     let label = label(input, cx)?;
     let options = options::<K>(input, cx, &format!("{what} `{}`", name.text))?;
     Ok(Block {
@@ -469,6 +479,7 @@ fn block<K: OptionKey>(
         span: keyword.to(name.span),
         name,
         label,
+        unit,
         options,
     })
 }

@@ -67,6 +67,7 @@ pub(super) fn body(be: &BlockEmitter<'_>, kind: BlockKind) -> TokenStream {
         }
         BlockKind::Initial => initial_state(be, block, n_states),
         BlockKind::Constants => constants_new(be, block),
+        BlockKind::Assembly => be.emit(block, true, Target::Array(&l.step)),
     }
 }
 
@@ -129,6 +130,10 @@ pub(super) fn ops_constant(kind: BlockKind) -> Option<(&'static str, TokenStream
         BlockKind::Forcing => (
             "FORCING_OPS",
             quote!(#[doc = r" Operations of one `forcing` call."]),
+        ),
+        BlockKind::Assembly => (
+            "ASSEMBLY_OPS",
+            quote!(#[doc = r" Operations of one `assembly_step` call."]),
         ),
         BlockKind::Initial => return None,
     })

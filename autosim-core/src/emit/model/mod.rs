@@ -2,6 +2,7 @@
 //! trait, the model type with its `Model` implementation, and the
 //! operation counts. Reads the program and its interface only.
 
+mod assembly;
 mod functions;
 mod structs;
 
@@ -333,6 +334,7 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
     let m_arg = if n == 0 { quote!(_) } else { quote!(#lm) };
     let f_arg = if n == 0 { quote!(_) } else { quote!(#lf) };
     let model_trait = model_trait_impl(be);
+    let assembly = assembly::inherent(be);
     quote! {
         impl #generics #model_ty #struct_generics #where_clause {
             #new_fn
@@ -359,6 +361,8 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
             pub fn forcing(&mut self, #ft: #ty, #fx: &[#ty; #n_states], #f_arg: &mut [#ty; #n_lit]) {
                 #fo
             }
+
+            #assembly
         }
 
         #model_trait
@@ -464,6 +468,7 @@ fn model_trait_impl(be: &BlockEmitter<'_>) -> TokenStream {
     let deriv = functions::body(be, BlockKind::Derivatives);
     let outs = functions::body(be, BlockKind::Outputs);
     let init = functions::body(be, BlockKind::Initial);
+    let assembly = assembly::trait_methods(be);
     quote! {
         impl #generics #rt::Model for #model_ty #struct_generics #where_clause {
             type Float = #ty;
@@ -492,6 +497,8 @@ fn model_trait_impl(be: &BlockEmitter<'_>) -> TokenStream {
             fn initial_state(&self) -> [#ty; #n_states] {
                 #init
             }
+
+            #assembly
         }
     }
 }

@@ -15,9 +15,12 @@
 //! an acceleration `-g` of N. The mass matrix is never inverted: the
 //! accelerations are solved numerically by the caller.
 
+mod constraints;
 mod loads;
 mod mass;
 mod recursion;
+
+pub use constraints::{ConstraintEquations, ConstraintRow, Prescribed};
 
 use super::error::{ItemRef, LocatedError, ModelError};
 use super::joint::UnitMotion;
@@ -44,6 +47,11 @@ pub struct Equations {
     pub states: Vec<SymId>,
     /// Their derivatives.
     pub state_derivatives: Vec<ExprId>,
+    /// The constraints at the speed level, with their dependents (empty
+    /// without constraints).
+    pub constraints: ConstraintEquations,
+    /// The prescribed coordinates (none without motions).
+    pub prescribed: Vec<Prescribed>,
 }
 
 impl Equations {
@@ -82,6 +90,8 @@ impl System {
         self.moving_point_forcing(&mut forcing)?;
         let mass = self.mass_matrix(&motions, &composite);
         let state_derivatives = self.state_derivatives()?;
+        let prescribed = self.prescribed()?;
+        let constraints = self.constraint_equations(&prescribed)?;
         Ok(Equations {
             coordinates: self.coordinates.iter().map(|c| c.q).collect(),
             speeds: self.coordinates.iter().map(|c| c.u).collect(),
@@ -91,6 +101,8 @@ impl System {
             forcing,
             states: self.states.iter().map(|s| s.sym).collect(),
             state_derivatives,
+            constraints,
+            prescribed,
         })
     }
 

@@ -193,6 +193,19 @@ pub(crate) fn summary(model: &Model) -> String {
                 opts(&s.options.entries)
             ),
             Item::Output(o) => format!("output {}{} = {}", o.name.text, unit(&o.unit), o.value),
+            Item::Constraint(c) => format!(
+                "constraint {}{}{} {}",
+                c.name.text,
+                unit(&c.unit),
+                label(&c.label),
+                opts(&c.options.entries)
+            ),
+            Item::Motion(m) => format!(
+                "motion {}{} {}",
+                m.name.text,
+                label(&m.label),
+                opts(&m.options.entries)
+            ),
         };
         let _ = writeln!(out, "{line}");
     }

@@ -1,0 +1,454 @@
+//! The program of a model with constraints or prescribed motions: Kane's
+//! equations for dependent speeds (Kane & Levinson, ch. 6), unrolled in
+//! the IR.
+//!
+//! The speeds split into independent ones `u_f` (states), dependent ones
+//! `u_d` (one per constraint) and prescribed ones `u_p` (known in time).
+//! The constraints `A u + b = 0` give `u_d = C u_f + C_p u_p + c` through
+//! the factored `A_d` (`elim.rs`), so `u = P u_f + (known)` and, from
+//! `A u̇ + bias = 0`, `u̇ = P u̇_f + w`. Kane's equations projected on the
+//! independent speeds are `Pᵀ M P u̇_f = Pᵀ (f − M w)`, solved by the
+//! unrolled LDLᵀ as for a tree; the generalized force that enforces a
+//! prescribed coordinate is `P_pᵀ (M u̇ − f)` (constraint forces do no
+//! work in the admissible motions). Nothing is inverted symbolically;
+//! every pivot is checked at run time.
+
+use super::elim::Elimination;
+use super::ir::{Ir, Leaf, Nid};
+use super::lower::Lowering;
+use super::program::{
+    Assembly, Lowered, ProgramError, collect_calls, leaves, lower_all, lower_one,
+};
+use super::solve::ldlt_solve;
+use super::split::Split;
+use crate::expr::{ExprId, SymId};
+use crate::mech::{Equations, ItemRef};
+use crate::model::ResolvedModel;
+use rustc_hash::FxHashMap;
+
+/// The constraint solve: the factored `A_d` and the matrix rows.
+struct ConstraintSolve {
+    elim: Elimination,
+    /// `A[row][speed]`.
+    a: Vec<Vec<Nid>>,
+}
+
+impl ConstraintSolve {
+    /// `A_d⁻¹ (−A[:, k])`: how the dependent speeds follow speed `k`.
+    fn column(&self, ir: &mut Ir, k: usize) -> Vec<Nid> {
+        let rhs: Vec<Nid> = self.a.iter().map(|row| ir.neg(row[k])).collect();
+        self.elim.solve(ir, &rhs)
+    }
+}
+
+/// `u̇ = P u̇_f + w` and the columns of the prescribed speeds.
+struct Reduction {
+    /// The dependent part of the column of each independent speed.
+    free_columns: Vec<Vec<Nid>>,
+    /// The dependent part of the column of each prescribed speed.
+    prescribed_columns: Vec<Vec<Nid>>,
+    /// `w`: the accelerations with `u̇_f = 0`.
+    w: Vec<Nid>,
+}
+
+impl Reduction {
+    /// The full column of speed `own` (1 there, `dep` on the dependent
+    /// speeds, 0 elsewhere).
+    fn full(&self, ir: &mut Ir, split: &Split, own: usize, dep: &[Nid]) -> Vec<Nid> {
+        let (one, zero) = (ir.num(1.0), ir.num(0.0));
+        (0..self.w.len())
+            .map(|k| match split.dependent_row(k) {
+                _ if k == own => one,
+                Some(r) => dep[r],
+                None => zero,
+            })
+            .collect()
+    }
+
+    /// Every acceleration, given the independent ones.
+    fn accelerations(&self, ir: &mut Ir, split: &Split, du_free: &[Nid]) -> Vec<Nid> {
+        let mut acc = self.w.clone();
+        for (i, &f) in split.free.iter().enumerate() {
+            acc[f] = du_free[i];
+        }
+        for (r, &k) in split.dependent.iter().enumerate() {
+            let mut terms: Vec<Nid> = self
+                .free_columns
+                .iter()
+                .zip(du_free)
+                .map(|(col, du)| ir.mul(col[r], *du))
+                .collect();
+            terms.push(self.w[k]);
+            acc[k] = ir.sum(terms, Vec::new());
+        }
+        acc
+    }
+}
+
+/// `M v` for the symmetric `M` given by its lower triangle.
+fn times_mass(ir: &mut Ir, mass: &[Vec<Option<Nid>>], v: &[Nid]) -> Vec<Nid> {
+    let n = v.len();
+    let nonzero: Vec<usize> = (0..n).filter(|&j| ir.as_num(v[j]) != Some(0.0)).collect();
+    (0..n)
+        .map(|i| {
+            let terms: Vec<Nid> = nonzero
+                .iter()
+                .filter_map(|&j| Some(ir.mul(mass[i.max(j)][i.min(j)]?, v[j])))
+                .collect();
+            ir.sum(terms, Vec::new())
+        })
+        .collect()
+}
+
+/// `a · b`, skipping literal zeros.
+fn dot(ir: &mut Ir, a: &[Nid], b: &[Nid]) -> Nid {
+    let pairs: Vec<(Nid, Nid)> = a
+        .iter()
+        .zip(b)
+        .filter(|(x, y)| ir.as_num(**x) != Some(0.0) && ir.as_num(**y) != Some(0.0))
+        .map(|(x, y)| (*x, *y))
+        .collect();
+    let terms: Vec<Nid> = pairs.into_iter().map(|(x, y)| ir.mul(x, y)).collect();
+    ir.sum(terms, Vec::new())
+}
+
+/// The full equations in the IR, with every speed known.
+struct Full {
+    mass: Vec<Vec<Option<Nid>>>,
+    forcing: Vec<Nid>,
+}
+
+/// Lowers the program of a constrained model (IR numbering: constraint
+/// matrix, dependent speeds, kinematics, mass matrix and forcing,
+/// subroutine arguments, the reduced solve, extra states, outputs, initial
+/// state, assembly).
+pub(super) fn lower(
+    model: &mut ResolvedModel,
+    eqs: &Equations,
+    split: &Split,
+    ir: &mut Ir,
+) -> Result<Lowered, ProgramError> {
+    let mut env = leaves(model, eqs, split, ir)?;
+    let mut calls: Vec<(ExprId, Nid)> = Vec::new();
+    let solve_c = constraint_solve(model, eqs, ir, &env)?;
+    let rhs = dependent_rhs(ir, eqs, split, &solve_c.a, &env, model)?;
+    let dependent_speeds = solve_c.elim.solve(ir, &rhs);
+    for (r, &k) in split.dependent.iter().enumerate() {
+        env.insert(eqs.speeds[k], dependent_speeds[r]);
+    }
+
+    let sys = &mut model.system;
+    let coordinate_item: Vec<ItemRef> = split
+        .coordinates
+        .iter()
+        .map(|&j| ItemRef::Body(sys.coordinates()[j].body))
+        .collect();
+    let subs = sys.subroutines().to_vec();
+    let mut lw = Lowering::new(&mut sys.arena, ir, &env);
+    let kin_exprs: Vec<ExprId> = split
+        .coordinates
+        .iter()
+        .map(|&j| eqs.kinematics[j])
+        .collect();
+    let kinematics = lower_all(&mut lw, &kin_exprs, |k| coordinate_item[k])?;
+    let full = full_equations(&mut lw, eqs)?;
+    let bias = lower_all(&mut lw, &row_biases(eqs), ItemRef::Constraint)?;
+    let accel: Vec<ExprId> = eqs.prescribed.iter().map(|p| p.acceleration).collect();
+    let prescribed_accel = lower_all(&mut lw, &accel, ItemRef::Motion)?;
+    let mut sub_args = Vec::with_capacity(subs.len());
+    for (k, s) in subs.iter().enumerate() {
+        sub_args.push(lower_all(&mut lw, &s.args, |_| ItemRef::Subroutine(k))?);
+    }
+    calls.extend(lw.user_calls());
+
+    let red = reduction(ir, split, &solve_c, &bias, &prescribed_accel);
+    let columns: Vec<Vec<Nid>> = split
+        .free
+        .iter()
+        .zip(&red.free_columns)
+        .map(|(&f, dep)| red.full(ir, split, f, dep))
+        .collect();
+    let mp: Vec<Vec<Nid>> = columns
+        .iter()
+        .map(|c| times_mass(ir, &full.mass, c))
+        .collect();
+    let nf = split.free.len();
+    let mut mass: Vec<Vec<Option<Nid>>> = vec![vec![None; nf]; nf];
+    for i in 0..nf {
+        for j in 0..=i {
+            let v = dot(ir, &columns[i], &mp[j]);
+            mass[i][j] = (ir.as_num(v) != Some(0.0)).then_some(v);
+        }
+    }
+    let mw = times_mass(ir, &full.mass, &red.w);
+    let f_minus_mw: Vec<Nid> = (0..full.forcing.len())
+        .map(|k| ir.sum(vec![full.forcing[k]], vec![mw[k]]))
+        .collect();
+    let forcing: Vec<Nid> = columns.iter().map(|c| dot(ir, c, &f_minus_mw)).collect();
+    let solve = ldlt_solve(ir, &mass, &forcing);
+
+    // Extra states with every acceleration known.
+    let acc = red.accelerations(ir, split, &solve.du);
+    let mut with_du = env.clone();
+    for (k, s) in eqs.speed_rates.iter().enumerate() {
+        with_du.insert(*s, acc[k]);
+    }
+    let mut lw = Lowering::new(&mut model.system.arena, ir, &with_du);
+    let state_syms = eqs.states.clone();
+    let extra = lower_all(&mut lw, &eqs.state_derivatives, |k| {
+        ItemRef::State(state_syms[k])
+    })?;
+    calls.extend(lw.user_calls());
+
+    let outputs = outputs(model, eqs, split, ir, &env, &red, &full, &mut calls)?;
+    let initial = initial(model, split, ir, &env)?;
+    let assembly = assembly(model, eqs, ir, &env)?;
+    let mut named: Vec<(String, Nid)> = Vec::new();
+    for (r, &k) in split.dependent.iter().enumerate() {
+        let name = model.system.arena.symbol(eqs.speeds[k]).name.clone();
+        named.push((name, dependent_speeds[r]));
+    }
+    Ok(Lowered {
+        kinematics,
+        mass,
+        forcing,
+        solve,
+        constraint_checks: solve_c.elim.checks.clone(),
+        extra,
+        outputs,
+        initial,
+        sub_args,
+        call_order: collect_calls(calls),
+        named,
+        assembly,
+    })
+}
+
+/// The constraint matrix `A` lowered and `A_d` factored.
+fn constraint_solve(
+    model: &mut ResolvedModel,
+    eqs: &Equations,
+    ir: &mut Ir,
+    env: &FxHashMap<SymId, Nid>,
+) -> Result<ConstraintSolve, ProgramError> {
+    let rows = &eqs.constraints.rows;
+    let mut lw = Lowering::new(&mut model.system.arena, ir, env);
+    let mut a: Vec<Vec<Nid>> = Vec::with_capacity(rows.len());
+    for (r, row) in rows.iter().enumerate() {
+        a.push(lower_all(&mut lw, &row.coefficients, |_| {
+            ItemRef::Constraint(r)
+        })?);
+    }
+    let deps = &eqs.constraints.dependent_speeds;
+    let a_d: Vec<Vec<Option<Nid>>> = a
+        .iter()
+        .map(|line| {
+            deps.iter()
+                .map(|&k| Some(line[k]).filter(|x| ir.as_num(*x) != Some(0.0)))
+                .collect()
+        })
+        .collect();
+    // Row r is eliminated on its own dependent speed (column r of A_d).
+    let own: Vec<usize> = (0..rows.len()).collect();
+    let elim = Elimination::factor(ir, &a_d, &eqs.constraints.order, &own);
+    Ok(ConstraintSolve { elim, a })
+}
+
+/// `−(b + Σ A_k u_k)` over the known speeds `k`, per row.
+fn dependent_rhs(
+    ir: &mut Ir,
+    eqs: &Equations,
+    split: &Split,
+    a: &[Vec<Nid>],
+    env: &FxHashMap<SymId, Nid>,
+    model: &mut ResolvedModel,
+) -> Result<Vec<Nid>, ProgramError> {
+    let offsets: Vec<ExprId> = eqs.constraints.rows.iter().map(|r| r.offset).collect();
+    let mut lw = Lowering::new(&mut model.system.arena, ir, env);
+    let offsets = lower_all(&mut lw, &offsets, ItemRef::Constraint)?;
+    let known: Vec<(usize, Nid)> = (0..eqs.speeds.len())
+        .filter(|k| split.dependent_row(*k).is_none())
+        .map(|k| (k, env[&eqs.speeds[k]]))
+        .collect();
+    Ok((0..a.len())
+        .map(|r| {
+            let mut neg = vec![offsets[r]];
+            for &(k, u) in &known {
+                if ir.as_num(a[r][k]) != Some(0.0) {
+                    neg.push(ir.mul(a[r][k], u));
+                }
+            }
+            ir.sum(Vec::new(), neg)
+        })
+        .collect())
+}
+
+/// `M` (lower triangle) and `f` with every speed known.
+fn full_equations(lw: &mut Lowering<'_>, eqs: &Equations) -> Result<Full, ProgramError> {
+    let n = eqs.coordinates.len();
+    let mut mass: Vec<Vec<Option<Nid>>> = vec![vec![None; n]; n];
+    for i in 0..n {
+        for j in 0..=i {
+            let e = eqs.mass_matrix[i][j];
+            if !lw.is_zero(e) {
+                mass[i][j] = Some(lower_one(lw, e, ItemRef::Model)?);
+            }
+        }
+    }
+    let forcing = lower_all(lw, &eqs.forcing, |_| ItemRef::Model)?;
+    Ok(Full { mass, forcing })
+}
+
+fn row_biases(eqs: &Equations) -> Vec<ExprId> {
+    eqs.constraints.rows.iter().map(|r| r.bias).collect()
+}
+
+/// The columns of `P` and `w`.
+fn reduction(
+    ir: &mut Ir,
+    split: &Split,
+    c: &ConstraintSolve,
+    bias: &[Nid],
+    prescribed_accel: &[Nid],
+) -> Reduction {
+    let free_columns = split.free.iter().map(|&f| c.column(ir, f)).collect();
+    let prescribed_columns = split.prescribed.iter().map(|&p| c.column(ir, p)).collect();
+    let rhs: Vec<Nid> = (0..c.a.len())
+        .map(|r| {
+            let mut neg = vec![bias[r]];
+            for (i, &p) in split.prescribed.iter().enumerate() {
+                neg.push(ir.mul(c.a[r][p], prescribed_accel[i]));
+            }
+            ir.sum(Vec::new(), neg)
+        })
+        .collect();
+    let dependent_accel = c.elim.solve(ir, &rhs);
+    let n = split.coordinates.len() + split.prescribed.len();
+    let mut w = vec![ir.num(0.0); n];
+    for (r, &k) in split.dependent.iter().enumerate() {
+        w[k] = dependent_accel[r];
+    }
+    for (i, &p) in split.prescribed.iter().enumerate() {
+        w[p] = prescribed_accel[i];
+    }
+    Reduction {
+        free_columns,
+        prescribed_columns,
+        w,
+    }
+}
+
+/// The model's outputs, then the residuals of the position constraints and
+/// the forces that enforce the motions; accelerations are read from the
+/// derivatives (`Leaf::Accel` of the independent speeds).
+#[allow(clippy::too_many_arguments)]
+fn outputs(
+    model: &mut ResolvedModel,
+    eqs: &Equations,
+    split: &Split,
+    ir: &mut Ir,
+    env: &FxHashMap<SymId, Nid>,
+    red: &Reduction,
+    full: &Full,
+    calls: &mut Vec<(ExprId, Nid)>,
+) -> Result<Vec<Nid>, ProgramError> {
+    let du_free: Vec<Nid> = (0..split.free.len())
+        .map(|i| ir.leaf(Leaf::Accel(i)))
+        .collect();
+    let acc = red.accelerations(ir, split, &du_free);
+    let mut with_accel = env.clone();
+    for (k, s) in eqs.speed_rates.iter().enumerate() {
+        with_accel.insert(*s, acc[k]);
+    }
+    let sys = &mut model.system;
+    let exprs: Vec<ExprId> = sys.outputs().iter().map(|o| o.expr).collect();
+    let mut lw = Lowering::new(&mut sys.arena, ir, &with_accel);
+    let mut out = lower_all(&mut lw, &exprs, ItemRef::Output)?;
+    let positions = &eqs.constraints.positions;
+    for (i, g) in eqs.constraints.residuals.iter().enumerate() {
+        out.push(lower_one(&mut lw, *g, ItemRef::Constraint(positions[i]))?);
+    }
+    calls.extend(lw.user_calls());
+    if split.prescribed.is_empty() {
+        return Ok(out);
+    }
+    let m_acc = times_mass(ir, &full.mass, &acc);
+    let residual: Vec<Nid> = (0..acc.len())
+        .map(|k| ir.sum(vec![m_acc[k]], vec![full.forcing[k]]))
+        .collect();
+    for (i, &p) in split.prescribed.iter().enumerate() {
+        let column = red.full(ir, split, p, &red.prescribed_columns[i]);
+        out.push(dot(ir, &column, &residual));
+    }
+    Ok(out)
+}
+
+/// The initial state: the state coordinates, independent speeds and extra
+/// states.
+fn initial(
+    model: &mut ResolvedModel,
+    split: &Split,
+    ir: &mut Ir,
+    env: &FxHashMap<SymId, Nid>,
+) -> Result<Vec<Nid>, ProgramError> {
+    let sys = &mut model.system;
+    let coords = sys.coordinates();
+    let mut exprs: Vec<ExprId> = split
+        .coordinates
+        .iter()
+        .map(|&k| coords[k].initial_q)
+        .collect();
+    exprs.extend(split.free.iter().map(|&k| coords[k].initial_u));
+    exprs.extend(sys.states().iter().map(|s| s.initial));
+    // The initial values are functions of the parameters only.
+    let params: FxHashMap<SymId, Nid> = sys
+        .parameters()
+        .iter()
+        .filter_map(|p| Some((*p, *env.get(p)?)))
+        .collect();
+    let mut lw = Lowering::new(&mut sys.arena, ir, &params);
+    lower_all(&mut lw, &exprs, |_| ItemRef::Model)
+}
+
+/// The Newton step of assembly, `Δq_d = −G_d⁻¹ g`, with the residuals `g`
+/// of the position constraints (none without them).
+fn assembly(
+    model: &mut ResolvedModel,
+    eqs: &Equations,
+    ir: &mut Ir,
+    env: &FxHashMap<SymId, Nid>,
+) -> Result<Option<Assembly>, ProgramError> {
+    let c = &eqs.constraints;
+    let np = c.positions.len();
+    if np == 0 {
+        return Ok(None);
+    }
+    let mut lw = Lowering::new(&mut model.system.arena, ir, env);
+    let item = |i: usize| ItemRef::Constraint(c.positions[i]);
+    let residuals = lower_all(&mut lw, &c.residuals, item)?;
+    let mut jacobian: Vec<Vec<Option<Nid>>> = Vec::with_capacity(np);
+    for (i, line) in c.jacobian.iter().enumerate() {
+        let mut row = Vec::with_capacity(np);
+        for e in line {
+            row.push(match lw.is_zero(*e) {
+                true => None,
+                false => Some(lower_one(&mut lw, *e, item(i))?),
+            });
+        }
+        jacobian.push(row);
+    }
+    let own: Vec<usize> = (0..np).collect();
+    let elim = Elimination::factor(ir, &jacobian, &c.assembly_order, &own);
+    let rhs: Vec<Nid> = residuals.iter().map(|g| ir.neg(*g)).collect();
+    let step = elim.solve(ir, &rhs);
+    let checks = elim
+        .checks
+        .iter()
+        .map(|&(p, i)| (p, c.positions[i]))
+        .collect();
+    Ok(Some(Assembly {
+        step,
+        residuals,
+        checks,
+    }))
+}

@@ -1,0 +1,159 @@
+//! The four-bar linkage (`examples/models/four_bar.sim`, a closed loop)
+//! against `tests/reference/four-bar.json`: SymPy's `KanesMethod` with
+//! configuration constraints, cross-checked by Newton–Euler with pin
+//! multipliers (see `tests/reference/gen/four_bar.md`).
+
+use autosim::runtime::integrate::DormandPrince;
+use autosim::runtime::{Model, ModelError, RunSettings, run};
+use autosim_test_support::{floats, load};
+use serde_json::Value;
+
+autosim::model!(file = "examples/models/four_bar.sim");
+use four_bar::FourBar;
+
+/// The model with the reference's parameters.
+fn model(data: &Value) -> FourBar {
+    let mut m = FourBar::new();
+    let values: Vec<f64> = FourBar::PARAMETER_NAMES
+        .iter()
+        .map(|n| {
+            data["parameters"][*n]
+                .as_f64()
+                .expect("parameter in the reference")
+        })
+        .collect();
+    m.set_parameter_values(&values);
+    m
+}
+
+/// The state `[q1, q2, q3, u1]` of a reference sample or record.
+fn state(v: &Value) -> [f64; 4] {
+    let (q, u) = (floats(&v["q"]), floats(&v["u"]));
+    [q[0], q[1], q[2], u[0]]
+}
+
+#[test]
+fn the_state_is_every_coordinate_and_the_independent_speed() {
+    assert_eq!(FourBar::STATE_NAMES, ["q1", "q2", "q3", "u1"]);
+    assert_eq!(FourBar::OUTPUT_NAMES, ["energy", "loop_n2", "loop_n3"]);
+    assert_eq!(FourBar::OUTPUT_UNITS, ["J", "m", "m"]);
+    assert_eq!(FourBar::DEPENDENT_COORDINATES, [1, 2]);
+}
+
+#[test]
+fn derivatives_match_sympy_at_every_sample() {
+    let data = load("four-bar");
+    let mut m = model(&data);
+    for (i, s) in data["samples"].as_array().unwrap().iter().enumerate() {
+        let x = state(s);
+        let mut dx = [0.0; 4];
+        m.derivatives(0.0, &x, &mut dx).unwrap();
+        let (dq, du) = (floats(&s["dq"]), floats(&s["du"]));
+        let scale = du.iter().fold(1.0f64, |a, v| a.max(v.abs()));
+        // dq/dt of all three coordinates (the dependent ones through the
+        // solved dependent speeds), and du1/dt.
+        for k in 0..3 {
+            assert!(
+                (dx[k] - dq[k]).abs() < 1e-12 * (1.0 + dq[k].abs()),
+                "sample {i}: dq{k} {} vs {}",
+                dx[k],
+                dq[k]
+            );
+        }
+        assert!(
+            (dx[3] - du[0]).abs() < 1e-10 * scale,
+            "sample {i}: du1 {} vs {}",
+            dx[3],
+            du[0]
+        );
+        let mut y = [0.0; 3];
+        m.outputs(0.0, &x, &mut y).unwrap();
+        assert!(
+            (y[0] - s["energy"].as_f64().unwrap()).abs() < 1e-12 * y[0].abs(),
+            "energy"
+        );
+        assert!(
+            y[1].abs() < 1e-14 && y[2].abs() < 1e-14,
+            "sample {i} is assembled: {y:?}"
+        );
+    }
+}
+
+#[test]
+fn assembly_finds_the_reference_branch() {
+    let data = load("four-bar");
+    let mut m = model(&data);
+    let want = floats(&data["branch"]["at_q1_0"]["q"]);
+    // From a rough guess on the upper branch.
+    let mut x = [0.0, 1.0, 1.6, 0.0];
+    m.assemble(0.0, &mut x).unwrap();
+    assert!(
+        (x[1] - want[1]).abs() < 1e-14 && (x[2] - want[2]).abs() < 1e-14,
+        "{x:?} vs {want:?}"
+    );
+    assert_eq!(x[0], 0.0, "the independent coordinate is held");
+    // Already assembled: nothing to do.
+    assert_eq!(m.project(0.0, &mut x, 0.0), Ok(false));
+}
+
+#[test]
+fn impossible_closure_and_lost_branch_are_errors() {
+    let data = load("four-bar");
+    let mut m = model(&data);
+    // A crank longer than the rest of the loop can reach: no closure.
+    let mut p = *m.parameters();
+    p.L1 = 3.0;
+    m.set_parameters(p);
+    let mut x = [0.0, 1.0, 1.6, 0.0];
+    assert!(matches!(
+        m.assemble(0.0, &mut x),
+        Err(ModelError::NotAssembled { .. })
+    ));
+    assert_eq!(x, [0.0, 1.0, 1.6, 0.0], "unchanged on error");
+    // The other branch is far from this state: projection refuses to jump.
+    let mut m = model(&data);
+    let mut x = [0.0, -0.9, -1.0, 0.0];
+    assert!(matches!(
+        m.project(0.0, &mut x, 0.0),
+        Err(ModelError::LostBranch { .. })
+    ));
+}
+
+#[test]
+fn trajectory_matches_the_reference_and_keeps_the_loop_closed() {
+    let data = load("four-bar");
+    let mut m = model(&data);
+    let records = data["trajectory"]["records"].as_array().unwrap();
+    let mut x = state(&records[0]);
+    let mut dopri = DormandPrince::<FourBar>::with_tolerances(1e-12, 1e-12).unwrap();
+    let settings = RunSettings::new(0.0, 10.0, 1e-3, 0.1).with_max_steps(1_000_000);
+    let mut out: Vec<(f64, [f64; 4], [f64; 3])> = Vec::new();
+    run(
+        &mut m,
+        &mut dopri,
+        &mut x,
+        &settings,
+        &mut |t, x: &[f64; 4], y: &[f64; 3]| {
+            out.push((t, *x, *y));
+        },
+    )
+    .unwrap();
+    assert_eq!(out.len(), records.len());
+    let e0 = out[0].2[0];
+    let (mut worst_q, mut worst_e, mut worst_loop) = (0.0f64, 0.0f64, 0.0f64);
+    for ((t, x, y), r) in out.iter().zip(records) {
+        assert!((t - r["t"].as_f64().unwrap()).abs() < 1e-12);
+        let want = state(r);
+        for k in 0..4 {
+            worst_q = worst_q.max((x[k] - want[k]).abs());
+        }
+        worst_e = worst_e.max((y[0] - e0).abs() / e0.abs());
+        worst_loop = worst_loop.max(y[1].abs()).max(y[2].abs());
+    }
+    eprintln!(
+        "four-bar: state vs reference {worst_q:e}, energy drift {worst_e:e}, loop residual {worst_loop:e}"
+    );
+    assert!(worst_q < 1e-8, "state vs reference {worst_q:e}");
+    assert!(worst_e < 1e-9, "energy drift {worst_e:e}");
+    assert!(worst_loop < 1e-9, "loop residual {worst_loop:e}");
+}

@@ -228,6 +228,32 @@ impl Grammar<'_> {
         self.body_name()
     }
 
+    /// Three constants (or scalars) in brackets: a point's or a mass
+    /// center's coordinates, a joint's position, a direction; going wrong,
+    /// anything, or a list of another length.
+    pub(super) fn list3(&mut self, constant: bool) -> String {
+        if self.wrong() {
+            return match self.rng.below(2) {
+                0 => self.any(1),
+                _ => {
+                    let n = *self.rng.pick(&[0, 1, 2, 4]);
+                    let items: Vec<String> = (0..n).map(|_| self.scalar(1)).collect();
+                    format!("[{}]", items.join(", "))
+                }
+            };
+        }
+        let items: Vec<String> = (0..3)
+            .map(|_| {
+                if constant {
+                    self.constant(1)
+                } else {
+                    self.scalar(1)
+                }
+            })
+            .collect();
+        format!("[{}]", items.join(", "))
+    }
+
     pub(super) fn call(
         &mut self,
         f: &str,

@@ -145,6 +145,9 @@ fn sym_matrix(sys: &mut System, d: [f64; 3], off: [f64; 3]) -> [[ExprId; 3]; 3] 
 /// B3 on B2: massless, rotation about 3. B4 on B3: rotation about 1.
 /// B5 on B2: no degrees of freedom (added mass). B6 on B1: translation
 /// along (1, -1, 1/2) only. B7 on B6: rotations 2-3-1.
+///
+/// Expressions are numbered in creation order: the parts below are built
+/// in a fixed order (parameters, bodies B1 to B7, gravity, loads).
 fn rich_model(opt: &Options) -> System {
     let mut sys = System::new("Rich");
     let k = p(&mut sys, "k", 40.0);
@@ -156,95 +159,11 @@ fn rich_model(opt: &Options) -> System {
     let m1 = p(&mut sys, "m1", 2.5);
     let zero = sys.arena.zero();
 
-    let mut b1 = BodySpec::new("B1", "N");
-    b1.joint.translations = vec![
-        Direction::Axis(Axis::A1),
-        Direction::Axis(Axis::A2),
-        Direction::Axis(Axis::A3),
-    ];
-    b1.joint.rotation = Rotation::Sequence([Axis::A1, Axis::A2, Axis::A3]);
-    b1.mass = Some(m1);
-    b1.cm = Some([
-        num(&mut sys, 0.05),
-        e(&mut sys, "-L0/4"),
-        num(&mut sys, 0.1),
-    ]);
-    b1.inertia = Some(sym_matrix(&mut sys, [0.9, 1.1, 1.4], [0.05, -0.03, 0.02]));
-
-    let mut b2 = BodySpec::new("B2", "B1");
-    b2.joint_point = Some([num(&mut sys, 0.1), num(&mut sys, 0.2), num(&mut sys, -0.3)]);
-    b2.joint.translations = vec![Direction::Vector([
-        sys.arena.int(1),
-        sys.arena.int(2),
-        sys.arena.int(2),
-    ])];
-    b2.joint.rotation = Rotation::Simple(Axis::A2);
-    b2.mass = Some(num(&mut sys, 1.3));
-    b2.cm = Some([
-        num(&mut sys, 0.02),
-        num(&mut sys, -0.15),
-        num(&mut sys, 0.04),
-    ]);
-    b2.inertia = Some(sym_matrix(&mut sys, [0.2, 0.15, 0.1], [0.01, 0.0, -0.02]));
-
-    let mut b3 = BodySpec::new("B3", "B2");
-    b3.joint_point = Some([zero, num(&mut sys, -0.3), zero]);
-    b3.joint.rotation = Rotation::Simple(Axis::A3);
-    b3.mass = Some(zero);
-    b3.inertia = Some([[zero; 3]; 3]);
-
-    let mut b4 = BodySpec::new("B4", "B3");
-    b4.joint_point = Some([num(&mut sys, 0.05), zero, zero]);
-    b4.joint.rotation = Rotation::Simple(Axis::A1);
-    b4.mass = Some(num(&mut sys, 0.8));
-    b4.cm = Some([zero, num(&mut sys, -0.25), num(&mut sys, 0.03)]);
-    b4.inertia = Some(sym_matrix(&mut sys, [0.05, 0.02, 0.06], [0.0, 0.004, 0.0]));
-
-    let mut b5 = BodySpec::new("B5", "B2");
-    b5.joint_point = Some([num(&mut sys, 0.1), num(&mut sys, 0.1), num(&mut sys, 0.1)]);
-    b5.mass = Some(num(&mut sys, 0.6));
-    b5.cm = Some([num(&mut sys, 0.02), zero, num(&mut sys, -0.05)]);
-    b5.inertia = Some(sym_matrix(
-        &mut sys,
-        [0.01, 0.02, 0.03],
-        [0.001, 0.002, 0.0],
-    ));
-
-    let mut b6 = BodySpec::new("B6", "B1");
-    b6.joint_point = Some([num(&mut sys, -0.2), zero, num(&mut sys, 0.1)]);
-    b6.joint.translations = vec![Direction::Vector([
-        sys.arena.int(1),
-        sys.arena.int(-1),
-        sys.arena.rational(1, 2),
-    ])];
-    b6.mass = Some(num(&mut sys, 0.9));
-    b6.cm = Some([zero, num(&mut sys, 0.05), zero]);
-    b6.inertia = Some(sym_matrix(&mut sys, [0.03, 0.03, 0.04], [0.0, 0.0, 0.005]));
-
-    let mut b7 = BodySpec::new("B7", "B6");
-    b7.joint_point = Some([num(&mut sys, 0.1), num(&mut sys, -0.1), zero]);
-    b7.joint.rotation = Rotation::Sequence([Axis::A2, Axis::A3, Axis::A1]);
-    b7.mass = Some(num(&mut sys, 0.4));
-    b7.cm = Some([
-        num(&mut sys, 0.03),
-        num(&mut sys, 0.02),
-        num(&mut sys, -0.04),
-    ]);
-    b7.inertia = Some(sym_matrix(
-        &mut sys,
-        [0.02, 0.025, 0.015],
-        [0.002, -0.001, 0.003],
-    ));
-
+    let b1 = rich_b1(&mut sys, m1);
+    let b2 = rich_b2(&mut sys);
+    let (b3, b4, b5) = rich_b3_b4_b5(&mut sys, zero);
+    let (b6, b7) = rich_b6_b7(&mut sys, zero);
     sys.add_bodies(vec![b4, b3, b2, b1, b5, b6, b7]).unwrap();
-    let id = |sys: &System, n: &str| sys.body_named(n).unwrap();
-    let (ib1, ib2, ib3, ib4, ib6) = (
-        id(&sys, "B1"),
-        id(&sys, "B2"),
-        id(&sys, "B3"),
-        id(&sys, "B4"),
-        id(&sys, "B6"),
-    );
     if opt.gravity {
         let n3 = sys.unit_vector(BodyId::N, Axis::A3);
         let mg = sys.arena.neg(g);
@@ -254,14 +173,114 @@ fn rich_model(opt: &Options) -> System {
     if !opt.loads {
         return sys;
     }
-    let pt = |sys: &mut System, name: &str, b: BodyId, c: [f64; 3]| -> PointId {
-        let c = c.map(|x| num(sys, x));
-        sys.add_point(name, b, c).unwrap()
-    };
-    // Spring-damper between a point of B2 and a point of B6:
-    // F = -(k (|r| - L0) + c (v·r/|r|)) r/|r| on P3, reaction on P4.
-    let p3 = pt(&mut sys, "P3", ib2, [0.1, -0.2, 0.05]);
-    let p4 = pt(&mut sys, "P4", ib6, [0.0, 0.1, -0.1]);
+    add_spring(&mut sys, opt, k, c, l0);
+    add_torsion_springs(&mut sys, opt, kt, ct);
+    if opt.extra_forces {
+        add_extra_loads(&mut sys);
+    }
+    sys
+}
+
+/// B1: free body (3 translations along n1..n3, rotations 1-2-3) with an
+/// offset mass center and a full inertia matrix.
+fn rich_b1(sys: &mut System, m1: ExprId) -> BodySpec {
+    let mut b1 = BodySpec::new("B1", "N");
+    b1.joint.translations = vec![
+        Direction::Axis(Axis::A1),
+        Direction::Axis(Axis::A2),
+        Direction::Axis(Axis::A3),
+    ];
+    b1.joint.rotation = Rotation::Sequence([Axis::A1, Axis::A2, Axis::A3]);
+    b1.mass = Some(m1);
+    b1.cm = Some([num(sys, 0.05), e(sys, "-L0/4"), num(sys, 0.1)]);
+    b1.inertia = Some(sym_matrix(sys, [0.9, 1.1, 1.4], [0.05, -0.03, 0.02]));
+    b1
+}
+
+/// B2 on B1: translation along the constant non-axis direction (1, 2, 2)
+/// and a rotation about 2.
+fn rich_b2(sys: &mut System) -> BodySpec {
+    let mut b2 = BodySpec::new("B2", "B1");
+    b2.joint_point = Some([num(sys, 0.1), num(sys, 0.2), num(sys, -0.3)]);
+    b2.joint.translations = vec![Direction::Vector([
+        sys.arena.int(1),
+        sys.arena.int(2),
+        sys.arena.int(2),
+    ])];
+    b2.joint.rotation = Rotation::Simple(Axis::A2);
+    b2.mass = Some(num(sys, 1.3));
+    b2.cm = Some([num(sys, 0.02), num(sys, -0.15), num(sys, 0.04)]);
+    b2.inertia = Some(sym_matrix(sys, [0.2, 0.15, 0.1], [0.01, 0.0, -0.02]));
+    b2
+}
+
+/// B3 on B2: massless, rotation about 3. B4 on B3: rotation about 1. B5
+/// on B2: no degrees of freedom (added mass).
+fn rich_b3_b4_b5(sys: &mut System, zero: ExprId) -> (BodySpec, BodySpec, BodySpec) {
+    let mut b3 = BodySpec::new("B3", "B2");
+    b3.joint_point = Some([zero, num(sys, -0.3), zero]);
+    b3.joint.rotation = Rotation::Simple(Axis::A3);
+    b3.mass = Some(zero);
+    b3.inertia = Some([[zero; 3]; 3]);
+
+    let mut b4 = BodySpec::new("B4", "B3");
+    b4.joint_point = Some([num(sys, 0.05), zero, zero]);
+    b4.joint.rotation = Rotation::Simple(Axis::A1);
+    b4.mass = Some(num(sys, 0.8));
+    b4.cm = Some([zero, num(sys, -0.25), num(sys, 0.03)]);
+    b4.inertia = Some(sym_matrix(sys, [0.05, 0.02, 0.06], [0.0, 0.004, 0.0]));
+
+    let mut b5 = BodySpec::new("B5", "B2");
+    b5.joint_point = Some([num(sys, 0.1), num(sys, 0.1), num(sys, 0.1)]);
+    b5.mass = Some(num(sys, 0.6));
+    b5.cm = Some([num(sys, 0.02), zero, num(sys, -0.05)]);
+    b5.inertia = Some(sym_matrix(sys, [0.01, 0.02, 0.03], [0.001, 0.002, 0.0]));
+    (b3, b4, b5)
+}
+
+/// B6 on B1: translation along (1, -1, 1/2) only. B7 on B6: rotations
+/// 2-3-1.
+fn rich_b6_b7(sys: &mut System, zero: ExprId) -> (BodySpec, BodySpec) {
+    let mut b6 = BodySpec::new("B6", "B1");
+    b6.joint_point = Some([num(sys, -0.2), zero, num(sys, 0.1)]);
+    b6.joint.translations = vec![Direction::Vector([
+        sys.arena.int(1),
+        sys.arena.int(-1),
+        sys.arena.rational(1, 2),
+    ])];
+    b6.mass = Some(num(sys, 0.9));
+    b6.cm = Some([zero, num(sys, 0.05), zero]);
+    b6.inertia = Some(sym_matrix(sys, [0.03, 0.03, 0.04], [0.0, 0.0, 0.005]));
+
+    let mut b7 = BodySpec::new("B7", "B6");
+    b7.joint_point = Some([num(sys, 0.1), num(sys, -0.1), zero]);
+    b7.joint.rotation = Rotation::Sequence([Axis::A2, Axis::A3, Axis::A1]);
+    b7.mass = Some(num(sys, 0.4));
+    b7.cm = Some([num(sys, 0.03), num(sys, 0.02), num(sys, -0.04)]);
+    b7.inertia = Some(sym_matrix(
+        sys,
+        [0.02, 0.025, 0.015],
+        [0.002, -0.001, 0.003],
+    ));
+    (b6, b7)
+}
+
+fn id(sys: &System, name: &str) -> BodyId {
+    sys.body_named(name).unwrap()
+}
+
+/// A point of body `b` at constant coordinates `c`.
+fn pt(sys: &mut System, name: &str, b: BodyId, c: [f64; 3]) -> PointId {
+    let c = c.map(|x| num(sys, x));
+    sys.add_point(name, b, c).unwrap()
+}
+
+/// Spring-damper between a point of B2 and a point of B6:
+/// F = -(k (|r| - L0) + c (v·r/|r|)) r/|r| on P3, reaction on P4.
+fn add_spring(sys: &mut System, opt: &Options, k: ExprId, c: ExprId, l0: ExprId) {
+    let (ib2, ib6) = (id(sys, "B2"), id(sys, "B6"));
+    let p3 = pt(sys, "P3", ib2, [0.1, -0.2, 0.05]);
+    let p4 = pt(sys, "P4", ib6, [0.0, 0.1, -0.1]);
     let r = sys.pos(p3, Some(p4));
     let rr = sys.frames.dot_vec(&mut sys.arena, &r, &r);
     let len = sys.arena.sqrt(rr);
@@ -278,9 +297,12 @@ fn rich_model(opt: &Options) -> System {
     let mag = sys.arena.neg(mag);
     let f = dir.scale(&mut sys.arena, mag);
     sys.add_force("spring", p3, Some(p4), f).unwrap();
+}
 
-    // Torsion springs (dampers) at the single-rotation joints, about the
-    // shared joint axis: on the child, reaction on the parent.
+/// Torsion springs (dampers) at the single-rotation joints, about the
+/// shared joint axis: on the child, reaction on the parent.
+fn add_torsion_springs(sys: &mut System, opt: &Options, kt: ExprId, ct: ExprId) {
+    let (ib1, ib2, ib3, ib4) = (id(sys, "B1"), id(sys, "B2"), id(sys, "B3"), id(sys, "B4"));
     for (name, child, parent, axis) in [
         ("t2", ib2, ib1, 2usize),
         ("t3", ib3, ib2, 3),
@@ -300,46 +322,55 @@ fn rich_model(opt: &Options) -> System {
         let mv = d.scale(&mut sys.arena, m);
         sys.add_moment(name, child, Some(parent), mv).unwrap();
     }
-    if opt.extra_forces {
-        // A state- and time-dependent force at a point of B4 with its
-        // reaction at a point of B1, with components in several frames.
-        let p1 = pt(&mut sys, "P1", ib4, [0.02, -0.3, 0.01]);
-        let p2 = pt(&mut sys, "P2", ib1, [0.1, 0.1, -0.2]);
-        let mut f = Vector::zero();
-        for (b, axis, text) in [
+}
+
+/// The sum of `text` times the unit vector `axis` of body `b`, over the
+/// given components (in several frames).
+fn components(sys: &mut System, parts: &[(BodyId, i64, &str)]) -> Vector {
+    let mut v = Vector::zero();
+    for &(b, axis, text) in parts {
+        let x = e(sys, text);
+        let t = sys
+            .unit_vector(b, Axis::number(axis).unwrap())
+            .scale(&mut sys.arena, x);
+        v = v.add(&mut sys.arena, &t);
+    }
+    v
+}
+
+/// State- and time-dependent forces and moments, with and without
+/// reactions, with components in several frames.
+fn add_extra_loads(sys: &mut System) {
+    let (ib1, ib2, ib3, ib4) = (id(sys, "B1"), id(sys, "B2"), id(sys, "B3"), id(sys, "B4"));
+    // A state- and time-dependent force at a point of B4 with its
+    // reaction at a point of B1, with components in several frames.
+    let p1 = pt(sys, "P1", ib4, [0.02, -0.3, 0.01]);
+    let p2 = pt(sys, "P2", ib1, [0.1, 0.1, -0.2]);
+    let f = components(
+        sys,
+        &[
             (BodyId::N, 1, "2 + q1*u3"),
             (ib2, 2, "sin(t)*q5 - u9"),
             (ib4, 3, "0.3f*u10 + cos(q10)"),
-        ] {
-            let x = e(&mut sys, text);
-            let t = sys
-                .unit_vector(b, Axis::number(axis).unwrap())
-                .scale(&mut sys.arena, x);
-            f = f.add(&mut sys.arena, &t);
-        }
-        sys.add_force("push", p1, Some(p2), f).unwrap();
-        // A force at the mass center of the added-mass body B5, no reaction.
-        let ib5 = id(&sys, "B5");
-        let cm5 = sys.body(ib5).cm_point;
-        let x = e(&mut sys, "u7 - q8");
-        let f5 = sys.unit_vector(ib3, Axis::A2).scale(&mut sys.arena, x);
-        sys.add_force("push5", cm5, None, f5).unwrap();
-        // A moment on B4 with reaction on B1, components in N and B2.
-        let mut m = Vector::zero();
-        for (b, axis, text) in [(BodyId::N, 3, "u4 - 0.5f*q6"), (ib2, 1, "q2*q7 + 1")] {
-            let x = e(&mut sys, text);
-            let t = sys
-                .unit_vector(b, Axis::number(axis).unwrap())
-                .scale(&mut sys.arena, x);
-            m = m.add(&mut sys.arena, &t);
-        }
-        sys.add_moment("twist", ib4, Some(ib1), m).unwrap();
-        // A moment on B1 alone.
-        let x = e(&mut sys, "-0.4f*u5");
-        let m1v = sys.unit_vector(ib1, Axis::A2).scale(&mut sys.arena, x);
-        sys.add_moment("drag", ib1, None, m1v).unwrap();
-    }
-    sys
+        ],
+    );
+    sys.add_force("push", p1, Some(p2), f).unwrap();
+    // A force at the mass center of the added-mass body B5, no reaction.
+    let ib5 = id(sys, "B5");
+    let cm5 = sys.body(ib5).cm_point;
+    let x = e(sys, "u7 - q8");
+    let f5 = sys.unit_vector(ib3, Axis::A2).scale(&mut sys.arena, x);
+    sys.add_force("push5", cm5, None, f5).unwrap();
+    // A moment on B4 with reaction on B1, components in N and B2.
+    let m = components(
+        sys,
+        &[(BodyId::N, 3, "u4 - 0.5f*q6"), (ib2, 1, "q2*q7 + 1")],
+    );
+    sys.add_moment("twist", ib4, Some(ib1), m).unwrap();
+    // A moment on B1 alone.
+    let x = e(sys, "-0.4f*u5");
+    let m1v = sys.unit_vector(ib1, Axis::A2).scale(&mut sys.arena, x);
+    sys.add_moment("drag", ib1, None, m1v).unwrap();
 }
 
 // ----- random states -----

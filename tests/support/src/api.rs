@@ -99,6 +99,8 @@ pub fn satellite_with(params: &Value, small: bool, quaternion: bool) -> System {
     build_satellite(params, small, quaternion, false)
 }
 
+/// The satellite's bodies, inputs and moments, added in a fixed order
+/// (expressions are numbered in creation order).
 fn build_satellite(params: &Value, small: bool, quaternion: bool, lock_boom: bool) -> System {
     let mut sys = System::new("Satellite");
     let names = [
@@ -110,8 +112,31 @@ fn build_satellite(params: &Value, small: bool, quaternion: bool, lock_boom: boo
         sys.add_parameter(n, params[n].as_f64().unwrap(), None)
             .unwrap();
     }
-    let e = |sys: &mut System, text: &str| -> ExprId { sys.arena.parse_text(text).unwrap() };
     let zero = sys.arena.zero();
+    let b = satellite_bus(small, quaternion);
+    let (c, d) = satellite_clock_camera(&mut sys, zero);
+    let (be, f) = satellite_boom(&mut sys, zero, small, lock_boom);
+    sys.add_bodies(vec![b, c, d, be, f]).unwrap();
+    for (n, u) in [
+        ("clkcmd", "rad"),
+        ("camcmd", "rad"),
+        ("thr1", ""),
+        ("thr2", ""),
+        ("thr3", ""),
+    ] {
+        sys.add_input(n, 0.0, Some(u)).unwrap();
+    }
+    satellite_moments(&mut sys);
+    sys
+}
+
+/// An expression from its text (known to be valid).
+fn e(sys: &mut System, text: &str) -> ExprId {
+    sys.arena.parse_text(text).unwrap()
+}
+
+/// The bus B: three translations, and 1-2-3 angles or Euler parameters.
+fn satellite_bus(small: bool, quaternion: bool) -> BodySpec {
     let mut b = BodySpec::new("B", "N");
     b.joint.translations = vec![
         Direction::Axis(Axis::A1),
@@ -131,27 +156,43 @@ fn build_satellite(params: &Value, small: bool, quaternion: bool, lock_boom: boo
     if small {
         b.small = vec![true; 6];
     }
+    b
+}
+
+/// The clock C on the bus and the camera D on the clock.
+fn satellite_clock_camera(sys: &mut System, zero: ExprId) -> (BodySpec, BodySpec) {
     let mut c = BodySpec::new("C", "B");
     c.joint.rotation = Rotation::Simple(Axis::A3);
-    c.mass = Some(e(&mut sys, "MC"));
-    let ic = e(&mut sys, "IC");
+    c.mass = Some(e(sys, "MC"));
+    let ic = e(sys, "IC");
     c.inertia = Some([[ic, zero, zero], [zero, ic, zero], [zero, zero, zero]]);
-    c.cm = Some([zero, zero, e(&mut sys, "-L2")]);
+    c.cm = Some([zero, zero, e(sys, "-L2")]);
     let mut d = BodySpec::new("D", "C");
-    d.joint_point = Some([zero, e(&mut sys, "L3"), e(&mut sys, "-L1")]);
-    d.cm = Some([zero, e(&mut sys, "-L5"), e(&mut sys, "-L6")]);
+    d.joint_point = Some([zero, e(sys, "L3"), e(sys, "-L1")]);
+    d.cm = Some([zero, e(sys, "-L5"), e(sys, "-L6")]);
     d.joint.rotation = Rotation::Simple(Axis::A1);
+    (c, d)
+}
+
+/// The boom: the massless hinge E on the bus and the boom F on it (small
+/// or locked angles q9, q10 if asked).
+fn satellite_boom(
+    sys: &mut System,
+    zero: ExprId,
+    small: bool,
+    lock_boom: bool,
+) -> (BodySpec, BodySpec) {
     let mut be = BodySpec::new("E", "B");
-    be.joint_point = Some([zero, e(&mut sys, "-L7"), zero]);
+    be.joint_point = Some([zero, e(sys, "-L7"), zero]);
     be.joint.rotation = Rotation::Simple(Axis::A3);
     be.mass = Some(zero);
     be.inertia = Some([[zero; 3]; 3]);
     let mut f = BodySpec::new("F", "E");
     f.joint.rotation = Rotation::Simple(Axis::A1);
-    let if1 = e(&mut sys, "IF1");
-    let if2 = e(&mut sys, "IF2");
+    let if1 = e(sys, "IF1");
+    let if2 = e(sys, "IF2");
     f.inertia = Some([[if1, zero, zero], [zero, if2, zero], [zero, zero, if1]]);
-    f.cm = Some([zero, e(&mut sys, "-L8"), zero]);
+    f.cm = Some([zero, e(sys, "-L8"), zero]);
     if small {
         be.small = vec![true];
         f.small = vec![true];
@@ -162,45 +203,16 @@ fn build_satellite(params: &Value, small: bool, quaternion: bool, lock_boom: boo
         be.coordinate_names = Some(vec!["q9".to_string()]);
         f.coordinate_names = Some(vec!["q10".to_string()]);
     }
-    sys.add_bodies(vec![b, c, d, be, f]).unwrap();
-    for (n, u) in [
-        ("clkcmd", "rad"),
-        ("camcmd", "rad"),
-        ("thr1", ""),
-        ("thr2", ""),
-        ("thr3", ""),
-    ] {
-        sys.add_input(n, 0.0, Some(u)).unwrap();
-    }
-    let body = |sys: &System, n: &str| sys.body_named(n).unwrap();
-    let moment = |sys: &mut System,
-                  name: &str,
-                  on: &str,
-                  reaction: Option<&str>,
-                  frame: &str,
-                  axis: usize,
-                  mag: &str| {
-        let m = sys.arena.parse_text(mag).unwrap();
-        let fb = body(sys, frame);
-        let d = sys
-            .unit_vector(fb, Axis::number(axis as i64).unwrap())
-            .scale(&mut sys.arena, m);
-        let on = body(sys, on);
-        let r = reaction.map(|r| body(sys, r));
-        sys.add_moment(name, on, r, d).unwrap();
-    };
-    moment(&mut sys, "boom1", "F", Some("B"), "E", 3, "-KB*q9 - DB*u9");
+    (be, f)
+}
+
+/// The moments: the boom's springs, the clock's and the camera's servos,
+/// and the three thruster pairs.
+fn satellite_moments(sys: &mut System) {
+    moment(sys, "boom1", "F", Some("B"), "E", 3, "-KB*q9 - DB*u9");
+    moment(sys, "boom2", "F", Some("B"), "F", 1, "-KB*q10 - DB*u10");
     moment(
-        &mut sys,
-        "boom2",
-        "F",
-        Some("B"),
-        "F",
-        1,
-        "-KB*q10 - DB*u10",
-    );
-    moment(
-        &mut sys,
+        sys,
         "clock",
         "C",
         Some("B"),
@@ -209,7 +221,7 @@ fn build_satellite(params: &Value, small: bool, quaternion: bool, lock_boom: boo
         "KC*(clkcmd - q7) - DC*u7",
     );
     moment(
-        &mut sys,
+        sys,
         "camera",
         "D",
         Some("C"),
@@ -217,10 +229,31 @@ fn build_satellite(params: &Value, small: bool, quaternion: bool, lock_boom: boo
         1,
         "KC*(camcmd - q8) - DC*u8",
     );
-    moment(&mut sys, "tt1", "B", None, "B", 1, "LTT1*thr1");
-    moment(&mut sys, "tt2", "B", None, "B", 2, "LTT2*thr2");
-    moment(&mut sys, "tt3", "B", None, "B", 3, "LTT3*thr3");
-    sys
+    moment(sys, "tt1", "B", None, "B", 1, "LTT1*thr1");
+    moment(sys, "tt2", "B", None, "B", 2, "LTT2*thr2");
+    moment(sys, "tt3", "B", None, "B", 3, "LTT3*thr3");
+}
+
+/// Adds the moment `mag` along axis `axis` of body `frame`, on body `on`
+/// (reaction on `reaction`).
+fn moment(
+    sys: &mut System,
+    name: &str,
+    on: &str,
+    reaction: Option<&str>,
+    frame: &str,
+    axis: usize,
+    mag: &str,
+) {
+    let body = |sys: &System, n: &str| sys.body_named(n).unwrap();
+    let m = sys.arena.parse_text(mag).unwrap();
+    let fb = body(sys, frame);
+    let d = sys
+        .unit_vector(fb, Axis::number(axis as i64).unwrap())
+        .scale(&mut sys.arena, m);
+    let on = body(sys, on);
+    let r = reaction.map(|r| body(sys, r));
+    sys.add_moment(name, on, r, d).unwrap();
 }
 
 /// Binds a sample's q, u and inputs (and the file's parameters).

@@ -170,18 +170,13 @@ fn reference() -> Option<serde_json::Value> {
     serde_json::from_str(&text).ok()
 }
 
+/// The bus attitude angles, as the plot and the comparison name them.
+const ATTITUDE_NAMES: [&str; 3] = ["q4 (roll)", "q5 (pitch)", "q6 (yaw)"];
+
 fn main() -> Result<(), Box<dyn Error>> {
-    let folder = match std::env::args_os().nth(1) {
-        Some(a) if a == "-h" || a == "--help" => {
-            println!("usage: cargo run --release --example satellite [-- OUTPUT_FOLDER]");
-            println!("writes CSV time histories and SVG plots (default folder: target/satellite)");
-            return Ok(());
-        }
-        Some(a) => PathBuf::from(a),
-        None => PathBuf::from("target/satellite"),
+    let Some(folder) = output_folder()? else {
+        return Ok(());
     };
-    std::fs::create_dir_all(&folder).map_err(|e| format!("{}: {e}", folder.display()))?;
-    let folder = folder.canonicalize()?;
 
     println!("Slew maneuver of Sayers (1991), Figures 8-9: classic RK4, h = {H} s, t = 0..15 s");
 
@@ -198,19 +193,62 @@ fn main() -> Result<(), Box<dyn Error>> {
         &progress_bar("satellite_small.sim (small)"),
     )?;
 
-    // Files.
+    let files = write_outputs(&folder, &full, &small)?;
+    println!();
+    println!("Output folder: {}", folder.display());
+    for path in &files {
+        println!(
+            "  {}",
+            path.file_name().unwrap_or_default().to_string_lossy()
+        );
+    }
+
+    print_differences(&full, &small);
+    if let Some(data) = reference() {
+        print_reference_errors(&full, &data);
+    }
+    print_costs(&full, &small);
+    print_operations();
+    Ok(())
+}
+
+/// The output folder named on the command line (default
+/// `target/satellite`), created and made absolute; `None` after printing
+/// the help.
+fn output_folder() -> Result<Option<PathBuf>, Box<dyn Error>> {
+    let folder = match std::env::args_os().nth(1) {
+        Some(a) if a == "-h" || a == "--help" => {
+            println!("usage: cargo run --release --example satellite [-- OUTPUT_FOLDER]");
+            println!("writes CSV time histories and SVG plots (default folder: target/satellite)");
+            return Ok(None);
+        }
+        Some(a) => PathBuf::from(a),
+        None => PathBuf::from("target/satellite"),
+    };
+    std::fs::create_dir_all(&folder).map_err(|e| format!("{}: {e}", folder.display()))?;
+    Ok(Some(folder.canonicalize()?))
+}
+
+/// State `i` at every output row.
+fn column(rows: &[(f64, State, Outputs)], i: usize) -> Vec<f64> {
+    rows.iter().map(|r| r.1[i]).collect::<Vec<f64>>()
+}
+
+/// Writes the CSV files of both runs and the two plots into `folder`;
+/// returns their paths.
+fn write_outputs(
+    folder: &Path,
+    full: &Flight,
+    small: &Flight,
+) -> Result<[PathBuf; 4], Box<dyn Error>> {
     let full_csv = folder.join("satellite_full.csv");
     let small_csv = folder.join("satellite_small.csv");
     write_csv::<Satellite<Figure8>>(&full_csv, &full.rows)?;
     write_csv::<SatelliteSmall<Figure8>>(&small_csv, &small.rows)?;
     let time: Vec<f64> = full.rows.iter().map(|r| r.0).collect();
-    let column = |rows: &[(f64, State, Outputs)], i: usize| {
-        rows.iter().map(|r| r.1[i]).collect::<Vec<f64>>()
-    };
-    let names = ["q4 (roll)", "q5 (pitch)", "q6 (yaw)"];
     let full_att: Vec<Vec<f64>> = (3..6).map(|i| column(&full.rows, i)).collect();
     let small_att: Vec<Vec<f64>> = (3..6).map(|i| column(&small.rows, i)).collect();
-    let labels: Vec<(String, String)> = names
+    let labels: Vec<(String, String)> = ATTITUDE_NAMES
         .iter()
         .map(|n| (format!("{n}, full"), format!("{n}, small")))
         .collect();
@@ -254,20 +292,15 @@ fn main() -> Result<(), Box<dyn Error>> {
             },
         ],
     )?;
+    Ok([full_csv, small_csv, attitude_svg, clock_camera_svg])
+}
 
-    println!();
-    println!("Output folder: {}", folder.display());
-    for path in [&full_csv, &small_csv, &attitude_svg, &clock_camera_svg] {
-        println!(
-            "  {}",
-            path.file_name().unwrap_or_default().to_string_lossy()
-        );
-    }
-
-    // How far apart are the two formulations?
+/// How far apart the two formulations are: the largest difference of
+/// each attitude angle over every step.
+fn print_differences(full: &Flight, small: &Flight) {
     println!();
     println!("Max |full - small| over all {} steps:", STEPS);
-    for (k, name) in names.iter().enumerate() {
+    for (k, name) in ATTITUDE_NAMES.iter().enumerate() {
         let (mut worst, mut at) = (0.0f64, 0.0);
         let mut peak = 0.0f64;
         for (n, (a, b)) in full.attitude.iter().zip(&small.attitude).enumerate() {
@@ -283,35 +316,44 @@ fn main() -> Result<(), Box<dyn Error>> {
             100.0 * worst / peak.max(f64::MIN_POSITIVE)
         );
     }
+}
 
-    if let Some(data) = reference() {
-        let mut worst = [0.0f64; 5];
-        let records = data["records"].as_array().map(Vec::as_slice).unwrap_or(&[]);
-        for record in records {
-            let t = record["t"].as_f64().unwrap_or(f64::NAN);
-            let Some(row) = full.rows.iter().find(|r| (r.0 - t).abs() < 1e-9) else {
-                continue;
-            };
-            for (k, w) in worst.iter_mut().enumerate() {
-                let want = record[format!("q{}", k + 4)].as_f64().unwrap_or(f64::NAN);
-                *w = w.max((row.1[3 + k] - want).abs());
-            }
+/// The full model's largest errors in q4..q8 against the independent
+/// reference trajectory, at the reference's records.
+fn print_reference_errors(full: &Flight, data: &serde_json::Value) {
+    let mut worst = [0.0f64; 5];
+    let records = data["records"].as_array().map(Vec::as_slice).unwrap_or(&[]);
+    for record in records {
+        let t = record["t"].as_f64().unwrap_or(f64::NAN);
+        let Some(row) = full.rows.iter().find(|r| (r.0 - t).abs() < 1e-9) else {
+            continue;
+        };
+        for (k, w) in worst.iter_mut().enumerate() {
+            let want = record[format!("q{}", k + 4)].as_f64().unwrap_or(f64::NAN);
+            *w = w.max((row.1[3 + k] - want).abs());
         }
-        println!(
-            "Full model vs the independent reference ({} records): max |error| q4 {:.1e}, q5 {:.1e}, q6 {:.1e}, q7 {:.1e}, q8 {:.1e} rad",
-            records.len(),
-            worst[0],
-            worst[1],
-            worst[2],
-            worst[3],
-            worst[4]
-        );
     }
+    println!(
+        "Full model vs the independent reference ({} records): max |error| q4 {:.1e}, q5 {:.1e}, q6 {:.1e}, q7 {:.1e}, q8 {:.1e} rad",
+        records.len(),
+        worst[0],
+        worst[1],
+        worst[2],
+        worst[3],
+        worst[4]
+    );
+}
 
-    // What each run cost.
+/// One row of the two-column tables (full, small).
+fn row(label: &str, a: String, b: String) {
+    println!("{label:<34}{a:>28}{b:>28}");
+}
+
+/// What each run cost: evaluations, wall time, thruster bursts, and where
+/// it ended.
+fn print_costs(full: &Flight, small: &Flight) {
     println!();
     println!("{:<34}{:>28}{:>28}", "", "full", "small");
-    let row = |label: &str, a: String, b: String| println!("{label:<34}{a:>28}{b:>28}");
     row(
         "derivative evaluations",
         full.evaluations.to_string(),
@@ -336,8 +378,11 @@ fn main() -> Result<(), Box<dyn Error>> {
         let a = f.attitude.last().copied().unwrap_or_default();
         format!("{:.2e} {:.2e} {:.2e}", a[0], a[1], a[2])
     };
-    row("q4 q5 q6 at 15 s [rad]", end(&full), end(&small));
+    row("q4 q5 q6 at 15 s [rad]", end(full), end(small));
+}
 
+/// The operation counts of both generated models.
+fn print_operations() {
     println!();
     println!(
         "Operations of the generated code (adds + multiplies + divides + functions; user calls):"
@@ -379,7 +424,6 @@ fn main() -> Result<(), Box<dyn Error>> {
         full_ops.derivatives.total().to_string(),
         small_ops.derivatives.total().to_string(),
     );
-    Ok(())
 }
 
 fn ms(d: Duration) -> f64 {

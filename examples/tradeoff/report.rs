@@ -250,9 +250,37 @@ pub(crate) fn write_summary(
     chatter: f64,
     scenes: &SceneTable,
 ) -> std::io::Result<PathBuf> {
-    let small_model_error = refs.small_model_error;
     let (peak_on, peak_off) = (scenes.peak_on, scenes.peak_off);
     let mut md = String::new();
+    write_set_up(&mut md, refs, chatter);
+    let _ = writeln!(
+        md,
+        "## The cheapest run reaching an error level\n\nEach cell: evaluations (wall time) of the cheapest setting whose error is at most the level; `—` if none did.\n"
+    );
+    for &(study, _, _, _) in plots {
+        for float in ["f64", "f32"] {
+            if !rows.iter().any(|r| r.study == study && r.float == float) {
+                continue;
+            }
+            write_cheapest_table(&mut md, rows, study, float);
+        }
+    }
+    let _ = writeln!(
+        md,
+        "## Scene options on the satellite\n\nThe slew with the Figure 8 user code, thrusters on and off, RK4 at h = 1 ms for 15 s. \
+         ns / call: median over 101 rounds of `derivatives()` at 500 states of the scene's own slew \
+         (including the Figure 8 user code), best of 7 passes interleaved over the scenes. Largest |attitude| of the full model over the slew: {peak_on:.2e} rad with the thrusters, {peak_off:.2e} rad without.\n"
+    );
+    md.push_str(&scenes.markdown);
+    let summary = folder.join("summary.md");
+    std::fs::write(&summary, md)?;
+    Ok(summary)
+}
+
+/// The summary's title, how it was measured, and the references' own
+/// errors.
+fn write_set_up(md: &mut String, refs: &References, chatter: f64) {
+    let small_model_error = refs.small_model_error;
     let _ = writeln!(md, "# Speed against accuracy: measurements\n");
     let _ = writeln!(
         md,
@@ -278,89 +306,70 @@ pub(crate) fn write_summary(
         "- thrusters on: RK4 runs at any h ≤ 10 ms end up to {chatter:.1e} rad from RK4 at h = 10 µs \
          (the bang-bang switching times move with the step: the attitude at 15 s is defined to about that)\n"
     );
+}
+
+/// The table of one study in one float type: a line per method.
+fn write_cheapest_table(md: &mut String, rows: &[Row], study: &str, float: &str) {
+    let _ = writeln!(md, "### {study}, {float}\n");
+    let heads: Vec<String> = LEVELS.iter().map(|l| format!("≤ {l:.0e}")).collect();
     let _ = writeln!(
         md,
-        "## The cheapest run reaching an error level\n\nEach cell: evaluations (wall time) of the cheapest setting whose error is at most the level; `—` if none did.\n"
+        "| method | {} | smallest error reached |",
+        heads.join(" | ")
     );
-    for &(study, _, _, _) in plots {
-        for float in ["f64", "f32"] {
-            if !rows.iter().any(|r| r.study == study && r.float == float) {
-                continue;
-            }
-            let _ = writeln!(md, "### {study}, {float}\n");
-            let heads: Vec<String> = LEVELS.iter().map(|l| format!("≤ {l:.0e}")).collect();
-            let _ = writeln!(
-                md,
-                "| method | {} | smallest error reached |",
-                heads.join(" | ")
-            );
-            let _ = writeln!(md, "| --- |{} --- |", " --- |".repeat(LEVELS.len()));
-            for method in Method::ALL {
-                let mut line = format!("| {} |", method.name());
-                for target in LEVELS {
-                    match cheapest(rows, study, float, method, target) {
-                        Some(r) => {
-                            let setting = if method == Method::Dopri {
-                                format!("tol {:.0e}", r.setting)
-                            } else {
-                                format!("h {:.0e}", r.setting)
-                            };
-                            let _ = write!(
-                                line,
-                                " {} ({:.2} ms, {setting}) |",
-                                r.evaluations,
-                                r.wall_s * 1e3
-                            );
-                        }
-                        None => line.push_str(" — |"),
-                    }
-                }
-                let best = rows
-                    .iter()
-                    .filter(|r| {
-                        r.study == study
-                            && r.float == float
-                            && r.method == method
-                            && r.status == "ok"
-                    })
-                    .map(|r| r.error)
-                    .fold(f64::INFINITY, f64::min);
-                let failures = rows
-                    .iter()
-                    .filter(|r| {
-                        r.study == study
-                            && r.float == float
-                            && r.method == method
-                            && r.status != "ok"
-                    })
-                    .count();
-                if best.is_finite() {
-                    let _ = write!(line, " {best:.1e}");
+    let _ = writeln!(md, "| --- |{} --- |", " --- |".repeat(LEVELS.len()));
+    for method in Method::ALL {
+        let line = cheapest_line(rows, study, float, method);
+        let _ = writeln!(md, "{line} |");
+    }
+    let _ = writeln!(md);
+}
+
+/// One method's line of a table (without its closing `|`): the cheapest
+/// run reaching each level, the smallest error reached, and how many
+/// settings failed.
+fn cheapest_line(rows: &[Row], study: &str, float: &str, method: Method) -> String {
+    let mut line = format!("| {} |", method.name());
+    for target in LEVELS {
+        match cheapest(rows, study, float, method, target) {
+            Some(r) => {
+                let setting = if method == Method::Dopri {
+                    format!("tol {:.0e}", r.setting)
                 } else {
-                    line.push_str(" —");
-                }
-                if failures > 0 {
-                    let _ = write!(
-                        line,
-                        " ({failures} setting{} failed or diverged)",
-                        if failures == 1 { "" } else { "s" }
-                    );
-                }
-                let _ = writeln!(md, "{line} |");
+                    format!("h {:.0e}", r.setting)
+                };
+                let _ = write!(
+                    line,
+                    " {} ({:.2} ms, {setting}) |",
+                    r.evaluations,
+                    r.wall_s * 1e3
+                );
             }
-            let _ = writeln!(md);
+            None => line.push_str(" — |"),
         }
     }
-    let _ = writeln!(
-        md,
-        "## Scene options on the satellite\n\nThe slew with the Figure 8 user code, thrusters on and off, RK4 at h = 1 ms for 15 s. \
-         ns / call: median over 101 rounds of `derivatives()` at 500 states of the scene's own slew \
-         (including the Figure 8 user code), best of 7 passes interleaved over the scenes. Largest |attitude| of the full model over the slew: {peak_on:.2e} rad with the thrusters, {peak_off:.2e} rad without.\n"
-    );
-    md.push_str(&scenes.markdown);
-    let summary = folder.join("summary.md");
-    std::fs::write(&summary, md)?;
-    Ok(summary)
+    let best = rows
+        .iter()
+        .filter(|r| r.study == study && r.float == float && r.method == method && r.status == "ok")
+        .map(|r| r.error)
+        .fold(f64::INFINITY, f64::min);
+    let failures = rows
+        .iter()
+        .filter(|r| r.study == study && r.float == float && r.method == method && r.status != "ok")
+        .count();
+    if best.is_finite() {
+        let _ = write!(line, " {best:.1e}");
+    } else {
+        line.push_str(" —");
+    }
+    if failures > 0 {
+        let _ = write!(
+            line,
+            " ({failures} setting{} failed or diverged)",
+            if failures == 1 { "" } else { "s" }
+        );
+    }
+    line
 }
 
 /// Prints the evaluations of the cheapest run reaching each error level.

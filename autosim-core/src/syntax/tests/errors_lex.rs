@@ -100,7 +100,7 @@ test.sim:1:10: error: expected an item, found `@`
   |
 1 | model M; @@ $ body B {}
   |          ^
-  = note: items start with one of: model, settings, parameters, parameter, body, point, let, force, moment, gravity, input, extern, state, output
+  = note: items start with one of: model, settings, parameters, parameter, body, point, let, force, moment, gravity, input, extern, state, output, constraint, motion
 "#,
     );
 }
@@ -147,7 +147,7 @@ test.sim:1:10: error: expected an item, found `'`
   |
 1 | model M; 'a
   |          ^
-  = note: items start with one of: model, settings, parameters, parameter, body, point, let, force, moment, gravity, input, extern, state, output
+  = note: items start with one of: model, settings, parameters, parameter, body, point, let, force, moment, gravity, input, extern, state, output, constraint, motion
 "#,
     );
     check(

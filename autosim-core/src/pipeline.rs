@@ -26,17 +26,23 @@ pub fn compile(model: &ast::Model) -> Result<Compiled, Diagnostics> {
 /// Like [`compile`], with the options of a use site.
 pub fn compile_scene(model: &ast::Model, scene: &Scene) -> Result<Compiled, Diagnostics> {
     let mut resolved = resolve_scene(model, scene)?;
-    let at = |r: &ResolvedModel, item, message: String| {
-        Diagnostics::from(Diagnostic::error(r.spans.item(&r.system, item), message))
+    let at = |r: &ResolvedModel, item, message: String, help: Option<&str>| {
+        let d = Diagnostic::error(r.spans.item(&r.system, item), message);
+        Diagnostics::from(match help {
+            Some(h) => d.help(h),
+            None => d,
+        })
     };
     let equations = match resolved.system.equations() {
         Ok(e) => e,
-        Err(e) => return Err(at(&resolved, e.item, e.to_string())),
+        Err(e) => return Err(at(&resolved, e.item, e.to_string(), e.error.help())),
     };
-    check_mass_matrix(&resolved, &equations)?;
+    if equations.constraints.is_empty() && equations.prescribed.is_empty() {
+        check_mass_matrix(&resolved, &equations)?;
+    }
     let program = match build(&mut resolved, &equations) {
         Ok(p) => p,
-        Err(e) => return Err(at(&resolved, e.item(), e.to_string())),
+        Err(e) => return Err(at(&resolved, e.item(), e.to_string(), None)),
     };
     Ok(Compiled {
         model: resolved,
@@ -48,7 +54,9 @@ pub fn compile_scene(model: &ast::Model, scene: &Scene) -> Result<Compiled, Diag
 /// A mass matrix with a zero on its diagonal is singular whatever the
 /// state: nothing resists one speed's acceleration. Known at compile time,
 /// so reported here (other singularities are reported at run time by the
-/// generated solve, naming the speed).
+/// generated solve, naming the speed). Only for trees: with constraints a
+/// massless body's speed may be dependent, or inertia may reach it through
+/// the constraints.
 fn check_mass_matrix(resolved: &ResolvedModel, equations: &Equations) -> Result<(), Diagnostics> {
     let sys = &resolved.system;
     let mut diags = Diagnostics::new();

@@ -72,28 +72,36 @@ impl System {
     /// output named `name`.
     pub fn add_motion(&mut self, name: &str, q: SymId, value: ExprId) -> Result<(), ModelError> {
         self.check_new_item_name(name)?;
-        let err = |key, message| ModelError::Option {
+        let err = |key, (message, help): (String, &str)| ModelError::Option {
             item: name.to_string(),
             key,
             message,
+            help: help.to_string(),
         };
         let q_name = self.arena.symbol(q).name.clone();
         let Some(k) = self.coordinates.iter().position(|c| c.q == q) else {
             let m = format!("`{q_name}` is not a generalized coordinate");
-            return Err(err("coordinate", m));
+            return Err(err(
+                "coordinate",
+                (m, "name a coordinate of a body (as in its `q: [...]`)"),
+            ));
         };
         let c = &self.coordinates[k];
         if c.qdot != self.arena.sym(c.u) {
             let m = format!(
-                "`{q_name}` is not the integral of its speed (one of three rotations, or a quaternion): prescribe a single rotation or a translation"
+                "`{q_name}` is not the integral of its speed (it is one of three rotations, or a quaternion)"
             );
-            return Err(err("coordinate", m));
-        }
-        if self.motions.iter().any(|m| m.coordinate == k) {
             return Err(err(
                 "coordinate",
-                format!("`{q_name}` already has a motion"),
+                (
+                    m,
+                    "prescribe a single rotation or a translation: split the body's rotations into bodies of one rotation each",
+                ),
             ));
+        }
+        if self.motions.iter().any(|m| m.coordinate == k) {
+            let m = format!("`{q_name}` already has a motion");
+            return Err(err("coordinate", (m, "remove one of the two motions")));
         }
         let state = self.arena.free_symbols(value).into_iter().find(|s| {
             !matches!(
@@ -106,7 +114,13 @@ impl System {
                 "a motion is a function of time and parameters, but this uses `{}`",
                 self.arena.symbol(s).name
             );
-            return Err(err("value", m));
+            return Err(err(
+                "value",
+                (
+                    m,
+                    "write the value with `t` and parameters only; for a coupling between coordinates use a `constraint`",
+                ),
+            ));
         }
         self.motions.push(Motion {
             name: name.to_string(),
@@ -152,16 +166,18 @@ impl System {
             ConstraintKind::Position => "position",
             ConstraintKind::Speed => "speed",
         };
-        let at = |key, message| ModelError::Option {
+        let at = |key, message, help: &str| ModelError::Option {
             item: name.to_string(),
             key,
             message,
+            help: help.to_string(),
         };
-        let err = |m: String| at(key, m);
+        let err = |m: String, help: &str| at(key, m, help);
         if self.arena.is_constant(value) {
             return Err(err(
-                "the expression does not depend on the motion (it is constant, or identically zero)"
+                "the constraint is constant (or identically zero): it restricts nothing"
                     .to_string(),
+                "write an expression of the coordinates (position) or speeds (speed) that must vanish, or remove the constraint",
             ));
         }
         let symbols = self.arena.free_symbols(value);
@@ -172,7 +188,22 @@ impl System {
             .find(|s| matches!(kind_of(s), SymbolKind::SpeedRate { .. }))
         {
             let n = &self.arena.symbol(*s).name;
-            return Err(err(format!("it uses the acceleration `{n}`")));
+            return Err(err(
+                format!("a constraint cannot use the acceleration `{n}`"),
+                "constrain positions or speeds; their accelerations follow",
+            ));
+        }
+        if let Some(s) = symbols.iter().find(|s| {
+            matches!(
+                kind_of(s),
+                SymbolKind::State { .. } | SymbolKind::ExternOutput { .. }
+            )
+        }) {
+            let n = &self.arena.symbol(*s).name;
+            return Err(err(
+                format!("a constraint cannot use `{n}` (an added state or a subroutine's output)"),
+                "constraints are on coordinates, speeds, time, parameters and inputs; the dependent speeds are solved before user subroutines are called",
+            ));
         }
         let speeds: Vec<SymId> = symbols
             .iter()
@@ -187,19 +218,22 @@ impl System {
                 {
                     return Err(err(
                         "a position constraint must use a coordinate (it restricts the configuration)".to_string(),
+                        "use `speed:` for a constraint on speeds",
                     ));
                 }
                 if let Some(s) = speeds.first() {
                     let n = &self.arena.symbol(*s).name;
-                    return Err(err(format!(
-                        "a position constraint cannot use the speed `{n}`: write it as a `speed:` constraint"
-                    )));
+                    return Err(err(
+                        format!("a position constraint cannot use the speed `{n}`"),
+                        "write it as a `speed:` constraint (linear in the speeds)",
+                    ));
                 }
             }
             ConstraintKind::Speed => {
                 if speeds.is_empty() {
                     return Err(err(
-                        "a speed constraint must use a speed: write a constraint on coordinates as a `position:` constraint".to_string(),
+                        "a speed constraint must use a speed".to_string(),
+                        "write a constraint on coordinates as a `position:` constraint",
                     ));
                 }
                 for u in &speeds {
@@ -211,9 +245,12 @@ impl System {
                         .find(|s| matches!(kind_of(s), SymbolKind::Speed { .. }))
                     {
                         let (a, b) = (&self.arena.symbol(*u).name, &self.arena.symbol(v).name);
-                        return Err(err(format!(
-                            "it is not linear in the speeds (its derivative by `{a}` uses `{b}`)"
-                        )));
+                        return Err(err(
+                            format!(
+                                "the speed constraint is not linear in the speeds: its derivative by `{a}` uses `{b}`"
+                            ),
+                            "a speed constraint is `A(q, t) u + b(q, t)`: write a nonlinear condition on the configuration as a `position:` constraint",
+                        ));
                     }
                 }
             }
@@ -231,11 +268,19 @@ impl System {
         let n = &self.arena.symbol(d).name;
         if !right_kind {
             let m = format!("the dependent `{n}` is not a {wanted}");
-            return Err(at("dependent", m));
+            let help = match kind {
+                ConstraintKind::Position => "a position constraint determines a coordinate",
+                ConstraintKind::Speed => "a speed constraint determines a speed",
+            };
+            return Err(at("dependent", m, help));
         }
         if !symbols.contains(&d) {
             let m = format!("the dependent {wanted} `{n}` does not appear in the constraint");
-            return Err(at("dependent", m));
+            return Err(at(
+                "dependent",
+                m,
+                "name one the constraint uses, or leave `dependent` out to let the compiler choose",
+            ));
         }
         Ok(())
     }

@@ -34,6 +34,8 @@ pub enum ModelError {
         key: &'static str,
         /// What is wrong.
         message: String,
+        /// How to fix it.
+        help: String,
     },
     /// A quantity that must be constant (parameters and numbers only) is not.
     NotConstant {
@@ -125,6 +127,7 @@ impl ModelError {
     pub fn help(&self) -> Option<&str> {
         match self {
             ModelError::Body { help, .. } => help.as_deref(),
+            ModelError::Option { help, .. } => Some(help),
             _ => None,
         }
     }

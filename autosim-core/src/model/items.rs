@@ -151,7 +151,11 @@ fn report<K: crate::syntax::ast::OptionKey>(
         crate::mech::ModelError::Option { key, .. } => option_span(item, key),
         _ => item.name.span,
     };
-    r.error(span, e.to_string());
+    let d = Diagnostic::error(span, e.to_string());
+    r.push(match e.help() {
+        Some(h) => d.help(h),
+        None => d,
+    });
 }
 
 /// The symbol a plain name stands for, or a diagnostic.

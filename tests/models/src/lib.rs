@@ -6,6 +6,8 @@
 
 /// The models expanded by the macro.
 pub mod via_macro {
+    autosim::model!(file = "../../examples/models/andrews.sim");
+    autosim::model!(file = "../../examples/models/bicycle.sim");
     autosim::model!(file = "../../examples/models/chain_planar_1.sim");
     autosim::model!(file = "../../examples/models/chain_planar_10.sim");
     autosim::model!(file = "../../examples/models/chain_planar_2.sim");
@@ -21,6 +23,8 @@ pub mod via_macro {
     autosim::model!(file = "../../examples/models/chain_spatial_5.sim");
     autosim::model!(file = "../../examples/models/chain_spatial_7.sim");
     autosim::model!(file = "../../examples/models/features.sim");
+    autosim::model!(file = "../../examples/models/four_bar.sim");
+    autosim::model!(file = "../../examples/models/rolling_disc.sim");
     autosim::model!(file = "../../examples/models/satellite.sim");
     autosim::model!(file = "../../examples/models/satellite_small.sim");
 }
@@ -47,6 +51,8 @@ pub mod scenes {
 
 /// The models written by the build script.
 pub mod via_build {
+    autosim::include_model!(andrews);
+    autosim::include_model!(bicycle);
     autosim::include_model!(chain_planar1);
     autosim::include_model!(chain_planar10);
     autosim::include_model!(chain_planar2);
@@ -62,6 +68,8 @@ pub mod via_build {
     autosim::include_model!(chain_spatial5);
     autosim::include_model!(chain_spatial7);
     autosim::include_model!(features);
+    autosim::include_model!(four_bar);
+    autosim::include_model!(rolling_disc);
     autosim::include_model!(satellite);
     autosim::include_model!(satellite_small);
 }

@@ -105,10 +105,15 @@ impl System {
         let n = self.coordinates.len();
         let free = n - prescribed.len();
         if self.constraints.len() > free {
-            let e = ModelError::Invalid(format!(
-                "{} constraints restrict {free} speeds: a model needs more speeds than constraints (remove a redundant constraint)",
-                self.constraints.len()
-            ));
+            let e = ModelError::Option {
+                item: self.constraints[free].name.clone(),
+                key: "",
+                message: format!(
+                    "{} constraints on {free} speeds that are not prescribed: this one is too many",
+                    self.constraints.len()
+                ),
+                help: "each constraint takes one speed: remove redundant constraints (the time derivative of a position constraint is already a speed constraint)".to_string(),
+            };
             return Err(LocatedError::new(ItemRef::Constraint(free), e));
         }
         for k in 0..self.constraints.len() {
@@ -324,9 +329,12 @@ impl System {
             });
             let Some((i, j)) = pick else {
                 let i = (0..rows).find(|&i| !row_done[i]).unwrap_or(0);
-                let e = ModelError::Invalid(
-                    "the constraints are redundant or contradictory at the initial state: this one restricts nothing the others do not (or name its dependent with `dependent:`)".to_string(),
-                );
+                let e = ModelError::Option {
+                    item: String::new(),
+                    key: "",
+                    message: "the constraints are redundant at the initial state: this one restricts nothing the others do not".to_string(),
+                    help: "remove it, start from a state where the constraints are independent, or name the dependents with `dependent:`".to_string(),
+                };
                 return Err(LocatedError::new(item(i), e));
             };
             row_done[i] = true;

@@ -1,7 +1,8 @@
 //! Grammar-aware models: names first, then items whose values are mostly
 //! of the right kind, each choice going wrong with the model's `chaos`
 //! percentage. The names are declared here; the items are written in
-//! `items` (bodies in `bodies`, forces, moments and gravity in `loads`),
+//! `items` (bodies in `bodies`, forces, moments and gravity in `loads`,
+//! constraints and motions in `constraints`),
 //! expressions in `exprs`.
 //!
 //! Every choice draws from the one seeded [`Rng`] in a fixed order, so a
@@ -14,6 +15,7 @@ use super::Rng;
 use super::vocab::*;
 
 mod bodies;
+mod constraints;
 mod exprs;
 mod items;
 mod loads;

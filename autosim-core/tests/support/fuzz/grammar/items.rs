@@ -34,6 +34,7 @@ impl Grammar<'_> {
         }
         self.point_and_let_items(&mut items);
         self.load_items(&mut items);
+        self.constraint_items(&mut items);
         self.accelerations = true;
         for s in &names.states {
             items.push(self.state(s));

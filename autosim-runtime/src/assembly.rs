@@ -47,7 +47,7 @@ pub fn solve_positions<F, S, const M: usize>(
     constraint_names: &[&'static str],
     coordinate_names: &[&'static str],
     tolerance: F,
-    branch_limit: Option<F>,
+    branch_limit: Option<f64>,
     mut step: impl FnMut(&S, &mut [F; M]) -> Result<(), ModelError>,
 ) -> Result<bool, ModelError>
 where
@@ -82,7 +82,7 @@ where
             let q = &mut trial.as_mut()[slot];
             *q += s[i];
             let q0 = start.as_ref()[slot];
-            let limit = branch_limit.map(|l| l * (F::ONE + q0.abs()));
+            let limit = branch_limit.map(|l| F::from_f64(l) * (F::ONE + q0.abs()));
             if limit.is_some_and(|l| (*q - q0).abs() > l) {
                 let name = coordinate_names.get(slot).copied().unwrap_or("?");
                 return Err(ModelError::LostBranch { coordinate: name });

@@ -47,6 +47,11 @@ pub mod scenes {
         name = ChainSpatial5F32,
         float = f32
     );
+    autosim::model!(
+        file = "../../examples/models/four_bar.sim",
+        name = FourBarF32,
+        float = f32
+    );
 }
 
 /// The models written by the build script.

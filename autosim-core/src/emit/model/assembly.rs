@@ -82,7 +82,7 @@ pub(super) fn trait_methods(be: &BlockEmitter<'_>) -> TokenStream {
     let assemble = solve(quote!(0.0), quote!(None));
     let project = solve(
         quote!(tolerance),
-        quote!(Some(#rt::assembly::BRANCH_LIMIT as #ty)),
+        quote!(Some(#rt::assembly::BRANCH_LIMIT)),
     );
     quote! {
         fn assemble(&mut self, t: #ty, x: &mut [#ty; #n_states]) -> Result<(), #rt::ModelError> {

@@ -3,7 +3,8 @@
 //!
 //! `cargo run --release --example perf`
 
-use autosim::runtime::{Model, OpCount};
+use autosim::runtime::integrate::Rk4;
+use autosim::runtime::{Model, OpCount, RunSettings, run};
 use autosim_test_support::Rng;
 use std::hint::black_box;
 use std::time::Instant;
@@ -60,15 +61,45 @@ fn states<const N: usize>(
         .collect()
 }
 
+/// 512 states along a run from `x0` (for constrained models, whose states
+/// must satisfy the constraints).
+fn along_run<M: Model<Float = f64, State = [f64; N]>, const N: usize>(
+    model: &mut M,
+    x0: [f64; N],
+    stop: f64,
+) -> Vec<[f64; N]> {
+    let mut x = x0;
+    let mut out = Vec::with_capacity(512);
+    let settings = RunSettings::new(0.0, stop, stop / 4096.0, stop / 511.0);
+    run(
+        model,
+        &mut Rk4::new(),
+        &mut x,
+        &settings,
+        &mut |_t, x: &[f64; N], _y: &M::Outputs| out.push(*x),
+    )
+    .expect("the run succeeds");
+    out
+}
+
 fn report<M: Model<Float = f64, State = [f64; N]>, const N: usize>(
     name: &str,
-    mut model: M,
+    model: M,
     ops: OpCount,
     rng: &mut Rng,
     small: Option<&[usize]>,
 ) {
     let xs = states::<N>(rng, 512, small);
-    let ns = measure(&mut model, &xs);
+    report_at(name, model, ops, &xs);
+}
+
+fn report_at<M: Model<Float = f64, State = [f64; N]>, const N: usize>(
+    name: &str,
+    mut model: M,
+    ops: OpCount,
+    xs: &[[f64; N]],
+) {
+    let ns = measure(&mut model, xs);
     println!(
         "{{\"model\": \"{name}\", \"n_states\": {N}, \"ns_per_call\": {ns:.1}, \"ops\": {}, \"adds\": {}, \"muls\": {}, \"divs\": {}, \"funcs\": {}}}",
         ops.total(),
@@ -113,4 +144,25 @@ fn main() {
         &mut rng,
         Some(&small),
     );
+    constrained();
+}
+
+/// The constrained models, at states along their own runs.
+fn constrained() {
+    use models::*;
+    let mut four_bar = four_bar::FourBar::new();
+    let x0 = four_bar.initial_state();
+    let xs = along_run(&mut four_bar, x0, 5.0);
+    report_at("four-bar", four_bar, four_bar::FourBar::DERIVATIVE_OPS, &xs);
+    let mut andrews = andrews::Andrews::new();
+    let x0 = andrews.initial_state();
+    let xs = along_run(&mut andrews, x0, 0.03);
+    report_at("andrews", andrews, andrews::Andrews::DERIVATIVE_OPS, &xs);
+    let mut bicycle = bicycle::Bicycle::new();
+    let mut x0 = bicycle.initial_state();
+    // Rolling at 5 m/s with a roll perturbation.
+    x0[3] = 0.05;
+    x0[9] = 5.0 / 0.3;
+    let xs = along_run(&mut bicycle, x0, 5.0);
+    report_at("bicycle", bicycle, bicycle::Bicycle::DERIVATIVE_OPS, &xs);
 }

@@ -13,6 +13,9 @@ pub mod models {
     autosim::model!(file = "examples/models/chain_planar_10.sim");
     autosim::model!(file = "examples/models/satellite.sim");
     autosim::model!(file = "examples/models/satellite_small.sim");
+    autosim::model!(file = "examples/models/four_bar.sim");
+    autosim::model!(file = "examples/models/andrews.sim");
+    autosim::model!(file = "examples/models/bicycle.sim");
 }
 
 /// Thrusters on a dead band, fixed commands.

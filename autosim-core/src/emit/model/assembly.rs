@@ -80,10 +80,7 @@ pub(super) fn trait_methods(be: &BlockEmitter<'_>) -> TokenStream {
         }
     };
     let assemble = solve(quote!(0.0), quote!(None));
-    let project = solve(
-        quote!(tolerance),
-        quote!(Some(#rt::assembly::BRANCH_LIMIT)),
-    );
+    let project = solve(quote!(tolerance), quote!(Some(#rt::assembly::BRANCH_LIMIT)));
     quote! {
         fn assemble(&mut self, t: #ty, x: &mut [#ty; #n_states]) -> Result<(), #rt::ModelError> {
             #assemble.map(|_| ())

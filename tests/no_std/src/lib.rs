@@ -17,6 +17,12 @@ mod model {
 
 pub use model::chain_planar3::{ChainPlanar3, Parameters};
 
+mod closed_loop {
+    autosim::model!(file = "../../examples/models/four_bar.sim");
+}
+
+pub use closed_loop::four_bar::FourBar;
+
 /// What [`swing`] returns: the final state and the work done.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Swing {
@@ -49,4 +55,26 @@ pub fn swing(
         state: x,
         evaluations: rk4.evaluations(),
     })
+}
+
+/// Runs the four-bar linkage (a closed loop) from `x0` for `steps` RK4
+/// steps of `h`: assembled first, projected back onto the loop after each
+/// step, as the run driver does. Returns the final state.
+///
+/// # Errors
+/// The integrator's error, or the model's (the loop cannot be closed).
+pub fn crank(x0: [f64; 4], h: f64, steps: u32) -> Result<[f64; 4], IntegrationError> {
+    let mut model = FourBar::new();
+    let mut rk4 = Rk4::new();
+    let mut x = x0;
+    let model_error = |t: f64| move |error| IntegrationError::Model { t, error };
+    model.assemble(0.0, &mut x).map_err(model_error(0.0))?;
+    for n in 0..steps {
+        let t = f64::from(n) * h;
+        rk4.step(&mut model, t, &mut x, h)?;
+        model
+            .project(t + h, &mut x, 0.0)
+            .map_err(model_error(t + h))?;
+    }
+    Ok(x)
 }

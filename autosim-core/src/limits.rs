@@ -36,5 +36,12 @@ pub const MAX_DERIVATIVE_NODES: usize = 500_000;
 /// deeper values are named (which also bounds the printers' recursion).
 pub const MAX_INLINE_DEPTH: usize = 24;
 
+/// Emitter: a generated function binds at most this many values with
+/// `let`; a bigger block keeps its intermediates in one local array
+/// (`z[k]`). Every `let` opens a lexical scope, and rustc's debug info
+/// recurses through them: a function with about 6000 crashed debug builds
+/// with a stack overflow.
+pub const MAX_LETS_IN_FUNCTION: usize = 3000;
+
 /// The small-term thresholds a model or a scene may set.
 pub const THRESHOLDS: RangeInclusive<i16> = 1..=20;

@@ -114,12 +114,14 @@ mod float;
 pub mod integrate;
 #[cfg(feature = "std")]
 pub mod io;
+pub mod linear;
 mod model;
 pub mod run;
 
 pub use error::{IntegrationError, check_finite};
 pub use float::Float;
 pub use integrate::{StepInfo, Stepper};
+pub use linear::{Linear, Linearize};
 pub use model::{Model, ModelError, OpCount, StateArray};
 pub use run::{Observer, RunError, RunSettings, RunSummary, run};
 

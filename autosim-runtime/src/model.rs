@@ -167,6 +167,20 @@ pub trait Model {
         Ok(())
     }
 
+    /// Copies the current input values, in [`Model::INPUT_NAMES`] order,
+    /// into `values` (what fits). The default copies nothing: for models
+    /// without inputs.
+    fn input_values(&self, values: &mut [Self::Float]) {
+        let _ = values;
+    }
+
+    /// Sets the inputs, in [`Model::INPUT_NAMES`] order (what is given;
+    /// the others keep their values). The default sets nothing: for models
+    /// without inputs.
+    fn set_input_values(&mut self, values: &[Self::Float]) {
+        let _ = values;
+    }
+
     /// Brings a state drifted by integration back onto the position
     /// constraints (solving them for the dependent coordinates) when the
     /// drift exceeds `tolerance` (relative to `1 + |q|`; 0 projects any

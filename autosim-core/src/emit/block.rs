@@ -2,6 +2,7 @@
 //! user calls, named intermediates, pivot checks and stores.
 
 use super::expr::{ExprPrinter, Locals, ident};
+use crate::limits::MAX_LETS_IN_FUNCTION;
 use crate::model::FloatType;
 use crate::opt::{Block, Guard, Leaf, Nid, Program, Stmt};
 use proc_macro2::{Literal, TokenStream};
@@ -17,6 +18,45 @@ pub enum Target<'a> {
     /// Collected into a struct literal `Constants { p1: ..., }` (the
     /// statements end with that expression).
     ConstantFields,
+    /// Consecutive row-major matrices `(path, rows, columns)`:
+    /// `<path>[i][j] = value;` (literal zeros are skipped: the matrices
+    /// start at zero).
+    Matrices(&'a [(TokenStream, usize, usize)]),
+}
+
+/// The array index of each bound value of a block with more than
+/// [`MAX_LETS_IN_FUNCTION`] of them (none otherwise).
+fn array_slots(block: &Block) -> FxHashMap<Nid, usize> {
+    if block.names.len() <= MAX_LETS_IN_FUNCTION {
+        return FxHashMap::default();
+    }
+    let mut slots = FxHashMap::default();
+    for st in &block.stmts {
+        let bound: &[Nid] = match st {
+            Stmt::Let(n) => std::slice::from_ref(n),
+            Stmt::SinCos { sin, cos } => &[*sin, *cos],
+            _ => &[],
+        };
+        for n in bound {
+            let k = slots.len();
+            slots.insert(*n, k);
+        }
+    }
+    slots
+}
+
+/// `<path>[i][j] = e;` for slot `k` of consecutive matrices.
+fn matrix_store(list: &[(TokenStream, usize, usize)], k: usize, e: TokenStream) -> TokenStream {
+    let mut k = k;
+    for (path, rows, cols) in list {
+        if k < rows * cols {
+            let i = Literal::usize_unsuffixed(k / cols);
+            let j = Literal::usize_unsuffixed(k % cols);
+            return quote!(#path[#i][#j] = #e;);
+        }
+        k -= rows * cols;
+    }
+    TokenStream::new()
 }
 
 /// Emits a block.
@@ -38,6 +78,7 @@ pub struct BlockEmitter<'a> {
 impl BlockEmitter<'_> {
     /// The statements of `block` (with `hoisted`: constants read from `c`).
     pub fn emit(&self, block: &Block, hoisted: bool, target: Target<'_>) -> TokenStream {
+        let array = array_slots(block);
         let printer = ExprPrinter {
             prog: self.prog,
             names: &block.names,
@@ -46,15 +87,28 @@ impl BlockEmitter<'_> {
             constant_slot: self.constant_slot,
             math: self.math.clone(),
             locals: self.locals,
+            array: &array,
         };
         let mut out = self.reads(block, hoisted, &target);
+        if !array.is_empty() {
+            let (z, len) = (&self.locals.z, Literal::usize_unsuffixed(array.len()));
+            out.extend(quote!(let mut #z = [0.0; #len];));
+        }
         let mut fields = Vec::new();
         for st in &block.stmts {
             match st {
                 Stmt::Let(n) => {
-                    let name = ident(&block.names[n]);
                     let e = printer.definition(*n);
-                    out.extend(quote!(let #name = #e;));
+                    match array.contains_key(n) {
+                        true => {
+                            let z = printer.expr(*n);
+                            out.extend(quote!(#z = #e;));
+                        }
+                        false => {
+                            let name = ident(&block.names[n]);
+                            out.extend(quote!(let #name = #e;));
+                        }
+                    }
                 }
                 Stmt::SinCos { sin, cos } => {
                     let (s, c) = (ident(&block.names[sin]), ident(&block.names[cos]));
@@ -63,7 +117,12 @@ impl BlockEmitter<'_> {
                         _ => printer.definition(*sin),
                     };
                     let m = &self.math;
-                    out.extend(quote!(let (#s, #c) = #m::sin_cos(#arg);));
+                    if array.contains_key(sin) {
+                        let (s, c) = (printer.expr(*sin), printer.expr(*cos));
+                        out.extend(quote!((#s, #c) = #m::sin_cos(#arg);));
+                    } else {
+                        out.extend(quote!(let (#s, #c) = #m::sin_cos(#arg);));
+                    }
                 }
                 Stmt::CallSub(k) => out.extend(self.call_subroutine(block, &printer, *k)),
                 Stmt::Check { pivot, guard } => {
@@ -84,6 +143,11 @@ impl BlockEmitter<'_> {
                         Target::ConstantFields => {
                             let f = ident(&format!("p{}", slot + 1));
                             fields.push(quote!(#f: #e));
+                        }
+                        Target::Matrices(list) => {
+                            if self.prog.ir.as_num(*value) != Some(0.0) {
+                                out.extend(matrix_store(list, *slot, e));
+                            }
                         }
                     }
                 }

@@ -160,6 +160,10 @@ pub struct Locals {
     pub x0: Ident,
     /// The Newton step of assembly.
     pub step: Ident,
+    /// The linear model.
+    pub lin: Ident,
+    /// The intermediates of a block too big for `let`s.
+    pub z: Ident,
 }
 
 impl Locals {
@@ -196,6 +200,8 @@ impl Locals {
             f: pick("f"),
             x0: pick("x0"),
             step: pick("step"),
+            lin: pick("lin"),
+            z: pick("z"),
         }
     }
 }
@@ -225,6 +231,9 @@ pub struct ExprPrinter<'a> {
     pub math: TokenStream,
     /// The generated code's own locals.
     pub locals: &'a Locals,
+    /// Bound values kept in the local array `z` instead of `let`s (blocks
+    /// too big for one `let` each), by index.
+    pub array: &'a FxHashMap<Nid, usize>,
 }
 
 impl ExprPrinter<'_> {
@@ -269,6 +278,10 @@ impl ExprPrinter<'_> {
 
     /// The expression computing node `n`: its name if it is bound.
     pub fn expr(&self, n: Nid) -> TokenStream {
+        if let Some(k) = self.array.get(&n) {
+            let (z, k) = (&self.locals.z, Literal::usize_unsuffixed(*k));
+            return quote!(#z[#k]);
+        }
         if let Some(name) = self.names.get(&n) {
             let id = ident(name);
             return quote!(#id);

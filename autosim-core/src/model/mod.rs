@@ -62,6 +62,9 @@ pub struct ResolvedModel {
     pub formal_params: FxHashMap<String, Vec<String>>,
     /// Where each item is declared, for diagnostics of later phases.
     pub spans: ItemSpans,
+    /// Generate the linearization (`settings { linearize: true }` or the
+    /// scene's `linearize = true`).
+    pub linearize: bool,
 }
 
 /// Resolves a parsed model.
@@ -81,6 +84,7 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
         item_docs: FxHashMap::default(),
         formal_params: FxHashMap::default(),
         spans: ItemSpans::new(model_name.span),
+        linearize: false,
     };
     check_model_name(&mut r, model_name);
     // Settings first: the threshold affects every expression built later.

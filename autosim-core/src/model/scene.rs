@@ -21,6 +21,8 @@ pub struct Scene {
     pub threshold: Option<i16>,
     /// Only these outputs are generated.
     pub outputs: Option<Vec<ast::Name>>,
+    /// Generate `linearize` (overrides the model's `linearize` setting).
+    pub linearize: Option<bool>,
     /// Bodies (all their degrees of freedom) or coordinates made small.
     pub small: Vec<ast::Name>,
     /// Bodies (all their degrees of freedom) or coordinates locked.

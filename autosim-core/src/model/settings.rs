@@ -1,5 +1,6 @@
 //! The model's `settings` and the scene's options over them: the float
-//! type, the small-term threshold and which outputs are generated; and the
+//! type, the small-term threshold, which outputs are generated and whether
+//! the linearization is; and the
 //! check that every name a scene gives exists in the model.
 
 use super::scope::Resolver;
@@ -31,6 +32,15 @@ pub(super) fn apply_settings(
                     }
                     output_filter = Some(names);
                 }
+                SettingKey::Linearize => match &opt.value {
+                    ast::Expr::Name(n) if n.text == "true" => out.linearize = true,
+                    ast::Expr::Name(n) if n.text == "false" => out.linearize = false,
+                    other => r.push(
+                        Diagnostic::error(other.span(), "`linearize` is `true` or `false`").help(
+                            "`linearize: true` generates `linearize`, the model's A, B, C, D",
+                        ),
+                    ),
+                },
                 SettingKey::Float => match &opt.value {
                     ast::Expr::Name(n) if n.text == "f64" => out.float = FloatType::F64,
                     ast::Expr::Name(n) if n.text == "f32" => out.float = FloatType::F32,
@@ -48,6 +58,9 @@ pub(super) fn apply_settings(
     }
     if let Some(k) = scene.threshold {
         r.sys.set_threshold(k);
+    }
+    if let Some(l) = scene.linearize {
+        out.linearize = l;
     }
     scene.outputs.clone().or(output_filter)
 }

@@ -450,5 +450,6 @@ fn assembly(
         step,
         residuals,
         checks,
+        elim,
     }))
 }

@@ -187,6 +187,9 @@ pub struct Interface {
     /// order of the assembly block's slots (empty without position
     /// constraints).
     pub closures: Vec<Closure>,
+    /// The states of the linear model (state-vector positions; all but the
+    /// dependent coordinates), when the linearization is generated.
+    pub linear_states: Option<Vec<usize>>,
 }
 
 impl Interface {
@@ -251,6 +254,7 @@ impl Interface {
             constraints: model.constraint_infos(eqs),
             motions: model.motion_infos(),
             closures: closures(eqs, split),
+            linear_states: None,
         }
     }
 

@@ -8,11 +8,13 @@ mod elim;
 mod interface;
 mod interp;
 mod ir;
+mod linearize;
 mod lower;
 mod program;
 mod schedule;
 mod solve;
 mod split;
+mod tangent;
 mod text;
 mod verify;
 

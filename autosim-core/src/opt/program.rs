@@ -4,8 +4,10 @@
 //! alone; the initial state), plus the interface generated code exposes.
 
 use super::constrained;
+use super::elim::Elimination;
 use super::interface::{Interface, StateLayout};
 use super::ir::{Ir, Leaf, Nid, Op};
+use super::linearize::{Linear, Linearizable};
 use super::lower::{Lowering, UnboundSymbol};
 use super::schedule::{Block, Guard, Options, Task, schedule};
 use super::solve::{Solve, ldlt_solve};
@@ -34,6 +36,9 @@ pub enum BlockKind {
     /// slots `0..k` the corrections of the dependent coordinates, `k..2k`
     /// the residuals of the `k` position constraints.
     Assembly,
+    /// The linear model (when asked for): `A` row-major over the linear
+    /// states, then `B`, `C`, `D`.
+    Linearize,
 }
 
 impl BlockKind {
@@ -47,6 +52,7 @@ impl BlockKind {
             BlockKind::Forcing => "forcing",
             BlockKind::Initial => "initial",
             BlockKind::Assembly => "assembly",
+            BlockKind::Linearize => "linearize",
         }
     }
 
@@ -109,6 +115,11 @@ impl Program {
             BlockKind::MassMatrix => n * n,
             BlockKind::Forcing => n,
             BlockKind::Assembly => 2 * self.interface.closures.len(),
+            BlockKind::Linearize => {
+                let nl = self.interface.linear_states.as_ref().map_or(0, Vec::len);
+                let (nw, ny) = (self.interface.inputs.len(), self.interface.outputs.len());
+                (nl + ny) * (nl + nw)
+            }
         }
     }
 }
@@ -156,8 +167,13 @@ pub fn build(model: &mut ResolvedModel, eqs: &Equations) -> Result<Program, Prog
         }
         false => constrained::lower(model, eqs, &split, &mut ir)?,
     };
+    let linear = model
+        .linearize
+        .then(|| linearizable(&lowered, &interface).linearize(&mut ir));
+    let mut interface = interface;
+    interface.linear_states = linear.as_ref().map(|l| l.states.clone());
     let names = Naming::new(&ir, &interface, &lowered);
-    let program = schedule_blocks(ir, lowered, &names, interface);
+    let program = schedule_blocks(ir, lowered, linear, &names, interface);
     debug_assert_eq!(program.verify(), Ok(()));
     Ok(program)
 }
@@ -246,6 +262,9 @@ pub(super) struct Assembly {
     pub residuals: Vec<Nid>,
     /// Pivots of the Jacobian's solve, with their constraint.
     pub checks: Vec<(Nid, usize)>,
+    /// The factored Jacobian `G_d` of the residuals by the dependent
+    /// coordinates.
+    pub elim: Elimination,
 }
 
 /// Lowers `e`, naming `item` on failure.
@@ -450,6 +469,31 @@ fn stores(values: &[Nid], first: usize) -> impl Iterator<Item = Task> + '_ {
     })
 }
 
+/// What the linearization differentiates.
+fn linearizable<'a>(lowered: &'a Lowered, interface: &Interface) -> Linearizable<'a> {
+    let rates: Vec<Nid> = lowered
+        .kinematics
+        .iter()
+        .chain(&lowered.solve.du)
+        .chain(&lowered.extra)
+        .copied()
+        .collect();
+    let n_outputs = interface.outputs.len();
+    Linearizable {
+        rates,
+        du: &lowered.solve.du,
+        mass: &lowered.mass,
+        forcing: &lowered.forcing,
+        factor: &lowered.solve.factor,
+        outputs: &lowered.outputs[..n_outputs],
+        closure: lowered.assembly.as_ref().map(|a| {
+            let slots = interface.closures.iter().map(|c| c.slot).collect();
+            (a.residuals.as_slice(), slots, &a.elim)
+        }),
+        inputs: interface.inputs.len(),
+    }
+}
+
 /// `Check` tasks of constraint pivots.
 fn regular(checks: &[(Nid, usize)]) -> impl Iterator<Item = Task> + '_ {
     checks.iter().map(|&(pivot, constraint)| Task::Check {
@@ -474,7 +518,13 @@ fn reaches(ir: &Ir, roots: &[Nid], targets: &[Nid]) -> bool {
 }
 
 /// Schedules every block and assembles the program.
-fn schedule_blocks(mut ir: Ir, lowered: Lowered, names: &Naming, interface: Interface) -> Program {
+fn schedule_blocks(
+    mut ir: Ir,
+    lowered: Lowered,
+    linear: Option<Linear>,
+    names: &Naming,
+    interface: Interface,
+) -> Program {
     let n = interface.states.n_speeds();
     let nq = interface.states.coordinates.len();
     let options = |hoist: bool, reserved| Options {
@@ -497,6 +547,18 @@ fn schedule_blocks(mut ir: Ir, lowered: Lowered, names: &Naming, interface: Inte
     tasks.extend(stores(&lowered.solve.du, nq));
     tasks.extend(stores(&lowered.extra, nq + n));
     let derivatives = schedule(&ir, &tasks, &all);
+    let linearize = linear.map(|l| {
+        let mut tasks: Vec<Task> = tasks
+            .iter()
+            .filter(|t| matches!(t, Task::Check { .. }))
+            .cloned()
+            .collect();
+        if let Some(a) = &lowered.assembly {
+            tasks.extend(regular(&a.checks));
+        }
+        tasks.extend(stores(&l.values, 0));
+        schedule(&ir, &tasks, &all)
+    });
 
     let pivots: Vec<Nid> = lowered.constraint_checks.iter().map(|c| c.0).collect();
     let mut out_tasks: Vec<Task> = Vec::new();
@@ -533,6 +595,7 @@ fn schedule_blocks(mut ir: Ir, lowered: Lowered, names: &Naming, interface: Inte
     let mut hoisted: Vec<Nid> = [&derivatives, &outputs, &mass_matrix, &forcing]
         .into_iter()
         .chain(assembly.as_ref())
+        .chain(linearize.as_ref())
         .flat_map(|b| b.hoisted.iter().copied())
         .collect();
     hoisted.sort();
@@ -551,6 +614,7 @@ fn schedule_blocks(mut ir: Ir, lowered: Lowered, names: &Naming, interface: Inte
         (BlockKind::Initial, initial),
     ];
     blocks.extend(assembly.map(|a| (BlockKind::Assembly, a)));
+    blocks.extend(linearize.map(|l| (BlockKind::Linearize, l)));
     Program {
         ir,
         blocks,

@@ -15,6 +15,52 @@ pub struct Solve {
     pub du: Vec<Nid>,
     /// `(name hint, node)` for the factor's entries, for readable code.
     pub hints: Vec<(String, Nid)>,
+    /// The factor, for more right-hand sides.
+    pub factor: Factor,
+}
+
+/// `M = L D Lᵀ` in the IR, speeds eliminated in `perm` order.
+pub struct Factor {
+    perm: Vec<usize>,
+    /// `L[i][k]` (elimination order), `None` where structurally zero.
+    l: Vec<Vec<Option<Nid>>>,
+    /// `1 / d_k`.
+    d_inv: Vec<Nid>,
+}
+
+impl Factor {
+    /// `M⁻¹ f` (speed order).
+    pub fn solve(&self, ir: &mut Ir, f: &[Nid]) -> Vec<Nid> {
+        let (n, perm, l) = (self.perm.len(), &self.perm, &self.l);
+        // Forward: y = L⁻¹ f', scale: z = D⁻¹ y, back: x = L⁻ᵀ z.
+        let mut y: Vec<Nid> = Vec::with_capacity(n);
+        for i in 0..n {
+            let mut neg = Vec::new();
+            for k in 0..i {
+                if let Some(a) = l[i][k] {
+                    neg.push(ir.mul(a, y[k]));
+                }
+            }
+            let yi = ir.sum(vec![f[perm[i]]], neg);
+            y.push(yi);
+        }
+        let z: Vec<Nid> = (0..n).map(|i| ir.mul(y[i], self.d_inv[i])).collect();
+        let mut x: Vec<Nid> = vec![ir.num(0.0); n];
+        for i in (0..n).rev() {
+            let mut neg = Vec::new();
+            for k in i + 1..n {
+                if let Some(a) = l[k][i] {
+                    neg.push(ir.mul(a, x[k]));
+                }
+            }
+            x[i] = ir.sum(vec![z[i]], neg);
+        }
+        let mut du = vec![ir.num(0.0); n];
+        for i in 0..n {
+            du[perm[i]] = x[i];
+        }
+        du
+    }
 }
 
 /// Factors `m` (lower triangle used; `None` = structurally zero) and solves
@@ -80,32 +126,12 @@ pub fn ldlt_solve(ir: &mut Ir, m: &[Vec<Option<Nid>>], f: &[Nid]) -> Solve {
             hints.push((format!("l{}_{}", perm[i] + 1, perm[j] + 1), lij));
         }
     }
-    // Forward: y = L⁻¹ f', scale: z = D⁻¹ y, back: x = L⁻ᵀ z.
-    let mut y: Vec<Nid> = Vec::with_capacity(n);
-    for i in 0..n {
-        let mut neg = Vec::new();
-        for k in 0..i {
-            if let Some(a) = l[i][k] {
-                neg.push(ir.mul(a, y[k]));
-            }
-        }
-        let yi = ir.sum(vec![f[perm[i]]], neg);
-        y.push(yi);
+    let factor = Factor { perm, l, d_inv };
+    let du = factor.solve(ir, f);
+    Solve {
+        pivots,
+        du,
+        hints,
+        factor,
     }
-    let z: Vec<Nid> = (0..n).map(|i| ir.mul(y[i], d_inv[i])).collect();
-    let mut x: Vec<Nid> = vec![ir.num(0.0); n];
-    for i in (0..n).rev() {
-        let mut neg = Vec::new();
-        for k in i + 1..n {
-            if let Some(a) = l[k][i] {
-                neg.push(ir.mul(a, x[k]));
-            }
-        }
-        x[i] = ir.sum(vec![z[i]], neg);
-    }
-    let mut du = vec![ir.num(0.0); n];
-    for i in 0..n {
-        du[perm[i]] = x[i];
-    }
-    Solve { pivots, du, hints }
 }

@@ -23,6 +23,7 @@ impl Program {
             BlockKind::Constants => format!("p{}", k + 1),
             BlockKind::MassMatrix => format!("M[{},{}]", k / n + 1, k % n + 1),
             BlockKind::Forcing => format!("f[{}]", k + 1),
+            BlockKind::Linearize => self.linear_slot_name(k),
             BlockKind::Assembly => {
                 let closures = &self.interface.closures;
                 match closures.get(k) {
@@ -34,6 +35,22 @@ impl Program {
                 }
             }
         }
+    }
+
+    /// `A[i,j]`, `B[i,j]`, `C[i,j]` or `D[i,j]` (1-based) of linearize slot
+    /// `k`.
+    fn linear_slot_name(&self, k: usize) -> String {
+        let i = &self.interface;
+        let nl = i.linear_states.as_ref().map_or(0, Vec::len);
+        let (nw, ny) = (i.inputs.len(), i.outputs.len());
+        let mut k = k;
+        for (name, rows, cols) in [("A", nl, nl), ("B", nl, nw), ("C", ny, nl), ("D", ny, nw)] {
+            if k < rows * cols {
+                return format!("{name}[{},{}]", k / cols + 1, k % cols + 1);
+            }
+            k -= rows * cols;
+        }
+        format!("linear[{k}]")
     }
 
     /// Writes the statements of one block, one per line.

@@ -150,6 +150,8 @@ option_keys! {
         Float = "float",
         /// `outputs: [roll, yaw]` — generate only these outputs.
         Outputs = "outputs",
+        /// `linearize: true` — generate `linearize` (A, B, C, D).
+        Linearize = "linearize",
     }
 }
 

@@ -163,6 +163,15 @@ fn primary(input: ParseStream, cx: &Cx) -> PResult<Expr> {
     if input.peek(syn::LitInt) || input.peek(syn::LitFloat) {
         return number(input, cx).map(Expr::Number);
     }
+    // `true` and `false` (settings) read as names; elsewhere they are
+    // unknown names.
+    if input.peek(syn::LitBool) {
+        let b: syn::LitBool = input.parse()?;
+        return Ok(Expr::Name(Name {
+            text: b.value.to_string(),
+            span: cx.span(b.span),
+        }));
+    }
     if peek_group(input, Delimiter::Bracket) {
         let span = group_span(input, cx, Delimiter::Bracket);
         let (items, _) = in_group(input, cx, Delimiter::Bracket, |content| {

@@ -20,7 +20,15 @@ pub struct FileArguments {
 }
 
 /// The options a use site may set, in the order the docs list them.
-pub const SCENE_OPTIONS: &[&str] = &["name", "float", "threshold", "outputs", "small", "lock"];
+pub const SCENE_OPTIONS: &[&str] = &[
+    "name",
+    "float",
+    "threshold",
+    "outputs",
+    "small",
+    "lock",
+    "linearize",
+];
 
 /// `Some` if the macro input starts with `file =`: the path and options,
 /// or the error of a malformed argument list.
@@ -105,13 +113,17 @@ fn option(input: ParseStream, key: &syn::Ident, scene: &mut Scene) -> syn::Resul
             scene.threshold = Some(v);
         }
         "outputs" => scene.outputs = Some(names(input)?),
+        "linearize" => {
+            let b: syn::LitBool = input.parse()?;
+            scene.linearize = Some(b.value);
+        }
         "small" => scene.small = names(input)?,
         "lock" => scene.lock = names(input)?,
         other => {
             return Err(syn::Error::new(
                 key.span(),
                 format!(
-                    "unknown model option `{other}`: the options are `name`, `float`, `threshold`, `outputs`, `small` and `lock`"
+                    "unknown model option `{other}`: the options are `name`, `float`, `threshold`, `outputs`, `small`, `lock` and `linearize`"
                 ),
             ));
         }

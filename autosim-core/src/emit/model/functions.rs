@@ -68,6 +68,34 @@ pub(super) fn body(be: &BlockEmitter<'_>, kind: BlockKind) -> TokenStream {
         BlockKind::Initial => initial_state(be, block, n_states),
         BlockKind::Constants => constants_new(be, block),
         BlockKind::Assembly => be.emit(block, true, Target::Array(&l.step)),
+        BlockKind::Linearize => linearize_body(be, block),
+    }
+}
+
+/// The sizes of the linear model: states, inputs, outputs.
+pub(super) fn linear_sizes(prog: &Program) -> (usize, usize, usize) {
+    let i = &prog.interface;
+    let nl = i.linear_states.as_ref().map_or(0, Vec::len);
+    (nl, i.inputs.len(), i.outputs.len())
+}
+
+/// The body of `linearize`: the matrices start at zero, the block writes
+/// the others.
+fn linearize_body(be: &BlockEmitter<'_>, block: &Block) -> TokenStream {
+    let (nl, nw, ny) = linear_sizes(be.prog);
+    let lin = &be.locals.lin;
+    let list = [
+        (quote!(#lin.a), nl, nl),
+        (quote!(#lin.b), nl, nw),
+        (quote!(#lin.c), ny, nl),
+        (quote!(#lin.d), ny, nw),
+    ];
+    let rt = &be.rt;
+    let body = be.emit(block, true, Target::Matrices(&list));
+    quote! {
+        let mut #lin = #rt::Linear::zeros();
+        #body
+        Ok(#lin)
     }
 }
 
@@ -134,6 +162,10 @@ pub(super) fn ops_constant(kind: BlockKind) -> Option<(&'static str, TokenStream
         BlockKind::Assembly => (
             "ASSEMBLY_OPS",
             quote!(#[doc = r" Operations of one `assembly_step` call."]),
+        ),
+        BlockKind::Linearize => (
+            "LINEARIZE_OPS",
+            quote!(#[doc = r" Operations of one `linearize` call."]),
         ),
         BlockKind::Initial => return None,
     })

@@ -4,6 +4,7 @@
 
 mod assembly;
 mod functions;
+mod linear;
 mod structs;
 
 use super::block::BlockEmitter;
@@ -187,11 +188,14 @@ fn counts(prog: &Program) -> TokenStream {
     let n_states = Literal::usize_unsuffixed(prog.states().len());
     let n = Literal::usize_unsuffixed(prog.n());
     let n_out = Literal::usize_unsuffixed(prog.interface.outputs.len());
+    let n_in = Literal::usize_unsuffixed(prog.interface.inputs.len());
     quote! {
         /// Number of states: coordinates, speeds, added states.
         pub const N_STATES: usize = #n_states;
         /// Number of generalized speeds.
         pub const N_SPEEDS: usize = #n;
+        /// Number of inputs.
+        pub const N_INPUTS: usize = #n_in;
         /// Number of outputs.
         pub const N_OUTPUTS: usize = #n_out;
     }
@@ -335,6 +339,7 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
     let f_arg = if n == 0 { quote!(_) } else { quote!(#lf) };
     let model_trait = model_trait_impl(be);
     let assembly = assembly::inherent(be);
+    let linear = linear::inherent(be);
     quote! {
         impl #generics #model_ty #struct_generics #where_clause {
             #new_fn
@@ -363,6 +368,8 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
             }
 
             #assembly
+
+            #linear
         }
 
         #model_trait
@@ -433,6 +440,47 @@ fn parameter_access(i: &crate::opt::Interface, locals: &Locals) -> (TokenStream,
     )
 }
 
+/// `input_values` and `set_input_values` (the trait's defaults without
+/// inputs).
+fn input_access(i: &crate::opt::Interface) -> TokenStream {
+    if i.inputs.is_empty() {
+        return TokenStream::new();
+    }
+    let ty = float_type(i.float);
+    let (get, set): (Vec<_>, Vec<_>) = i
+        .inputs
+        .iter()
+        .enumerate()
+        .map(|(k, w)| {
+            let id = ident(&w.name);
+            let k = Literal::usize_unsuffixed(k);
+            (
+                quote!(#k => self.inputs.#id,),
+                quote!(#k => self.inputs.#id = *v,),
+            )
+        })
+        .unzip();
+    quote! {
+        fn input_values(&self, values: &mut [#ty]) {
+            for (k, v) in values.iter_mut().enumerate() {
+                *v = match k {
+                    #(#get)*
+                    _ => *v,
+                };
+            }
+        }
+
+        fn set_input_values(&mut self, values: &[#ty]) {
+            for (k, v) in values.iter().enumerate() {
+                match k {
+                    #(#set)*
+                    _ => {}
+                }
+            }
+        }
+    }
+}
+
 /// `impl Model for <Model>`.
 fn model_trait_impl(be: &BlockEmitter<'_>) -> TokenStream {
     let prog = be.prog;
@@ -449,6 +497,7 @@ fn model_trait_impl(be: &BlockEmitter<'_>) -> TokenStream {
     };
     let names = name_lists(i);
     let (p_get, p_set) = parameter_access(i, be.locals);
+    let inputs = input_access(i);
     let functions::Args { t: dt, x: dxx } =
         functions::args(prog, BlockKind::Derivatives, be.locals);
     let functions::Args { t: out_t, x: out_x } =
@@ -469,6 +518,10 @@ fn model_trait_impl(be: &BlockEmitter<'_>) -> TokenStream {
     let outs = functions::body(be, BlockKind::Outputs);
     let init = functions::body(be, BlockKind::Initial);
     let assembly = assembly::trait_methods(be);
+    let linearize = linear::trait_impl(
+        be,
+        &quote!(impl #generics #rt::Linearize for #model_ty #struct_generics #where_clause),
+    );
     quote! {
         impl #generics #rt::Model for #model_ty #struct_generics #where_clause {
             type Float = #ty;
@@ -494,12 +547,16 @@ fn model_trait_impl(be: &BlockEmitter<'_>) -> TokenStream {
                 #p_set
             }
 
+            #inputs
+
             fn initial_state(&self) -> [#ty; #n_states] {
                 #init
             }
 
             #assembly
         }
+
+        #linearize
     }
 }
 

@@ -1,0 +1,248 @@
+//! The generated linearization (`linearize = true`) against central
+//! finite differences of the generated derivatives and outputs, at random
+//! states and inputs: the reference chains, the satellite, and the
+//! constrained models (in their independent states: a perturbed
+//! independent coordinate is re-assembled before differencing).
+
+use autosim::runtime::{Linearize, Model, StateArray};
+use autosim_test_support::Rng;
+
+mod chains {
+    autosim::model!(
+        file = "examples/models/chain_planar_1.sim",
+        name = Planar1,
+        linearize = true
+    );
+    autosim::model!(
+        file = "examples/models/chain_planar_5.sim",
+        name = Planar5,
+        linearize = true
+    );
+    autosim::model!(
+        file = "examples/models/chain_planar_10.sim",
+        name = Planar10,
+        linearize = true
+    );
+    autosim::model!(
+        file = "examples/models/chain_spatial_1.sim",
+        name = Spatial1,
+        linearize = true
+    );
+    autosim::model!(
+        file = "examples/models/chain_spatial_3.sim",
+        name = Spatial3,
+        linearize = true
+    );
+    autosim::model!(
+        file = "examples/models/chain_spatial_10.sim",
+        name = Spatial10,
+        linearize = true
+    );
+}
+mod satellite {
+    autosim::model!(file = "examples/models/satellite.sim", linearize = true);
+}
+mod constrained {
+    autosim::model!(file = "examples/models/four_bar.sim", linearize = true);
+    autosim::model!(file = "examples/models/rolling_disc.sim", linearize = true);
+    autosim::model!(file = "examples/models/bicycle.sim", linearize = true);
+}
+
+/// `A`, `B`, `C`, `D` as row-major vectors.
+type Matrices = [Vec<f64>; 4];
+
+fn generated<M: Linearize<Float = f64>>(m: &mut M, x: &M::State) -> Matrices {
+    let (nl, nw, ny) = (
+        M::LINEAR_STATES.len(),
+        M::INPUT_NAMES.len(),
+        M::OUTPUT_NAMES.len(),
+    );
+    let mut out = [
+        vec![0.0; nl * nl],
+        vec![0.0; nl * nw],
+        vec![0.0; ny * nl],
+        vec![0.0; ny * nw],
+    ];
+    let [a, b, c, d] = &mut out;
+    m.linearize_into(0.0, x, a, b, c, d).expect("regular state");
+    out
+}
+
+/// Derivatives and outputs at `x` (re-assembled) and `w`.
+fn evaluate<M: Model<Float = f64>>(m: &mut M, x: &M::State, w: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let mut x = *x;
+    m.assemble(0.0, &mut x).expect("assembles");
+    m.set_input_values(w);
+    let mut dx = x;
+    m.derivatives(0.0, &x, &mut dx).expect("regular state");
+    let mut y = M::Outputs::zeros();
+    m.outputs(0.0, &x, &mut y).expect("regular state");
+    (dx.as_ref().to_vec(), y.as_ref().to_vec())
+}
+
+/// Central differences, in the same layout.
+fn differenced<M: Linearize<Float = f64>>(m: &mut M, x: &M::State, w: &[f64]) -> Matrices {
+    let states = M::LINEAR_STATES;
+    let (nl, nw, ny) = (states.len(), w.len(), M::OUTPUT_NAMES.len());
+    let mut out = [
+        vec![0.0; nl * nl],
+        vec![0.0; nl * nw],
+        vec![0.0; ny * nl],
+        vec![0.0; ny * nw],
+    ];
+    let columns = nl + nw;
+    for j in 0..columns {
+        let (mut xp, mut xm, mut wp, mut wm) = (*x, *x, w.to_vec(), w.to_vec());
+        let h = if j < nl {
+            let s = states[j];
+            let h = 1e-6 * (1.0 + x.as_ref()[s].abs());
+            xp.as_mut()[s] += h;
+            xm.as_mut()[s] -= h;
+            h
+        } else {
+            let h = 1e-6 * (1.0 + w[j - nl].abs());
+            wp[j - nl] += h;
+            wm[j - nl] -= h;
+            h
+        };
+        let (fp, yp) = evaluate(m, &xp, &wp);
+        let (fm, ym) = evaluate(m, &xm, &wm);
+        let (rates, outs) = if j < nl { (0, 2) } else { (1, 3) };
+        let (col, width) = if j < nl { (j, nl) } else { (j - nl, nw) };
+        for (i, &s) in states.iter().enumerate() {
+            out[rates][i * width + col] = (fp[s] - fm[s]) / (2.0 * h);
+        }
+        for i in 0..ny {
+            out[outs][i * width + col] = (yp[i] - ym[i]) / (2.0 * h);
+        }
+    }
+    m.set_input_values(w);
+    out
+}
+
+/// Compares at `cases` random states (from `state`) and inputs.
+fn check<M: Linearize<Float = f64>>(
+    name: &str,
+    mut m: M,
+    cases: usize,
+    state: impl Fn(&mut Rng) -> M::State,
+) {
+    let mut rng = Rng::new(0x5eed_1234_abcd_0001);
+    let mut worst = 0.0f64;
+    for _ in 0..cases {
+        let mut x = state(&mut rng);
+        m.assemble(0.0, &mut x).expect("assembles");
+        let w: Vec<f64> = M::INPUT_NAMES
+            .iter()
+            .map(|_| rng.uniform(-2.0, 2.0))
+            .collect();
+        m.set_input_values(&w);
+        let got = generated(&mut m, &x);
+        let want = differenced(&mut m, &x, &w);
+        for (k, label) in ["A", "B", "C", "D"].iter().enumerate() {
+            let scale = want[k].iter().fold(1.0f64, |s, v| s.max(v.abs()));
+            let err = got[k]
+                .iter()
+                .zip(&want[k])
+                .map(|(g, w)| (g - w).abs())
+                .fold(0.0, f64::max)
+                / scale;
+            worst = worst.max(err);
+            assert!(
+                err < 1e-6,
+                "{name}: {label} differs from finite differences by {err:e}\n got {:?}\nwant {:?}",
+                got[k],
+                want[k]
+            );
+        }
+    }
+    eprintln!("{name}: linearization vs central differences {worst:.1e}");
+}
+
+fn uniform<const N: usize>(rng: &mut Rng, lo: f64, hi: f64) -> [f64; N] {
+    std::array::from_fn(|_| rng.uniform(lo, hi))
+}
+
+#[test]
+fn chains_match_finite_differences() {
+    check("chain-planar-1", chains::planar1::Planar1::new(), 5, |r| {
+        uniform(r, -1.5, 1.5)
+    });
+    check("chain-planar-5", chains::planar5::Planar5::new(), 5, |r| {
+        uniform(r, -1.5, 1.5)
+    });
+    check(
+        "chain-planar-10",
+        chains::planar10::Planar10::new(),
+        3,
+        |r| uniform(r, -1.5, 1.5),
+    );
+    check(
+        "chain-spatial-1",
+        chains::spatial1::Spatial1::new(),
+        5,
+        |r| uniform(r, -1.5, 1.5),
+    );
+    check(
+        "chain-spatial-3",
+        chains::spatial3::Spatial3::new(),
+        5,
+        |r| uniform(r, -1.5, 1.5),
+    );
+    check(
+        "chain-spatial-10",
+        chains::spatial10::Spatial10::new(),
+        3,
+        |r| uniform(r, -1.5, 1.5),
+    );
+}
+
+/// Thrusters on a dead band wide enough not to switch under the
+/// differences; constant commands.
+struct Quiet;
+impl satellite::satellite::Externs for Quiet {
+    fn thrust(&mut self, _t: f64, _axis: f64, _error: f64) -> f64 {
+        0.0
+    }
+    fn cmd(&mut self, _t: f64) -> [f64; 2] {
+        [0.3, -0.2]
+    }
+}
+
+#[test]
+fn satellite_matches_finite_differences() {
+    check(
+        "satellite",
+        satellite::satellite::Satellite::new(Quiet),
+        5,
+        |r| uniform(r, -0.5, 0.5),
+    );
+}
+
+#[test]
+fn constrained_models_match_finite_differences_in_their_independent_states() {
+    use constrained::*;
+    check("four-bar", four_bar::FourBar::new(), 5, |r| {
+        [r.uniform(-0.5, 0.5), 0.9, 1.7, r.uniform(-3.0, 3.0)]
+    });
+    check("rolling disc", rolling_disc::RollingDisc::new(), 5, |r| {
+        let mut x: [f64; 9] = uniform(r, -1.0, 1.0);
+        x[6..].copy_from_slice(&[
+            r.uniform(-3.0, 3.0),
+            r.uniform(-8.0, 8.0),
+            r.uniform(-3.0, 3.0),
+        ]);
+        x
+    });
+    check("bicycle", bicycle::Bicycle::new(), 5, |r| {
+        let mut x = [0.0; 11];
+        x[3] = r.uniform(-0.3, 0.3);
+        x[6] = r.uniform(-0.5, 0.5);
+        x[8..].copy_from_slice(&[
+            r.uniform(-1.0, 1.0),
+            r.uniform(5.0, 20.0),
+            r.uniform(-1.0, 1.0),
+        ]);
+        x
+    });
+}

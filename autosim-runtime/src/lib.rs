@@ -100,6 +100,7 @@
 //! | `csv` | yes | `io::CsvWriter`, an observer that writes one flushed CSV row per output |
 //! | `plot` | yes | `io::svg_plot`, `io::Recording::plot_svg` and `io::xy_svg_plot` (SVG line plots, linear or log axes, no system fonts needed) |
 //! | `serde` | no | `Serialize`/`Deserialize` for settings, summaries and step reports |
+//! | `analysis` | no | `analysis`: linear models with names, modes (nalgebra), trim, sweeps, JSON/MATLAB/Python/Markdown export |
 //!
 //! Everything outside `io` works with `default-features = false, features = ["libm"]`.
 #![no_std]
@@ -108,6 +109,8 @@
 #[cfg(feature = "std")]
 extern crate std;
 
+#[cfg(feature = "analysis")]
+pub mod analysis;
 pub mod assembly;
 mod error;
 mod float;

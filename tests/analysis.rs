@@ -1,0 +1,263 @@
+//! Linear analysis against analytic results: the pendulum's and a
+//! spring-mass chain's eigenvalues, the quarter car's static deflections
+//! (trim), a steady turn of the bicycle (trim from a rough start), an
+//! impossible trim (a typed error), and the exports read back.
+
+use autosim::runtime::analysis::{LinearSystem, Trim, TrimError, trim};
+use autosim::runtime::{Model, RunSettings, integrate::DormandPrince, run};
+
+autosim::model! {
+    /// A point mass on a massless rod, hinged about n1.
+    model Pendulum;
+    settings { linearize: true }
+    parameters { m = 1.3 [kg], L = 0.7 [m], g = 9.81 [m/s^2] }
+    /// A torque at the hinge.
+    input torque [N m];
+    body Rod { rotate: 1, q: [q], u: [u], mass: m, cm: [0, 0, -L], inertia: 0 }
+    moment drive { on: Rod, reaction: N, about: n1, magnitude: torque }
+    gravity = -g*n3;
+}
+
+autosim::model! {
+    /// Three equal masses in a row between two walls, joined by equal
+    /// springs (fixed-fixed).
+    model SpringChain;
+    settings { linearize: true }
+    parameters { m = 2 [kg], k = 50 [N/m] }
+    body B1 { translate: 1, q: [x1], u: [v1], mass: m, inertia: 0 }
+    body B2 { translate: 1, q: [x2], u: [v2], mass: m, inertia: 0 }
+    body B3 { translate: 1, q: [x3], u: [v3], mass: m, inertia: 0 }
+    force wall1 { on: B1, along: n1, magnitude: -k*x1 }
+    force s12 { on: B2, reaction: B1, along: n1, magnitude: -k*(x2 - x1) }
+    force s23 { on: B3, reaction: B2, along: n1, magnitude: -k*(x3 - x2) }
+    force wall3 { on: B3, along: n1, magnitude: -k*x3 }
+}
+
+autosim::model! {
+    /// A quarter car: the sprung mass on the suspension spring and damper,
+    /// the wheel on the tire spring, heights from the road.
+    model QuarterCar;
+    settings { linearize: true }
+    parameters {
+        ms = 300 [kg], mu = 40 [kg], ks = 20000 [N/m], cs = 1500 [N s/m], kt = 200000 [N/m],
+        Ls = 0.4 [m], Lt = 0.3 [m], g = 9.81 [m/s^2],
+    }
+    /// Road height under the tire.
+    input road [m];
+    body Wheel { translate: 3, q: [zu], u: [vu], initial: [0.3], mass: mu, inertia: 0 }
+    body Body { translate: 3, q: [zs], u: [vs], initial: [0.7], mass: ms, inertia: 0 }
+    force tire { on: Wheel, along: n3, magnitude: -kt*(zu - road - Lt) }
+    force suspension { on: Body, reaction: Wheel, along: n3, magnitude: -ks*(zs - zu - Ls) - cs*(vs - vu) }
+    gravity = -g*n3;
+    /// Suspension deflection from its free length.
+    output deflection [m] = Ls - (zs - zu);
+}
+
+mod bike {
+    autosim::model!(file = "examples/models/bicycle.sim", linearize = true);
+}
+
+#[test]
+fn pendulum_eigenvalues_are_analytic() {
+    let mut m = pendulum::Pendulum::new();
+    let sys = LinearSystem::of(&mut m, 0.0, &[0.0, 0.0]).unwrap();
+    let w = (9.81f64 / 0.7).sqrt();
+    let ev = sys.eigenvalues();
+    assert!(
+        ev[0].re.abs() < 1e-12 && (ev[0].im.abs() - w).abs() < 1e-12 * w,
+        "{ev:?}"
+    );
+    let mode = &sys.modes()[0];
+    assert!((mode.natural_frequency - w).abs() < 1e-12 * w && mode.damping_ratio.abs() < 1e-12);
+    // B: the torque's angular acceleration per N m, 1/(m L²).
+    assert!((sys.b[(1, 0)] - 1.0 / (1.3 * 0.49)).abs() < 1e-12);
+    // Upside down it is unstable: λ = ±sqrt(g/L).
+    let up = LinearSystem::of(&mut m, 0.0, &[std::f64::consts::PI, 0.0]).unwrap();
+    let ev = up.eigenvalues();
+    assert!(
+        (ev[1].re - w).abs() < 1e-12 * w && ev[1].im == 0.0,
+        "{ev:?}"
+    );
+}
+
+#[test]
+fn spring_chain_eigenvalues_are_analytic() {
+    let mut m = spring_chain::SpringChain::new();
+    let sys = LinearSystem::of(&mut m, 0.0, &[0.0; 6]).unwrap();
+    let modes = sys.modes();
+    // Fixed-fixed chain of N = 3: ω_j = 2 sqrt(k/m) sin(j π / (2 (N + 1))).
+    let mut want: Vec<f64> = (1..=3)
+        .map(|j| 2.0 * (50.0f64 / 2.0).sqrt() * (j as f64 * std::f64::consts::PI / 8.0).sin())
+        .collect();
+    want.sort_by(f64::total_cmp);
+    let mut got: Vec<f64> = modes.iter().map(|m| m.natural_frequency).collect();
+    got.sort_by(f64::total_cmp);
+    for (g, w) in got.iter().zip(&want) {
+        assert!((g - w).abs() < 1e-12 * w, "{got:?} vs {want:?}");
+    }
+    // The lowest mode moves the masses in phase, the middle one most:
+    // x1 : x2 : x3 = 1 : √2 : 1.
+    let low = modes
+        .iter()
+        .min_by(|a, b| a.natural_frequency.total_cmp(&b.natural_frequency))
+        .unwrap();
+    let (x1, x2, x3) = (low.shape[0].1, low.shape[1].1, low.shape[2].1);
+    let (r1, r3) = (x1 / x2, x3 / x2);
+    let half = 1.0 / 2f64.sqrt();
+    assert!(
+        (r1.re - half).abs() < 1e-9 && r1.im.abs() < 1e-9 && (r3.re - half).abs() < 1e-9,
+        "{:?}",
+        low.shape
+    );
+}
+
+#[test]
+fn quarter_car_static_deflection_is_analytic() {
+    let mut m = quarter_car::QuarterCar::new();
+    let mut x = m.initial_state();
+    let spec = Trim::new(&["zu", "zs"], &[], &["vu", "vs"]);
+    let report = trim(&mut m, 0.0, &mut x, &spec).unwrap();
+    let (ms, mu, ks, kt, g) = (300.0, 40.0, 20000.0, 200000.0, 9.81);
+    let zu = 0.3 - (ms + mu) * g / kt;
+    let zs = zu + 0.4 - ms * g / ks;
+    eprintln!(
+        "quarter car: zu {} zs {} in {} iterations",
+        x[0], x[1], report.iterations
+    );
+    assert!(
+        (x[0] - zu).abs() < 1e-12 && (x[1] - zs).abs() < 1e-12,
+        "{x:?} vs {zu} {zs}"
+    );
+    assert!(report.residual < 1e-10);
+}
+
+#[test]
+fn an_impossible_trim_is_a_typed_error() {
+    // A hinge torque above m g L cannot be held by gravity at any angle.
+    let mut m = pendulum::Pendulum::new();
+    m.inputs.torque = 2.0 * 1.3 * 9.81 * 0.7;
+    let mut x = [0.1, 0.0];
+    let r = trim(&mut m, 0.0, &mut x, &Trim::new(&["q"], &[], &["u"]));
+    match r {
+        Err(TrimError::NotConverged { residuals, .. } | TrimError::Singular { residuals }) => {
+            assert_eq!(residuals[0].0, "u");
+            assert!(residuals[0].1.abs() > 1.0);
+        }
+        other => panic!("expected a typed failure, got {other:?}"),
+    }
+    let bad = trim(&mut m, 0.0, &mut x, &Trim::new(&["nope"], &[], &["u"]));
+    assert!(matches!(bad, Err(TrimError::Invalid(_))), "{bad:?}");
+}
+
+#[test]
+fn bicycle_steady_turn_trims_from_a_rough_start() {
+    use bike::bicycle::Bicycle;
+    let mut m = Bicycle::new();
+    // 5 m/s, leaning 0.1 rad: find the steer angle and the steer torque
+    // that hold it, from straight running.
+    let mut x = [0.0; 11];
+    x[3] = 0.1;
+    x[9] = 5.0 / 0.3;
+    let spec = Trim::new(&["delta"], &["T_delta"], &["u_phi", "u_delta"]);
+    let report = trim(&mut m, 0.0, &mut x, &spec).unwrap();
+    let mut dx = x;
+    m.derivatives(0.0, &x, &mut dx).unwrap();
+    eprintln!(
+        "steady turn: steer {} rad, torque {} N m, {} iterations, residual {:e}",
+        x[6], m.inputs.T_delta, report.iterations, report.residual
+    );
+    assert!(report.residual < 1e-10 && dx[8].abs() < 1e-10 && dx[10].abs() < 1e-10);
+    // The wheel speed holds too (no drive needed in a steady turn).
+    assert!(dx[9].abs() < 1e-9, "rear wheel acceleration {}", dx[9]);
+    // And the nonlinear model keeps turning with the lean held.
+    let mut dopri = DormandPrince::<Bicycle>::with_tolerances(1e-11, 1e-11).unwrap();
+    let mut worst = 0.0f64;
+    let settings = RunSettings::new(0.0, 2.0, 1e-3, 0.1);
+    run(
+        &mut m,
+        &mut dopri,
+        &mut x,
+        &settings,
+        &mut |_t, x: &[f64; 11], _y: &[f64; 3]| {
+            worst = worst.max((x[3] - 0.1).abs());
+        },
+    )
+    .unwrap();
+    assert!(worst < 1e-8, "lean drifted by {worst:e}");
+}
+
+/// The numbers of `name = [ ... ];` in a MATLAB script, row by row.
+fn matlab_matrix(script: &str, name: &str) -> Vec<Vec<f64>> {
+    let start = script
+        .find(&format!("{name} = ["))
+        .expect("matrix in the script")
+        + name.len()
+        + 4;
+    let end = start + script[start..].find("];").expect("closed");
+    script[start..end]
+        .split(';')
+        .map(|row| {
+            row.split(',')
+                .filter_map(|v| v.trim().parse().ok())
+                .collect::<Vec<f64>>()
+        })
+        .filter(|r| !r.is_empty())
+        .collect()
+}
+
+#[test]
+fn exports_read_back_to_the_same_eigenvalues() {
+    let mut m = bike::bicycle::Bicycle::new();
+    let mut x = [0.0; 11];
+    x[9] = 4.0 / 0.3;
+    let sys = LinearSystem::of(&mut m, 0.0, &x)
+        .unwrap()
+        .restricted(&["phi", "delta", "u_phi", "u_delta"])
+        .unwrap();
+    let script = sys.to_matlab("Bicycle");
+    let a = matlab_matrix(&script, "A");
+    let n = a.len();
+    let back = LinearSystem::from_matrices(
+        autosim::runtime::analysis::DMatrix::from_fn(n, n, |i, j| a[i][j]),
+        &["phi", "delta", "u_phi", "u_delta"],
+    );
+    assert_eq!(back.a, sys.a, "the script holds every digit");
+    assert!(script.contains("state_names = {'phi', 'delta', 'u_phi', 'u_delta'};"));
+    let json = sys.to_json();
+    assert!(json.contains("\"name\": \"u_delta\"") && json.contains("\"a\": [["));
+    let python = sys.to_python("Bicycle");
+    assert!(python.contains("STATES = [\"phi\", \"delta\", \"u_phi\", \"u_delta\"]"));
+    let md = sys.to_markdown();
+    assert!(md.contains("| `u_phi`′ |") && md.contains("**Modes**"));
+    // Where NumPy is installed, the Python module reproduces the eigenvalues.
+    let dir = std::env::temp_dir().join(format!("autosim-export-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("bike_linear.py"), &python).unwrap();
+    let check = "import sys; sys.path.insert(0, sys.argv[1]); import numpy as np, bike_linear as b; \
+                 ev = sorted(np.linalg.eigvals(b.A), key=lambda z: (z.real, z.imag)); \
+                 print(' '.join(f'{z.real:.17e} {z.imag:.17e}' for z in ev))";
+    match std::process::Command::new("python3")
+        .arg("-c")
+        .arg(check)
+        .arg(&dir)
+        .output()
+    {
+        Ok(out) if out.status.success() => {
+            let nums: Vec<f64> = String::from_utf8_lossy(&out.stdout)
+                .split_whitespace()
+                .map(|v| v.parse().unwrap())
+                .collect();
+            for (k, l) in sys.eigenvalues().iter().enumerate() {
+                assert!(
+                    (nums[2 * k] - l.re).abs() < 1e-9 && (nums[2 * k + 1] - l.im).abs() < 1e-9,
+                    "NumPy {nums:?} vs {l}"
+                );
+            }
+            eprintln!("NumPy reproduces the eigenvalues");
+        }
+        _ => eprintln!(
+            "SKIPPED: no python3 with NumPy; the MATLAB script was read back in Rust instead"
+        ),
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

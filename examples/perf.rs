@@ -145,6 +145,64 @@ fn main() {
         Some(&small),
     );
     constrained();
+    linearization(&mut rng);
+}
+
+/// Median ns of `f` over rounds of `states`.
+fn median_ns<S>(states: &[S], mut f: impl FnMut(&S)) -> f64 {
+    for x in states {
+        f(x);
+    }
+    let rounds = 51;
+    let mut per_call: Vec<f64> = Vec::with_capacity(rounds);
+    for _ in 0..rounds {
+        let start = Instant::now();
+        for x in states {
+            f(black_box(x));
+        }
+        per_call.push(start.elapsed().as_nanos() as f64 / states.len() as f64);
+    }
+    per_call.sort_by(f64::total_cmp);
+    per_call[rounds / 2]
+}
+
+/// `linearize` against central differences of `derivatives` (2 evaluations
+/// per state).
+fn linearization(rng: &mut Rng) {
+    use models::*;
+    macro_rules! compare {
+        ($name:literal, $model:expr, $ty:ty, $n:literal) => {{
+            let mut m = $model;
+            let xs = states::<$n>(rng, 64, None);
+            let lin = median_ns(&xs, |x| {
+                let _ = black_box(m.linearize(0.0, x));
+            });
+            let mut dx = [0.0; $n];
+            let eval = median_ns(&xs, |x| {
+                let _ = black_box(m.derivatives(0.0, x, &mut dx));
+            });
+            let ops = <$ty>::LINEARIZE_OPS;
+            println!(
+                "{{\"model\": \"{}\", \"linearize_ns\": {lin:.1}, \"linearize_ops\": {}, \"central_differences_ns\": {:.1}, \"ratio\": {:.2}}}",
+                $name,
+                ops.total(),
+                2.0 * $n as f64 * eval,
+                lin / (2.0 * $n as f64 * eval)
+            );
+        }};
+    }
+    compare!(
+        "chain-spatial-10",
+        chain_spatial10_linear::ChainSpatial10Linear::new(),
+        chain_spatial10_linear::ChainSpatial10Linear,
+        20
+    );
+    compare!(
+        "satellite",
+        satellite_linear::SatelliteLinear::new(Quiet),
+        satellite_linear::SatelliteLinear<Quiet>,
+        20
+    );
 }
 
 /// The constrained models, at states along their own runs.

@@ -6,17 +6,7 @@
 use autosim::runtime::analysis::{LinearSystem, Trim, TrimError, trim};
 use autosim::runtime::{Model, RunSettings, integrate::DormandPrince, run};
 
-autosim::model! {
-    /// A point mass on a massless rod, hinged about n1.
-    model Pendulum;
-    settings { linearize: true }
-    parameters { m = 1.3 [kg], L = 0.7 [m], g = 9.81 [m/s^2] }
-    /// A torque at the hinge.
-    input torque [N m];
-    body Rod { rotate: 1, q: [q], u: [u], mass: m, cm: [0, 0, -L], inertia: 0 }
-    moment drive { on: Rod, reaction: N, about: n1, magnitude: torque }
-    gravity = -g*n3;
-}
+autosim::model!(file = "examples/models/pendulum.sim");
 
 autosim::model! {
     /// Three equal masses in a row between two walls, joined by equal
@@ -33,25 +23,7 @@ autosim::model! {
     force wall3 { on: B3, along: n1, magnitude: -k*x3 }
 }
 
-autosim::model! {
-    /// A quarter car: the sprung mass on the suspension spring and damper,
-    /// the wheel on the tire spring, heights from the road.
-    model QuarterCar;
-    settings { linearize: true }
-    parameters {
-        ms = 300 [kg], mu = 40 [kg], ks = 20000 [N/m], cs = 1500 [N s/m], kt = 200000 [N/m],
-        Ls = 0.4 [m], Lt = 0.3 [m], g = 9.81 [m/s^2],
-    }
-    /// Road height under the tire.
-    input road [m];
-    body Wheel { translate: 3, q: [zu], u: [vu], initial: [0.3], mass: mu, inertia: 0 }
-    body Body { translate: 3, q: [zs], u: [vs], initial: [0.7], mass: ms, inertia: 0 }
-    force tire { on: Wheel, along: n3, magnitude: -kt*(zu - road - Lt) }
-    force suspension { on: Body, reaction: Wheel, along: n3, magnitude: -ks*(zs - zu - Ls) - cs*(vs - vu) }
-    gravity = -g*n3;
-    /// Suspension deflection from its free length.
-    output deflection [m] = Ls - (zs - zu);
-}
+autosim::model!(file = "examples/models/quarter_car.sim");
 
 mod bike {
     autosim::model!(file = "examples/models/bicycle.sim", linearize = true);

@@ -16,6 +16,16 @@ pub mod models {
     autosim::model!(file = "examples/models/four_bar.sim");
     autosim::model!(file = "examples/models/andrews.sim");
     autosim::model!(file = "examples/models/bicycle.sim");
+    autosim::model!(
+        file = "examples/models/chain_spatial_10.sim",
+        name = ChainSpatial10Linear,
+        linearize = true
+    );
+    autosim::model!(
+        file = "examples/models/satellite.sim",
+        name = SatelliteLinear,
+        linearize = true
+    );
 }
 
 /// Thrusters on a dead band, fixed commands.
@@ -42,4 +52,4 @@ macro_rules! quiet {
     };
 }
 
-quiet!(satellite, satellite_small);
+quiet!(satellite, satellite_small, satellite_linear);

@@ -39,6 +39,7 @@ impl fmt::Display for Mode {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let l = self.eigenvalue;
         match self.time_constant {
+            _ if l.norm() == 0.0 => write!(f, "λ = 0 (a rigid-body or ignorable motion)")?,
             Some(tau) => write!(f, "λ = {:.6} 1/s, time constant {:.6} s", l.re, tau)?,
             None => write!(
                 f,
@@ -62,11 +63,16 @@ impl fmt::Display for Mode {
 
 impl LinearSystem {
     /// The modes of `A`: one per real eigenvalue, one per complex pair (the
-    /// one with positive imaginary part), sorted by real part.
+    /// one with positive imaginary part), sorted by real part. Eigenvalues
+    /// within `1e-6 ‖A‖` of zero (rigid-body and ignorable motions, whose
+    /// multiple zeros the eigenvalue solver spreads by about the square
+    /// root of the rounding) are reported as exactly zero.
     pub fn modes(&self) -> Vec<Mode> {
         let scale = self.a.amax().max(1.0);
         let mut modes = Vec::new();
         for l in self.eigenvalues() {
+            let zero = l.norm() <= 1e-6 * scale;
+            let l = if zero { Complex::new(0.0, 0.0) } else { l };
             let real = l.im.abs() <= 1e-12 * scale;
             if !real && l.im < 0.0 {
                 continue;

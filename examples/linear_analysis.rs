@@ -23,6 +23,8 @@ impl satellite::Externs for AtRest {
     fn thrust(&mut self, _t: f64, _axis: f64, _error: f64) -> f64 {
         0.0
     }
+    // The model's initial clock angle is written `4 - 3.1415926`.
+    #[allow(clippy::approx_constant)]
     fn cmd(&mut self, _t: f64) -> [f64; 2] {
         [4.0 - 3.1415926, -0.5]
     }

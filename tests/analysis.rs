@@ -233,3 +233,30 @@ fn exports_read_back_to_the_same_eigenvalues() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn runs_record_the_inputs() {
+    use autosim::runtime::integrate::Rk4;
+    use autosim::runtime::io::{CsvWriter, Recording};
+    let mut car = quarter_car::QuarterCar::new();
+    car.inputs.road = 0.02;
+    let mut x = car.initial_state();
+    let settings = RunSettings::new(0.0, 0.1, 1e-3, 0.05);
+    let mut recording = Recording::new();
+    run(&mut car, &mut Rk4::new(), &mut x, &settings, &mut recording).unwrap();
+    let road = recording.column("road").unwrap();
+    assert_eq!(
+        (road.unit, road.values.as_slice()),
+        ("m", &[0.02, 0.02, 0.02][..])
+    );
+    let mut csv = CsvWriter::<quarter_car::QuarterCar, Vec<u8>>::new(Vec::new()).unwrap();
+    let mut x = car.initial_state();
+    run(&mut car, &mut Rk4::new(), &mut x, &settings, &mut csv).unwrap();
+    let text = String::from_utf8(csv.into_inner().unwrap()).unwrap();
+    let header = text.lines().next().unwrap();
+    assert_eq!(
+        header,
+        "time [s],zu [m],zs [m],vu [m/s],vs [m/s],road [m],deflection [m],body_acceleration [m/s^2]"
+    );
+    assert!(text.lines().nth(1).unwrap().contains(",0.02,"));
+}

@@ -122,7 +122,22 @@ pub trait Observer<M: Model> {
     /// # Errors
     /// Any error of the observer; the run stops and returns it.
     fn observe(&mut self, t: M::Float, x: &M::State, y: &M::Outputs) -> Result<(), Self::Error>;
+
+    /// Called just before [`Observer::observe`] with the model's inputs at
+    /// that time ([`Model::INPUT_NAMES`] order; the first
+    /// [`MAX_RECORDED_INPUTS`]). The default ignores them; the CSV writer
+    /// and the recording keep them as columns.
+    ///
+    /// # Errors
+    /// Any error of the observer; the run stops and returns it.
+    fn observe_inputs(&mut self, inputs: &[M::Float]) -> Result<(), Self::Error> {
+        let _ = inputs;
+        Ok(())
+    }
 }
+
+/// How many inputs the run driver passes to [`Observer::observe_inputs`].
+pub const MAX_RECORDED_INPUTS: usize = 64;
 
 impl<M: Model, C: FnMut(M::Float, &M::State, &M::Outputs)> Observer<M> for C {
     type Error = Infallible;
@@ -290,6 +305,14 @@ impl<M: Model> Driver<M> {
                 t: t.to_f64(),
                 error,
             })?;
+        let mut inputs = [M::Float::ZERO; MAX_RECORDED_INPUTS];
+        let inputs = &mut inputs[..M::INPUT_NAMES.len().min(MAX_RECORDED_INPUTS)];
+        model.input_values(inputs);
+        let failed = |error| RunError::Observer {
+            t: t.to_f64(),
+            error,
+        };
+        observer.observe_inputs(inputs).map_err(failed)?;
         observer
             .observe(t, x, &self.y)
             .map_err(|error| RunError::Observer {

@@ -10,10 +10,10 @@ use std::marker::PhantomData;
 use std::path::Path;
 
 use super::error::OutputError;
-use crate::{Model, Observer};
+use crate::{Float, Model, Observer};
 
 /// An [`Observer`] that writes every output time of a run as a CSV row:
-/// time, then the states, then the outputs, under a header of
+/// time, then the states, the inputs and the outputs, under a header of
 /// `name [unit]` columns (`time [s]` first).
 ///
 /// Each row is flushed when written, so a run that stops early (a
@@ -23,6 +23,8 @@ pub struct CsvWriter<M, W: Write> {
     writer: csv::Writer<W>,
     field: String,
     rows: u64,
+    /// The inputs of the row being written (given by the run driver).
+    inputs: Vec<f64>,
     model: PhantomData<fn(&M)>,
 }
 
@@ -52,14 +54,12 @@ impl<M: Model, W: Write> CsvWriter<M, W> {
             .flexible(false)
             .from_writer(writer);
         let mut header = vec![String::from("time [s]")];
-        let columns = M::STATE_NAMES
-            .iter()
-            .zip(M::STATE_UNITS.iter().chain(std::iter::repeat(&"")))
-            .chain(
-                M::OUTPUT_NAMES
-                    .iter()
-                    .zip(M::OUTPUT_UNITS.iter().chain(std::iter::repeat(&""))),
-            );
+        let named = |names: &'static [&'static str], units: &'static [&'static str]| {
+            names.iter().zip(units.iter().chain(std::iter::repeat(&"")))
+        };
+        let columns = named(M::STATE_NAMES, M::STATE_UNITS)
+            .chain(named(M::INPUT_NAMES, M::INPUT_UNITS).take(crate::run::MAX_RECORDED_INPUTS))
+            .chain(named(M::OUTPUT_NAMES, M::OUTPUT_UNITS));
         header.extend(columns.map(|(name, unit)| format!("{name} [{unit}]")));
         writer.write_record(&header)?;
         writer.flush().map_err(csv::Error::from)?;
@@ -67,6 +67,7 @@ impl<M: Model, W: Write> CsvWriter<M, W> {
             writer,
             field: String::new(),
             rows: 0,
+            inputs: vec![0.0; M::INPUT_NAMES.len().min(crate::run::MAX_RECORDED_INPUTS)],
             model: PhantomData,
         })
     }
@@ -97,9 +98,22 @@ impl<M: Model, W: Write> CsvWriter<M, W> {
 
 impl<M: Model, W: Write> Observer<M> for CsvWriter<M, W> {
     type Error = OutputError;
+    fn observe_inputs(&mut self, inputs: &[M::Float]) -> Result<(), OutputError> {
+        for (kept, v) in self.inputs.iter_mut().zip(inputs) {
+            *kept = v.to_f64();
+        }
+        Ok(())
+    }
+
     fn observe(&mut self, t: M::Float, x: &M::State, y: &M::Outputs) -> Result<(), OutputError> {
         self.write_value(t)?;
-        for v in x.as_ref().iter().chain(y.as_ref()) {
+        for v in x.as_ref() {
+            self.write_value(*v)?;
+        }
+        for k in 0..self.inputs.len() {
+            self.write_value(self.inputs[k])?;
+        }
+        for v in y.as_ref() {
             self.write_value(*v)?;
         }
         self.writer.write_record(None::<&[u8]>)?;

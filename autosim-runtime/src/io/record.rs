@@ -21,7 +21,7 @@ pub struct Column {
 }
 
 /// An [`Observer`] that keeps every output time in memory: the times, then
-/// one [`Column`] per state and per output (values as `f64`).
+/// one [`Column`] per state, per input and per output (values as `f64`).
 ///
 /// Use it to inspect or plot a run afterwards
 /// ([`Recording::plot_svg`] with feature `plot`); for long runs prefer
@@ -30,6 +30,8 @@ pub struct Column {
 pub struct Recording<M> {
     time: Vec<f64>,
     columns: Vec<Column>,
+    /// The inputs of the row being recorded (given by the run driver).
+    inputs: Vec<f64>,
     model: PhantomData<fn(&M)>,
 }
 
@@ -42,6 +44,15 @@ impl<M: Model> Recording<M> {
             unit: unit(M::STATE_UNITS, i),
             values: Vec::new(),
         });
+        let n_inputs = M::INPUT_NAMES.len().min(crate::run::MAX_RECORDED_INPUTS);
+        let inputs = M::INPUT_NAMES[..n_inputs]
+            .iter()
+            .enumerate()
+            .map(|(i, name)| Column {
+                name,
+                unit: unit(M::INPUT_UNITS, i),
+                values: Vec::new(),
+            });
         let outputs = M::OUTPUT_NAMES.iter().enumerate().map(|(i, name)| Column {
             name,
             unit: unit(M::OUTPUT_UNITS, i),
@@ -49,7 +60,8 @@ impl<M: Model> Recording<M> {
         });
         Self {
             time: Vec::new(),
-            columns: states.chain(outputs).collect(),
+            columns: states.chain(inputs).chain(outputs).collect(),
+            inputs: vec![0.0; n_inputs],
             model: PhantomData,
         }
     }
@@ -59,12 +71,12 @@ impl<M: Model> Recording<M> {
         &self.time
     }
 
-    /// All columns: states first, then outputs.
+    /// All columns: states first, then inputs, then outputs.
     pub fn columns(&self) -> &[Column] {
         &self.columns
     }
 
-    /// The column named `name` (a state or an output).
+    /// The column named `name` (a state, an input or an output).
     ///
     /// # Errors
     /// [`OutputError::UnknownColumn`] naming the closest column, if any.
@@ -87,11 +99,23 @@ impl<M: Model> Default for Recording<M> {
 
 impl<M: Model> Observer<M> for Recording<M> {
     type Error = Infallible;
+    fn observe_inputs(&mut self, inputs: &[M::Float]) -> Result<(), Infallible> {
+        for (kept, v) in self.inputs.iter_mut().zip(inputs) {
+            *kept = v.to_f64();
+        }
+        Ok(())
+    }
+
     fn observe(&mut self, t: M::Float, x: &M::State, y: &M::Outputs) -> Result<(), Infallible> {
         self.time.push(t.to_f64());
-        let values = x.as_ref().iter().chain(y.as_ref());
+        let values = x
+            .as_ref()
+            .iter()
+            .map(|v| v.to_f64())
+            .chain(self.inputs.iter().copied())
+            .chain(y.as_ref().iter().map(|v| v.to_f64()));
         for (column, v) in self.columns.iter_mut().zip(values) {
-            column.values.push(v.to_f64());
+            column.values.push(v);
         }
         Ok(())
     }

@@ -129,6 +129,27 @@ impl<'a> Interpreter<'a> {
         self.run(BlockKind::Assembly, at, user)
     }
 
+    /// The linear model's entries at `(t, x)`: `A`, `B`, `C`, `D` row-major,
+    /// one after the other (empty unless the program linearizes).
+    pub fn linearize(
+        &self,
+        t: f64,
+        x: &[f64],
+        inputs: &[f64],
+        user: &mut UserCalls<'_>,
+    ) -> Result<Vec<f64>, SolveError> {
+        if self.prog.try_block(BlockKind::Linearize).is_none() {
+            return Ok(Vec::new());
+        }
+        let at = At {
+            t,
+            x,
+            inputs,
+            accel: &[],
+        };
+        self.run(BlockKind::Linearize, at, user)
+    }
+
     /// The mass matrix (row-major) and the forcing vector.
     pub fn mass_matrix_and_forcing(
         &self,

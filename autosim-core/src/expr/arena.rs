@@ -472,6 +472,11 @@ impl Arena {
         Ok(id)
     }
 
+    /// Whether any symbol is small (the model truncates small terms).
+    pub fn has_small_symbols(&self) -> bool {
+        self.symbols.iter().any(|s| s.order > 0)
+    }
+
     /// Marks a symbol as small (order 1) or not. Only affects expressions
     /// created afterwards, so call it right after declaring the symbol.
     pub fn set_small(&mut self, s: SymId, small: bool) {

@@ -42,6 +42,21 @@ pub enum FloatType {
     F32,
 }
 
+/// How a tree's accelerations are solved in generated code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Formulation {
+    /// Both are built; the one with fewer operations per `derivatives`
+    /// call is generated (default).
+    #[default]
+    Auto,
+    /// The mass matrix and its unrolled LDLᵀ (O(n²) entries, O(n³) factor
+    /// for a chain; the cheapest for small models).
+    MassMatrix,
+    /// The articulated-body recursion (O(n), the mass matrix never
+    /// formed; the cheapest for long chains).
+    Recursive,
+}
+
 /// The resolved model: the system plus what code generation and
 /// documentation need to know about the source.
 #[derive(Clone, Debug)]
@@ -65,6 +80,9 @@ pub struct ResolvedModel {
     /// Generate the linearization (`settings { linearize: true }` or the
     /// scene's `linearize = true`).
     pub linearize: bool,
+    /// How the accelerations are solved (`settings { formulation: ... }`
+    /// or the scene's `formulation = ...`).
+    pub formulation: Formulation,
 }
 
 /// Resolves a parsed model.
@@ -85,6 +103,7 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
         formal_params: FxHashMap::default(),
         spans: ItemSpans::new(model_name.span),
         linearize: false,
+        formulation: Formulation::Auto,
     };
     check_model_name(&mut r, model_name);
     // Settings first: the threshold affects every expression built later.

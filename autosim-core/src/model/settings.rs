@@ -4,7 +4,7 @@
 //! check that every name a scene gives exists in the model.
 
 use super::scope::Resolver;
-use super::{FloatType, ResolvedModel, Scene};
+use super::{FloatType, Formulation, ResolvedModel, Scene};
 use crate::diag::{Diagnostic, did_you_mean};
 use crate::syntax::ast::{self, Item, SettingKey};
 
@@ -41,6 +41,16 @@ pub(super) fn apply_settings(
                         ),
                     ),
                 },
+                SettingKey::Formulation => match formulation(&opt.value) {
+                    Some(f) => out.formulation = f,
+                    None => r.push(
+                        Diagnostic::error(
+                            opt.value.span(),
+                            "`formulation` is `auto`, `mass_matrix` or `recursive`",
+                        )
+                        .help("`auto` (the default) generates whichever costs fewer operations"),
+                    ),
+                },
                 SettingKey::Float => match &opt.value {
                     ast::Expr::Name(n) if n.text == "f64" => out.float = FloatType::F64,
                     ast::Expr::Name(n) if n.text == "f32" => out.float = FloatType::F32,
@@ -62,7 +72,23 @@ pub(super) fn apply_settings(
     if let Some(l) = scene.linearize {
         out.linearize = l;
     }
+    if let Some(f) = scene.formulation {
+        out.formulation = f;
+    }
     scene.outputs.clone().or(output_filter)
+}
+
+/// The formulation a setting names.
+pub(crate) fn formulation(value: &ast::Expr) -> Option<Formulation> {
+    match value {
+        ast::Expr::Name(n) => match n.text.as_str() {
+            "auto" => Some(Formulation::Auto),
+            "mass_matrix" => Some(Formulation::MassMatrix),
+            "recursive" => Some(Formulation::Recursive),
+            _ => None,
+        },
+        _ => None,
+    }
 }
 
 fn threshold(r: &mut Resolver<'_>, value: &ast::Expr) {

@@ -18,6 +18,7 @@ use super::ir::{Ir, Leaf, Nid};
 use super::lower::Lowering;
 use super::program::{
     Assembly, Lowered, ProgramError, collect_calls, leaves, lower_all, lower_one,
+    with_accelerations,
 };
 use super::solve::ldlt_solve;
 use super::split::Split;
@@ -187,18 +188,23 @@ pub(super) fn lower(
     let forcing: Vec<Nid> = columns.iter().map(|c| dot(ir, c, &f_minus_mw)).collect();
     let solve = ldlt_solve(ir, &mass, &forcing);
 
-    // Extra states with every acceleration known.
-    let acc = red.accelerations(ir, split, &solve.du);
-    let mut with_du = env.clone();
+    // Extra states with every acceleration known (read as leaves, then
+    // replaced by the solve's values).
+    let rate_leaves: Vec<Nid> = (0..split.free.len())
+        .map(|i| ir.leaf(Leaf::Accel(i)))
+        .collect();
+    let acc = red.accelerations(ir, split, &rate_leaves);
+    let mut with_rates = env.clone();
     for (k, s) in eqs.speed_rates.iter().enumerate() {
-        with_du.insert(*s, acc[k]);
+        with_rates.insert(*s, acc[k]);
     }
-    let mut lw = Lowering::new(&mut model.system.arena, ir, &with_du);
+    let mut lw = Lowering::new(&mut model.system.arena, ir, &with_rates);
     let state_syms = eqs.states.clone();
-    let extra = lower_all(&mut lw, &eqs.state_derivatives, |k| {
+    let extra_in_rates = lower_all(&mut lw, &eqs.state_derivatives, |k| {
         ItemRef::State(state_syms[k])
     })?;
     calls.extend(lw.user_calls());
+    let extra = with_accelerations(ir, &extra_in_rates, &solve.du);
 
     let outputs = outputs(model, eqs, split, ir, &env, &red, &full, &mut calls)?;
     let initial = initial(model, split, ir, &env)?;
@@ -215,6 +221,7 @@ pub(super) fn lower(
         solve,
         constraint_checks: solve_c.elim.checks.clone(),
         extra,
+        extra_in_rates,
         outputs,
         initial,
         sub_args,

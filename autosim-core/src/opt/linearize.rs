@@ -12,15 +12,20 @@
 
 use super::elim::Elimination;
 use super::ir::{Ir, Leaf, Nid};
-use super::solve::Factor;
-use super::tangent::{Tangent, substitute};
-use rustc_hash::FxHashMap;
+use super::program::with_accelerations;
+use super::solve::Solver;
+use super::tangent::Tangent;
 
 /// What the linearization differentiates: the program's derivatives and
-/// outputs and the pieces of their solve.
+/// outputs and the pieces of their solve. Everything that reads the
+/// accelerations reads them as `Leaf::Accel` (leaves are never rewritten,
+/// so their derivatives can be seeded reliably); the accelerations' values
+/// are put in afterwards.
 pub(super) struct Linearizable<'a> {
-    /// dx/dt, one node per state (coordinates, speeds, extra).
-    pub rates: Vec<Nid>,
+    /// dq/dt of the state's coordinates.
+    pub kinematics: &'a [Nid],
+    /// d/dt of the extra states, reading `Leaf::Accel`.
+    pub extra: &'a [Nid],
     /// The accelerations of the state's speeds.
     pub du: &'a [Nid],
     /// Lower triangle of the (reduced) mass matrix.
@@ -28,7 +33,7 @@ pub(super) struct Linearizable<'a> {
     /// The (reduced) forcing.
     pub forcing: &'a [Nid],
     /// Its factor.
-    pub factor: &'a Factor,
+    pub factor: &'a Solver,
     /// The outputs (reading `Leaf::Accel`).
     pub outputs: &'a [Nid],
     /// The position constraints' residuals, their dependent coordinates'
@@ -54,34 +59,30 @@ struct Column {
 impl Linearizable<'_> {
     /// Builds the linear model.
     pub fn linearize(&self, ir: &mut Ir) -> Linear {
-        // The outputs with the accelerations computed here, not read from
-        // the derivatives.
-        let accel: FxHashMap<Nid, Nid> = (0..self.du.len())
-            .map(|k| (ir.leaf(Leaf::Accel(k)), self.du[k]))
+        let accel: Vec<Nid> = (0..self.du.len())
+            .map(|k| ir.leaf(Leaf::Accel(k)))
             .collect();
-        let outputs = substitute(ir, self.outputs, &accel);
-        let this = Linearizable {
-            rates: self.rates.clone(),
-            outputs: &outputs,
-            closure: self.closure.as_ref().map(|(r, s, e)| (*r, s.clone(), *e)),
-            ..*self
+        // The recursion never forms M: its rate along x comes from
+        // differentiating M u̇ with u̇ held (leaves: derivative zero).
+        let mass_du = match self.factor {
+            Solver::Articulated(a) => Some(a.times_mass(ir, &accel)),
+            Solver::Ldlt(_) => None,
         };
-        this.linear_model(ir)
-    }
-
-    fn linear_model(&self, ir: &mut Ir) -> Linear {
-        let n_states = self.rates.len();
+        let n_states = self.kinematics.len() + self.du.len() + self.extra.len();
         let dependent: Vec<usize> = self.closure.as_ref().map_or(Vec::new(), |c| c.1.clone());
         let states: Vec<usize> = (0..n_states).filter(|k| !dependent.contains(k)).collect();
         let mut columns: Vec<Option<Column>> = (0..n_states).map(|_| None).collect();
         let mut closure_terms: Vec<Vec<Nid>> = vec![Vec::new(); n_states];
         for j in 0..n_states {
-            let (column, g) = self.column(ir, Leaf::State(j));
+            let (column, g) = self.column(ir, Leaf::State(j), &accel, mass_du.as_deref());
             columns[j] = Some(column);
             closure_terms[j] = g;
         }
         let input_columns: Vec<Column> = (0..self.inputs)
-            .map(|k| self.column(ir, Leaf::Input(k)).0)
+            .map(|k| {
+                self.column(ir, Leaf::Input(k), &accel, mass_du.as_deref())
+                    .0
+            })
             .collect();
         // The independent coordinates move the dependent ones.
         let total: Vec<Column> = states
@@ -101,34 +102,52 @@ impl Linearizable<'_> {
         for y in 0..self.outputs.len() {
             values.extend(input_columns.iter().map(|c| c.outputs[y]));
         }
+        // The accelerations' values for their leaves.
+        let values = with_accelerations(ir, &values, self.du);
         Linear { values, states }
     }
 
     /// The derivatives of the rates and outputs with respect to `leaf`,
-    /// and of the position constraints' residuals (`G_j`).
-    fn column(&self, ir: &mut Ir, leaf: Leaf) -> (Column, Vec<Nid>) {
+    /// and of the position constraints' residuals (`G_j`), still reading
+    /// the accelerations as leaves.
+    fn column(
+        &self,
+        ir: &mut Ir,
+        leaf: Leaf,
+        accel: &[Nid],
+        mass_du: Option<&[Nid]>,
+    ) -> (Column, Vec<Nid>) {
         let mut t = Tangent::new(leaf);
         let n = self.forcing.len();
         let mut rhs = Vec::with_capacity(n);
         for i in 0..n {
             let mut neg = Vec::new();
-            for k in 0..n {
-                let Some(m) = self.mass[i.max(k)][i.min(k)] else {
-                    continue;
-                };
-                let dm = t.d(ir, m);
-                if ir.as_num(dm) != Some(0.0) {
-                    neg.push(ir.mul(dm, self.du[k]));
+            match mass_du {
+                Some(mdu) => neg.push(t.d(ir, mdu[i])),
+                None => {
+                    for k in 0..n {
+                        let Some(m) = self.mass[i.max(k)][i.min(k)] else {
+                            continue;
+                        };
+                        let dm = t.d(ir, m);
+                        if ir.as_num(dm) != Some(0.0) {
+                            neg.push(ir.mul(dm, accel[k]));
+                        }
+                    }
                 }
             }
             let df = t.d(ir, self.forcing[i]);
             rhs.push(ir.sum(vec![df], neg));
         }
         let ddu = self.factor.solve(ir, &rhs);
+        // From here on the accelerations move with the leaf.
+        let mut t = Tangent::new(leaf);
         for (k, d) in ddu.iter().enumerate() {
-            t.seed(self.du[k], *d);
+            t.seed(accel[k], *d);
         }
-        let rates = self.rates.iter().map(|r| t.d(ir, *r)).collect();
+        let mut rates: Vec<Nid> = self.kinematics.iter().map(|r| t.d(ir, *r)).collect();
+        rates.extend(&ddu);
+        rates.extend(self.extra.iter().map(|r| t.d(ir, *r)));
         let outputs = self.outputs.iter().map(|y| t.d(ir, *y)).collect();
         let g = match &self.closure {
             Some((residuals, _, _)) => residuals.iter().map(|g| t.d(ir, *g)).collect(),
@@ -136,7 +155,6 @@ impl Linearizable<'_> {
         };
         (Column { rates, outputs }, g)
     }
-
     /// The column of state `j` with the dependent coordinates following
     /// it: `col_j + Σ_d col_d s_d`, `G_d s = −G_j`.
     fn through_closure(

@@ -31,6 +31,11 @@ impl<'a> Lowering<'a> {
         }
     }
 
+    /// The IR being built (for operations beside lowering).
+    pub fn ir(&mut self) -> &mut Ir {
+        self.ir
+    }
+
     /// `true` if `e` is exactly zero.
     pub fn is_zero(&self, e: ExprId) -> bool {
         self.arena.is_zero(e)

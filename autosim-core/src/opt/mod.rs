@@ -3,6 +3,7 @@
 //! call order) and operation counts (the paper's Eqs. 12-23), with the
 //! interface generated code exposes, a text form and a verifier.
 
+mod articulated;
 mod constrained;
 mod elim;
 mod interface;

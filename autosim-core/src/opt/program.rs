@@ -3,6 +3,7 @@
 //! unrolled solve of the mass matrix; outputs; the mass matrix and forcing
 //! alone; the initial state), plus the interface generated code exposes.
 
+use super::articulated::TreeBody;
 use super::constrained;
 use super::elim::Elimination;
 use super::interface::{Interface, StateLayout};
@@ -10,11 +11,12 @@ use super::ir::{Ir, Leaf, Nid, Op};
 use super::linearize::{Linear, Linearizable};
 use super::lower::{Lowering, UnboundSymbol};
 use super::schedule::{Block, Guard, Options, Task, schedule};
-use super::solve::{Solve, ldlt_solve};
+use super::solve::{Solve, ldlt_solve, recursive_solve};
 use super::split::Split;
+use super::tangent::substitute;
 use crate::expr::{ExprId, Func, SymId};
-use crate::mech::{Equations, ItemRef};
-use crate::model::ResolvedModel;
+use crate::mech::{BodyKinetics, Equations, ItemRef};
+use crate::model::{Formulation, ResolvedModel};
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// What a block computes; each kind is one function of generated code.
@@ -158,14 +160,56 @@ impl std::fmt::Display for ProgramError {
 /// Builds the program of a resolved model from its equations.
 pub fn build(model: &mut ResolvedModel, eqs: &Equations) -> Result<Program, ProgramError> {
     let split = Split::new(eqs);
-    let interface = Interface::new(model, eqs, &split);
-    let mut ir = Ir::new();
-    let lowered = match split.is_tree() {
-        true => {
-            let leaves = leaves(model, eqs, &split, &mut ir)?;
-            lower(model, eqs, &mut ir, &leaves)?
+    if !split.is_tree() {
+        return build_route(model, eqs, &split, Route::Constrained);
+    }
+    match model.formulation {
+        Formulation::MassMatrix => build_route(model, eqs, &split, Route::MassMatrix),
+        Formulation::Recursive => build_route(model, eqs, &split, Route::Recursive),
+        // With small variables the mass matrix is truncated term by term;
+        // the recursion would truncate a different (first-order equal)
+        // model, so the choice keeps the mass matrix.
+        Formulation::Auto if model.system.arena.has_small_symbols() => {
+            build_route(model, eqs, &split, Route::MassMatrix)
         }
-        false => constrained::lower(model, eqs, &split, &mut ir)?,
+        Formulation::Auto => {
+            let matrix = build_route(model, eqs, &split, Route::MassMatrix)?;
+            let recursive = build_route(model, eqs, &split, Route::Recursive)?;
+            let cost = |p: &Program| p.block(BlockKind::Derivatives).ops.total();
+            Ok(match cost(&recursive) < cost(&matrix) {
+                true => recursive,
+                false => matrix,
+            })
+        }
+    }
+}
+
+/// How the program solves for the accelerations.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Route {
+    /// A tree, by the mass matrix's LDLᵀ.
+    MassMatrix,
+    /// A tree, by the articulated-body recursion.
+    Recursive,
+    /// With constraints or motions (Kane's method for dependent speeds).
+    Constrained,
+}
+
+/// The program of one route.
+fn build_route(
+    model: &mut ResolvedModel,
+    eqs: &Equations,
+    split: &Split,
+    route: Route,
+) -> Result<Program, ProgramError> {
+    let interface = Interface::new(model, eqs, split);
+    let mut ir = Ir::new();
+    let lowered = match route {
+        Route::Constrained => constrained::lower(model, eqs, split, &mut ir)?,
+        tree => {
+            let leaves = leaves(model, eqs, split, &mut ir)?;
+            lower(model, eqs, &mut ir, &leaves, tree == Route::Recursive)?
+        }
     };
     let linear = model
         .linearize
@@ -240,6 +284,8 @@ pub(super) struct Lowered {
     pub constraint_checks: Vec<(Nid, usize)>,
     /// d/dt of the extra states.
     pub extra: Vec<Nid>,
+    /// The same, reading the state's accelerations as `Leaf::Accel`.
+    pub extra_in_rates: Vec<Nid>,
     /// The outputs.
     pub outputs: Vec<Nid>,
     /// The initial state.
@@ -265,6 +311,16 @@ pub(super) struct Assembly {
     /// The factored Jacobian `G_d` of the residuals by the dependent
     /// coordinates.
     pub elim: Elimination,
+}
+
+/// `nodes` with `Leaf::Accel(k)` replaced by `du[k]`.
+pub(super) fn with_accelerations(ir: &mut Ir, nodes: &[Nid], du: &[Nid]) -> Vec<Nid> {
+    let map: FxHashMap<Nid, Nid> = du
+        .iter()
+        .enumerate()
+        .map(|(k, d)| (ir.leaf(Leaf::Accel(k)), *d))
+        .collect();
+    substitute(ir, nodes, &map)
 }
 
 /// Lowers `e`, naming `item` on failure.
@@ -316,6 +372,7 @@ fn lower(
     eqs: &Equations,
     ir: &mut Ir,
     leaves: &FxHashMap<SymId, Nid>,
+    recursive: bool,
 ) -> Result<Lowered, ProgramError> {
     let sys = &mut model.system;
     let n = eqs.coordinates.len();
@@ -345,17 +402,27 @@ fn lower(
     }
     user_calls.extend(lw.user_calls());
 
-    let solve = ldlt_solve(ir, &mass, &forcing);
-    let mut with_du = leaves.clone();
+    let solve = match recursive {
+        false => ldlt_solve(ir, &mass, &forcing),
+        true => {
+            let mut lw = Lowering::new(&mut sys.arena, ir, leaves);
+            let bodies = tree_bodies(&mut lw, &eqs.tree)?;
+            recursive_solve(ir, bodies, &forcing)
+        }
+    };
+    // Extra states read the accelerations as leaves, replaced by the
+    // solve's values (the linearization differentiates the leaf form).
+    let mut with_rates = leaves.clone();
     for (i, s) in eqs.speed_rates.iter().enumerate() {
-        with_du.insert(*s, solve.du[i]);
+        with_rates.insert(*s, ir.leaf(Leaf::Accel(i)));
     }
-    let mut lw = Lowering::new(&mut sys.arena, ir, &with_du);
+    let mut lw = Lowering::new(&mut sys.arena, ir, &with_rates);
     let state_syms = eqs.states.clone();
-    let extra = lower_all(&mut lw, &eqs.state_derivatives, |k| {
+    let extra_in_rates = lower_all(&mut lw, &eqs.state_derivatives, |k| {
         ItemRef::State(state_syms[k])
     })?;
     user_calls.extend(lw.user_calls());
+    let extra = with_accelerations(ir, &extra_in_rates, &solve.du);
 
     // Outputs read du/dt from the derivatives.
     let mut with_accel = leaves.clone();
@@ -380,6 +447,7 @@ fn lower(
         solve,
         constraint_checks: Vec::new(),
         extra,
+        extra_in_rates,
         outputs,
         initial,
         sub_args,
@@ -387,6 +455,69 @@ fn lower(
         named: Vec::new(),
         assembly: None,
     })
+}
+
+/// The bodies' data for the recursive solve, lowered.
+fn tree_bodies(
+    lw: &mut Lowering<'_>,
+    tree: &[BodyKinetics],
+) -> Result<Vec<TreeBody>, ProgramError> {
+    let mut out = Vec::with_capacity(tree.len());
+    for b in tree {
+        let mut one = |e: ExprId| lower_one(lw, e, ItemRef::Model);
+        let mut rotation = [[Nid(0); 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                rotation[i][j] = one(b.rotation[i][j])?;
+            }
+        }
+        let offset = [one(b.offset[0])?, one(b.offset[1])?, one(b.offset[2])?];
+        let m = one(b.mass)?;
+        let h = [
+            one(b.first_moment[0])?,
+            one(b.first_moment[1])?,
+            one(b.first_moment[2])?,
+        ];
+        let mut j = [[Nid(0); 3]; 3];
+        for r in 0..3 {
+            for c in 0..3 {
+                j[r][c] = one(b.inertia[r][c])?;
+            }
+        }
+        let mut speeds = Vec::with_capacity(b.speeds.len());
+        for (k, s) in &b.speeds {
+            let mut v = [Nid(0); 6];
+            for r in 0..6 {
+                v[r] = one(s[r])?;
+            }
+            speeds.push((*k, v));
+        }
+        out.push(TreeBody {
+            parent: b.parent,
+            rotation,
+            offset,
+            inertia: rigid_inertia(lw.ir(), m, &h, &j),
+            speeds,
+        });
+    }
+    Ok(out)
+}
+
+/// `[[J, h̃], [h̃ᵀ, m 1]]` about the origin (`h = m c`).
+fn rigid_inertia(ir: &mut Ir, m: Nid, h: &[Nid; 3], j: &[[Nid; 3]; 3]) -> [[Nid; 6]; 6] {
+    let zero = ir.num(0.0);
+    let (n0, n1, n2) = (ir.neg(h[0]), ir.neg(h[1]), ir.neg(h[2]));
+    let skew = [[zero, n2, h[1]], [h[2], zero, n0], [n1, h[0], zero]];
+    let mut out = [[zero; 6]; 6];
+    for r in 0..3 {
+        for c in 0..3 {
+            out[r][c] = j[r][c];
+            out[r][3 + c] = skew[r][c];
+            out[3 + c][r] = skew[r][c];
+        }
+        out[3 + r][3 + r] = m;
+    }
+    out
 }
 
 /// Names for generated code: hints for readable values, and the names the
@@ -471,16 +602,10 @@ fn stores(values: &[Nid], first: usize) -> impl Iterator<Item = Task> + '_ {
 
 /// What the linearization differentiates.
 fn linearizable<'a>(lowered: &'a Lowered, interface: &Interface) -> Linearizable<'a> {
-    let rates: Vec<Nid> = lowered
-        .kinematics
-        .iter()
-        .chain(&lowered.solve.du)
-        .chain(&lowered.extra)
-        .copied()
-        .collect();
     let n_outputs = interface.outputs.len();
     Linearizable {
-        rates,
+        kinematics: &lowered.kinematics,
+        extra: &lowered.extra_in_rates,
         du: &lowered.solve.du,
         mass: &lowered.mass,
         forcing: &lowered.forcing,

@@ -5,6 +5,7 @@
 //! keeps the factor as sparse as the mass matrix for any tree: entries known
 //! to be zero at generation time, and their fill-in, are skipped.
 
+use super::articulated::{Articulated, TreeBody};
 use super::ir::{Ir, Nid};
 
 /// The IR of the solve of `M du = f`.
@@ -16,7 +17,38 @@ pub struct Solve {
     /// `(name hint, node)` for the factor's entries, for readable code.
     pub hints: Vec<(String, Nid)>,
     /// The factor, for more right-hand sides.
-    pub factor: Factor,
+    pub factor: Solver,
+}
+
+/// A factored mass matrix: an LDLᵀ of `M`, or the articulated-body
+/// recursion (which never forms `M`).
+pub enum Solver {
+    /// `M = L D Lᵀ`.
+    Ldlt(Factor),
+    /// The articulated-body recursion.
+    Articulated(Box<Articulated>),
+}
+
+impl Solver {
+    /// `M⁻¹ f` (speed order).
+    pub fn solve(&self, ir: &mut Ir, f: &[Nid]) -> Vec<Nid> {
+        match self {
+            Solver::Ldlt(factor) => factor.solve(ir, f),
+            Solver::Articulated(a) => a.solve(ir, f),
+        }
+    }
+}
+
+/// `M du = f` by the articulated-body recursion over `bodies`.
+pub(super) fn recursive_solve(ir: &mut Ir, bodies: Vec<TreeBody>, f: &[Nid]) -> Solve {
+    let a = Articulated::new(ir, bodies, f.len());
+    let du = a.solve(ir, f);
+    Solve {
+        pivots: a.pivots.clone(),
+        du,
+        hints: Vec::new(),
+        factor: Solver::Articulated(Box::new(a)),
+    }
 }
 
 /// `M = L D Lᵀ` in the IR, speeds eliminated in `perm` order.
@@ -132,6 +164,6 @@ pub fn ldlt_solve(ir: &mut Ir, m: &[Vec<Option<Nid>>], f: &[Nid]) -> Solve {
         pivots,
         du,
         hints,
-        factor,
+        factor: Solver::Ldlt(factor),
     }
 }

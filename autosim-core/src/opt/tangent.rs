@@ -27,10 +27,10 @@ impl Tangent {
         }
     }
 
-    /// Declares `d node / d wrt = value` (used instead of differentiating
-    /// `node`).
-    pub fn seed(&mut self, node: Nid, value: Nid) {
-        self.memo.insert(node, value);
+    /// Declares `d leaf / d wrt = value` for another leaf (the IR's
+    /// rewriting can absorb an inner node into its users, never a leaf).
+    pub fn seed(&mut self, leaf: Nid, value: Nid) {
+        self.memo.insert(leaf, value);
     }
 
     /// `d n / d wrt`. Iterative: dependency chains of big models are

@@ -152,6 +152,8 @@ option_keys! {
         Outputs = "outputs",
         /// `linearize: true` — generate `linearize` (A, B, C, D).
         Linearize = "linearize",
+        /// `formulation: auto` (or `mass_matrix`, `recursive`).
+        Formulation = "formulation",
     }
 }
 

@@ -28,6 +28,7 @@ pub const SCENE_OPTIONS: &[&str] = &[
     "small",
     "lock",
     "linearize",
+    "formulation",
 ];
 
 /// `Some` if the macro input starts with `file =`: the path and options,
@@ -117,13 +118,27 @@ fn option(input: ParseStream, key: &syn::Ident, scene: &mut Scene) -> syn::Resul
             let b: syn::LitBool = input.parse()?;
             scene.linearize = Some(b.value);
         }
+        "formulation" => {
+            let f: syn::Ident = input.parse()?;
+            scene.formulation = Some(match f.to_string().as_str() {
+                "auto" => crate::model::Formulation::Auto,
+                "mass_matrix" => crate::model::Formulation::MassMatrix,
+                "recursive" => crate::model::Formulation::Recursive,
+                _ => {
+                    return Err(syn::Error::new(
+                        f.span(),
+                        "the formulation is `auto`, `mass_matrix` or `recursive`",
+                    ));
+                }
+            });
+        }
         "small" => scene.small = names(input)?,
         "lock" => scene.lock = names(input)?,
         other => {
             return Err(syn::Error::new(
                 key.span(),
                 format!(
-                    "unknown model option `{other}`: the options are `name`, `float`, `threshold`, `outputs`, `small`, `lock` and `linearize`"
+                    "unknown model option `{other}`: the options are `name`, `float`, `threshold`, `outputs`, `small`, `lock`, `linearize` and `formulation`"
                 ),
             ));
         }

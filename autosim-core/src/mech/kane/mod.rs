@@ -19,8 +19,10 @@ mod constraints;
 mod loads;
 mod mass;
 mod recursion;
+mod tree;
 
 pub use constraints::{ConstraintEquations, ConstraintRow, Prescribed};
+pub use tree::BodyKinetics;
 
 use super::error::{ItemRef, LocatedError, ModelError};
 use super::joint::UnitMotion;
@@ -52,6 +54,8 @@ pub struct Equations {
     pub constraints: ConstraintEquations,
     /// The prescribed coordinates (none without motions).
     pub prescribed: Vec<Prescribed>,
+    /// Each body's data for a recursive solve of `M du/dt = f`.
+    pub tree: Vec<BodyKinetics>,
 }
 
 impl Equations {
@@ -89,6 +93,7 @@ impl System {
         }
         self.moving_point_forcing(&mut forcing)?;
         let mass = self.mass_matrix(&motions, &composite);
+        let tree = self.tree_kinetics(&motions);
         let state_derivatives = self.state_derivatives()?;
         let prescribed = self.prescribed()?;
         let constraints = self.constraint_equations(&prescribed)?;
@@ -103,6 +108,7 @@ impl System {
             state_derivatives,
             constraints,
             prescribed,
+            tree,
         })
     }
 

@@ -102,6 +102,26 @@ pub fn chain_sim(n: usize, spatial: bool, stiffness_scale: f64) -> String {
 }
 
 fn main() {
+    // `gen_chains DIR N...`: chain-planar-N and chain-spatial-N into DIR
+    // (the benchmarks' large chains); no arguments: the example models.
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if let Some((dir, ns)) = args.split_first() {
+        for n in ns {
+            let n: usize = n.parse().unwrap_or_else(|_| {
+                eprintln!("usage: gen_chains [DIR N...]");
+                std::process::exit(2)
+            });
+            for spatial in [false, true] {
+                let kind = if spatial { "spatial" } else { "planar" };
+                let path = std::path::Path::new(dir).join(format!("chain_{kind}_{n}.sim"));
+                if let Err(e) = std::fs::write(&path, chain_sim(n, spatial, 1.0)) {
+                    eprintln!("{}: {e}", path.display());
+                    std::process::exit(1);
+                }
+            }
+        }
+        return;
+    }
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/models");
     let mut written = 0;
     for (spatial, ns) in [

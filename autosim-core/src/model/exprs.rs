@@ -123,6 +123,11 @@ impl Resolver<'_> {
                 None
             }
             None => {
+                if name.text == "pi"
+                    && let Some(pi) = crate::expr::Number::float(std::f64::consts::PI)
+                {
+                    return Some(Value::Scalar(self.sys.arena.num(pi)));
+                }
                 if let Some(&(b, axis)) = self.uv_short.get(&name.text) {
                     return Some(Value::Vector(self.sys.unit_vector(b, axis)));
                 }

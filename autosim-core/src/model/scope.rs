@@ -100,17 +100,17 @@ impl<'a> Resolver<'a> {
 
     /// Declares a name; reports a duplicate (pointing at both places).
     pub fn declare(&mut self, name: &ast::Name, what: Named) -> bool {
-        if name.text == "t" || name.text == "N" {
+        if name.text == "t" || name.text == "N" || name.text == "pi" {
             self.push(
                 Diagnostic::error(
                     name.span,
                     format!(
                         "`{}` is reserved ({})",
                         name.text,
-                        if name.text == "t" {
-                            "time"
-                        } else {
-                            "the inertial frame"
+                        match name.text.as_str() {
+                            "t" => "time",
+                            "pi" => "the constant π",
+                            _ => "the inertial frame",
                         }
                     ),
                 )

@@ -120,6 +120,13 @@ impl Resolver<'_> {
                             k = n.text
                         )
                     }
+                    (Value::Scalar(_), Expr::Name(n)) if self.shadowed_axis(&n.text).is_some() => {
+                        let (body, axis) = self.shadowed_axis(&n.text).unwrap_or_default();
+                        format!(
+                            "; `{}` names a scalar declared in the model, which hides the unit vector of the same spelling: write `{body}.{axis}` for axis {axis} of body `{body}`",
+                            n.text
+                        )
+                    }
                     (Value::Scalar(_), _) => {
                         "; multiply it by a unit vector, e.g. `F*b1`".to_string()
                     }
@@ -139,6 +146,21 @@ impl Resolver<'_> {
                 None
             }
         }
+    }
+
+    /// The body and axis a name like `c2` would be the unit vector of,
+    /// when a declared name hides that shorthand.
+    fn shadowed_axis(&self, name: &str) -> Option<(String, u8)> {
+        let digit = name.chars().last()?.to_digit(10)?;
+        if !(1..=3).contains(&digit) || self.uv_short.contains_key(name) {
+            return None;
+        }
+        let stem = &name[..name.len() - 1];
+        self.sys
+            .bodies()
+            .iter()
+            .find(|b| b.name.to_lowercase() == stem)
+            .map(|b| (b.name.clone(), digit as u8))
     }
 
     /// A point (a body stands for its origin).

@@ -190,6 +190,10 @@ pub struct Interface {
     /// The states of the linear model (state-vector positions; all but the
     /// dependent coordinates), when the linearization is generated.
     pub linear_states: Option<Vec<usize>>,
+    /// Cautions for the user, printed in the model's documentation (e.g. a
+    /// body whose initial angles sit on its rotation sequence's
+    /// singularity).
+    pub cautions: Vec<String>,
 }
 
 impl Interface {
@@ -255,6 +259,7 @@ impl Interface {
             motions: model.motion_infos(),
             closures: closures(eqs, split),
             linear_states: None,
+            cautions: model.singular_starts(),
         }
     }
 
@@ -280,6 +285,43 @@ fn closures(eqs: &Equations, split: &Split) -> Vec<Closure> {
 }
 
 impl ResolvedModel {
+    /// A note for every body whose three-angle rotation starts where its
+    /// kinematical equations divide by zero: the middle angle at 0 (or π)
+    /// for a repeated axis (3-1-3), at ±π/2 for three distinct axes
+    /// (1-2-3). The first `derivatives` call would fail there.
+    fn singular_starts(&self) -> Vec<String> {
+        use crate::expr::{Bindings, NoUserFunctions};
+        use crate::mech::Rotation;
+        let sys = &self.system;
+        let b = Bindings::with_defaults(&sys.arena);
+        let mut notes = Vec::new();
+        for body in sys.bodies() {
+            let Rotation::Sequence([a, _, c]) = body.joint.rotation else {
+                continue;
+            };
+            let n = body.coordinates.len();
+            if n < 3 {
+                continue;
+            }
+            let middle = &sys.coordinates()[body.coordinates[n - 2]];
+            let angle = sys.arena.eval(middle.initial_q, &b, &mut NoUserFunctions);
+            let (s, co) = angle.sin_cos();
+            let singular = if a == c {
+                s.abs() < 1e-9
+            } else {
+                co.abs() < 1e-9
+            };
+            if singular {
+                let q = &sys.arena.symbol(middle.q).name;
+                notes.push(format!(
+                    "Body `{}` starts at a singularity of its rotation sequence ({q} = {angle}): its kinematical equations divide by zero there (the angle rates are not finite). Start it elsewhere (`initial: [...]`) or use `rotate: quaternion`.",
+                    body.name
+                ));
+            }
+        }
+        notes
+    }
+
     /// The constraints with their dependents.
     fn constraint_infos(&self, eqs: &Equations) -> Vec<ConstraintInfo> {
         let sys = &self.system;

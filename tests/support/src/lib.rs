@@ -1,6 +1,6 @@
 //! What the workspace's tests share, so no test crate copies it:
 //!
-//! - [`reference`]: the independent reference data in `tests/reference`
+//! - [`reference`](mod@reference): the independent reference data in `tests/reference`
 //!   (read from the repository, never from outside it);
 //! - [`Rng`]: a small deterministic generator, so failures reproduce;
 //! - [`rel_err`] and [`max_diff`]: the error norms the tests report;

@@ -29,7 +29,7 @@ fn values_struct(
         let unit = if q.unit.is_empty() {
             String::new()
         } else {
-            format!(" [{}]", q.unit)
+            format!(" \\[{}\\]", q.unit)
         };
         d.extend(doc(&format!("Default: `{:?}`{unit}.", q.default)));
         let lit = literal(q.default, float);

@@ -1,0 +1,118 @@
+//! Sampled control: a discrete-time controller that runs at a fixed sample
+//! period beside any integrator, reads the time, state and outputs at each
+//! sample instant, and sets the model's inputs, which hold until the next
+//! sample (a zero-order hold), as a real controller's outputs do.
+//!
+//! Why: user code called from the equations (`extern fn`, `extern sub`)
+//! runs at every evaluation — every Runge–Kutta stage, every rejected
+//! trial step of an adaptive method, every finite-difference column — so
+//! state it keeps between calls (a thruster's on-time, a filter) advances
+//! at times the integrator chooses, and the result depends on the
+//! integrator. A controller run here is called exactly once per sample
+//! instant whatever the integrator: between samples the model is a smooth
+//! function of time and state, and any integrator converges to the same
+//! answer.
+
+use super::driver::Driver;
+use super::{MAX_RECORDED_INPUTS, Observer, RunError, RunSettings, RunSummary};
+use crate::integrate::Stepper;
+use crate::{Float, IntegrationError, Model};
+
+/// A discrete-time controller for [`run_sampled`].
+///
+/// Closures `FnMut(t, &x, &y, &mut inputs)` are controllers.
+pub trait Controller<M: Model> {
+    /// At a sample instant `t` with state `x` and outputs `y`: write the
+    /// inputs to hold until the next sample into `inputs`
+    /// ([`Model::INPUT_NAMES`] order; it holds the current inputs, so
+    /// leave alone what the controller does not set).
+    fn sample(&mut self, t: M::Float, x: &M::State, y: &M::Outputs, inputs: &mut [M::Float]);
+}
+
+impl<M, C> Controller<M> for C
+where
+    M: Model,
+    C: FnMut(M::Float, &M::State, &M::Outputs, &mut [M::Float]),
+{
+    fn sample(&mut self, t: M::Float, x: &M::State, y: &M::Outputs, inputs: &mut [M::Float]) {
+        self(t, x, y, inputs)
+    }
+}
+
+/// Like [`run`](super::run()), with `controller` sampled every `period`
+/// from the start: steps land on every sample instant and on every output
+/// time, the controller runs first at a sample instant (the outputs
+/// reported there already use its new inputs), and the stepper is reset
+/// after each sample (the inputs jump). Never allocates.
+///
+/// # Errors
+/// As [`run`](super::run()); a `period` that is not positive and finite is
+/// [`IntegrationError::InvalidSettings`].
+pub fn run_sampled<M, S, C, O>(
+    model: &mut M,
+    stepper: &mut S,
+    x: &mut M::State,
+    settings: &RunSettings<M::Float>,
+    period: M::Float,
+    controller: &mut C,
+    observer: &mut O,
+) -> Result<RunSummary<M::Float>, RunError<O::Error>>
+where
+    M: Model,
+    S: Stepper<M> + ?Sized,
+    C: Controller<M> + ?Sized,
+    O: Observer<M> + ?Sized,
+{
+    if !(period > M::Float::ZERO && period.is_finite()) {
+        let reason = "the sample period must be positive and finite";
+        return Err(IntegrationError::InvalidSettings { reason }.into());
+    }
+    let mut driver = Driver::begin(model, stepper, x, settings)?;
+    sample(&mut driver, model, stepper, x, controller)?;
+    driver.emit(model, x, observer)?;
+    let intervals = settings.output_count();
+    let (mut j, mut k) = (1u64, 1u64);
+    while k <= intervals {
+        let t_sample = settings.start + M::Float::from_f64(j as f64) * period;
+        let t_out = if k == intervals {
+            settings.stop
+        } else {
+            settings.start + M::Float::from_f64(k as f64) * settings.output_interval
+        };
+        let target = if t_sample < t_out { t_sample } else { t_out };
+        driver.advance(model, stepper, x, target, settings.step)?;
+        if t_sample <= t_out {
+            sample(&mut driver, model, stepper, x, controller)?;
+            j += 1;
+        }
+        if t_out <= t_sample {
+            driver.emit(model, x, observer)?;
+            k += 1;
+        }
+    }
+    Ok(driver.finish(stepper))
+}
+
+/// Runs the controller at the driver's time and sets the inputs it chose.
+fn sample<M, S, C>(
+    driver: &mut Driver<M>,
+    model: &mut M,
+    stepper: &mut S,
+    x: &M::State,
+    controller: &mut C,
+) -> Result<(), IntegrationError>
+where
+    M: Model,
+    S: Stepper<M> + ?Sized,
+    C: Controller<M> + ?Sized,
+{
+    let t = driver.time();
+    let mut inputs = [M::Float::ZERO; MAX_RECORDED_INPUTS];
+    let inputs = &mut inputs[..M::INPUT_NAMES.len().min(MAX_RECORDED_INPUTS)];
+    model.input_values(inputs);
+    let y = *driver.outputs(model, x)?;
+    controller.sample(t, x, &y, inputs);
+    model.set_input_values(inputs);
+    stepper.reset();
+    Ok(())
+}

@@ -17,6 +17,47 @@ mod model {
 
 pub use model::chain_planar3::{ChainPlanar3, Parameters};
 
+mod single {
+    autosim::model!(
+        file = "../../examples/models/chain_planar_3.sim",
+        name = ChainPlanar3F32,
+        float = f32
+    );
+}
+
+pub use single::chain_planar3_f32::ChainPlanar3F32;
+
+/// The embedded check's run: the 3-link planar chain in `f32`, from
+/// `q = (0.3, -0.2, 0.1)` at rest, 2000 RK4 steps of 1 ms with the default
+/// parameters. The Cortex-M4F build (`tests/embedded`, run in QEMU) and the
+/// host compute this same function; their final states must agree.
+///
+/// # Errors
+/// The integrator's error.
+pub fn swing_f32() -> Result<[f32; 6], IntegrationError> {
+    let mut model = ChainPlanar3F32::new();
+    let mut rk4 = Rk4::new();
+    let mut x = [0.3, -0.2, 0.1, 0.0, 0.0, 0.0];
+    let h = 1e-3f32;
+    for n in 0..2000u16 {
+        rk4.step(&mut model, f32::from(n) * h, &mut x, h)?;
+    }
+    Ok(x)
+}
+
+/// One `derivatives` call of the `f32` chain (the embedded check measures
+/// its stack).
+///
+/// # Errors
+/// The model's error (a singular mass matrix).
+pub fn derivatives_f32(
+    model: &mut ChainPlanar3F32,
+    x: &[f32; 6],
+    dx: &mut [f32; 6],
+) -> Result<(), autosim::runtime::ModelError> {
+    model.derivatives(0.0, x, dx)
+}
+
 mod closed_loop {
     autosim::model!(file = "../../examples/models/four_bar.sim");
 }

@@ -6,79 +6,15 @@
 //! `cargo run --release --example sampled_control [-- OUTPUT_FOLDER]`
 
 use autosim::runtime::integrate::{AbmOrder, AdamsBashforthMoulton, DormandPrince, Rk4};
-use autosim::runtime::{Model, RunSettings, Stepper, run, run_sampled};
 use std::fmt::Write;
 
-mod models {
-    autosim::model!(file = "examples/models/satellite.sim");
-    autosim::model!(file = "examples/models/satellite_sampled.sim");
-}
-use models::satellite::Satellite;
-use models::satellite_sampled::SatelliteSampled;
-
 #[macro_use]
-#[allow(unused_macros)]
+#[allow(unused_macros, dead_code)]
 #[path = "common/figure8.rs"]
 mod figure8;
-use figure8::Figure8;
-
-figure8_externs!(models::satellite => f64);
-
-impl models::satellite_sampled::Externs for Figure8 {
-    fn cmd(&mut self, t: f64) -> [f64; 2] {
-        Figure8::cmd(self, t)
-    }
-}
-
-const STOP: f64 = 15.0;
-
-fn in_derivatives<S: Stepper<Satellite<Figure8>>>(mut stepper: S, step: f64) -> ([f64; 3], u64) {
-    let mut m = Satellite::new(Figure8::new());
-    let mut x = m.initial_state();
-    let settings = RunSettings::new(0.0, STOP, step, STOP).with_max_steps(100_000_000);
-    let mut end = [0.0; 3];
-    let summary = run(
-        &mut m,
-        &mut stepper,
-        &mut x,
-        &settings,
-        &mut |_t, _x: &[f64; 20], y: &[f64; 6]| {
-            end = [y[0], y[1], y[2]];
-        },
-    )
-    .expect("the slew runs");
-    (end, summary.evaluations)
-}
-
-fn sampled<S: Stepper<SatelliteSampled<Figure8>>>(mut stepper: S, step: f64) -> ([f64; 3], u64) {
-    let mut m = SatelliteSampled::new(Figure8::new());
-    let mut x = m.initial_state();
-    let settings = RunSettings::new(0.0, STOP, step, STOP).with_max_steps(100_000_000);
-    let mut logic = Figure8::new();
-    let mut controller = |t: f64, _x: &[f64; 20], y: &[f64; 9], w: &mut [f64]| {
-        for axis in 0..3 {
-            w[axis] = logic.thrust(t, (axis + 1) as f64, y[axis]);
-        }
-    };
-    let mut end = [0.0; 3];
-    let summary = run_sampled(
-        &mut m,
-        &mut stepper,
-        &mut x,
-        &settings,
-        0.01,
-        &mut controller,
-        &mut |_t, _x: &[f64; 20], y: &[f64; 9]| {
-            end = [y[3], y[4], y[5]];
-        },
-    )
-    .expect("the slew runs");
-    (end, summary.evaluations)
-}
-
-fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max)
-}
+#[path = "common/slew_forms.rs"]
+mod slew_forms;
+use slew_forms::{distance, in_derivatives, sampled};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let folder = std::env::args()

@@ -46,6 +46,27 @@ macro_rules! include_model {
     };
 }
 
+/// The user's guide, chapter by chapter (`docs/guide/` in the repository):
+/// every code block is compiled and run by `cargo test`.
+pub mod guide {
+    #[doc = include_str!("../docs/guide/01_first_model.md")]
+    pub mod first_model {}
+    #[doc = include_str!("../docs/guide/02_parameters_inputs_outputs.md")]
+    pub mod parameters_inputs_outputs {}
+    #[doc = include_str!("../docs/guide/03_user_code.md")]
+    pub mod user_code {}
+    #[doc = include_str!("../docs/guide/04_build_scripts.md")]
+    pub mod build_scripts {}
+    #[doc = include_str!("../docs/guide/05_scenes.md")]
+    pub mod scenes {}
+    #[doc = include_str!("../docs/guide/06_f32_and_embedded.md")]
+    pub mod f32_and_embedded {}
+    #[doc = include_str!("../docs/guide/07_generated_code.md")]
+    pub mod generated_code {}
+    #[doc = include_str!("../docs/guide/08_constraints_and_linearization.md")]
+    pub mod constraints_and_linearization {}
+}
+
 /// The README's example, compiled and run as a doctest.
 #[doc = include_str!("../README.md")]
 #[cfg(doctest)]

@@ -20,12 +20,12 @@
 # The machine may be shared: every compile and timing run is niced (nice -n 10); each
 # timing is a median over 201 rounds x 512 random states, repeated REPS times (Pinocchio: the
 # repetition is the outer loop over all cases in one process; autosim: REPS separate perf runs)
-# and the minimum of the medians is reported.
+# and the median of the medians is reported (a typical run, not the best one).
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 REPO="$(cd "$HERE/../.." && pwd)"
-REF_DIR="${REF_DIR:-/work/shared/reference}"
+REF_DIR="${REF_DIR:-$REPO/tests/reference}"
 REPS="${REPS:-5}"
 PIN_BUILDS="${PIN_BUILDS:-native portable lib}"
 NICE="nice -n 10"
@@ -125,7 +125,7 @@ HEAD_SHA="$(git -C "$REPO" rev-parse --short HEAD 2>/dev/null || echo '?')"
 DIRTY="$(git -C "$REPO" --no-optional-locks status --porcelain --untracked-files=no 2>/dev/null | wc -l)"
 export BENCH_GIT="commit $HEAD_SHA, $DIRTY tracked files with uncommitted changes in the working tree"
 $PY - "$HERE" <<'EOF'
-import json, os, sys
+import json, os, statistics, sys
 here = sys.argv[1]
 env = os.environ
 
@@ -135,7 +135,8 @@ def lines(name):
 
 auto = {}
 for r in lines("autosim_perf.jsonl"):
-    auto.setdefault(r["model"], []).append(r["ns_per_call"])
+    if "ns_per_call" in r:  # the perf example also prints linearization lines
+        auto.setdefault(r["model"], []).append(r["ns_per_call"])
 pin = {}
 for r in lines("results.jsonl"):
     pin[(r["model"], r["algorithm"], r["build"])] = r
@@ -147,8 +148,9 @@ builds = env["BENCH_BUILDS"].split()
 head = builds[0]
 
 def ns(model, alg, build):
+    # The median of the repetitions' medians (a typical run, not the best).
     r = pin.get((model, alg, build))
-    return r["ns_per_call"] if r else None
+    return statistics.median(r["medians"]) if r else None
 
 def fmt(x, spec=".1f"):
     return "n/a" if x is None else format(x, spec)
@@ -158,7 +160,7 @@ out.append("| model | n_states | autosim ns/call | Pinocchio ABA ns/call | ratio
            "| Pinocchio CRBA+NLE+Cholesky ns/call | ratio CRBA/autosim |")
 out.append("|---|---:|---:|---:|---:|---:|---:|")
 for m in models:
-    a = min(auto[m]) if m in auto else None
+    a = statistics.median(auto[m]) if m in auto else None
     p = ns(m, "aba", head)
     c = ns(m, "crba-chol", head)
     n_states = pin.get((m, "aba", head), {}).get("n_states", "")
@@ -166,7 +168,7 @@ for m in models:
                f"{fmt(p / a if a and p else None, '.1f')}x | {fmt(c)} | "
                f"{fmt(c / a if a and c else None, '.1f')}x |")
 main_table = "\n".join(out)
-print(f"\nautosim vs Pinocchio ({head} build), min of {env['BENCH_REPS']} medians:\n")
+print(f"\nautosim vs Pinocchio ({head} build), median of {env['BENCH_REPS']} medians:\n")
 print(main_table)
 
 var = []
@@ -176,7 +178,7 @@ if len(builds) > 1:
     var.append(hdr)
     var.append("|---|" + "---:|" * (1 + 2 * len(builds)))
     for m in models:
-        a = min(auto[m]) if m in auto else None
+        a = statistics.median(auto[m]) if m in auto else None
         cells = [fmt(ns(m, "aba", b)) for b in builds] + [fmt(ns(m, "crba-chol", b)) for b in builds]
         var.append(f"| {m} | {fmt(a)} | " + " | ".join(cells) + " |")
     print("\nAll Pinocchio builds (ns/call):\n")
@@ -244,7 +246,7 @@ xdot = [v; ddq], like autosim's generated `derivatives()`. "ratio" = Pinocchio n
 
 {chr(10).join(var) if var else '(only one build run)'}
 
-## Spread of the repeated medians (the tables report the minimum)
+## Spread of the repeated medians (the tables report their median)
 
 {chr(10).join(spread)}
 
@@ -275,7 +277,7 @@ the measurement, so absolute times are noisy and probably inflated for both side
 all runs niced equally (`nice -n 10`); each measurement is a median over 201 rounds (robust to
 preemption of single rounds); every measurement was repeated {env['BENCH_REPS']} times, spread over the
 run ({env['BENCH_REPS']} passes over all cases in one Pinocchio process per build; {env['BENCH_REPS']} separate `perf`
-runs for autosim), and the minimum of the medians is reported (spread above). Ratios compare numbers taken minutes apart
+runs for autosim), and the median of the medians is reported (spread above). Ratios compare numbers taken minutes apart
 under possibly different load; treat differences below ~20 % as noise.
 
 ## Commands

@@ -46,6 +46,38 @@ impl<'a> Resolver<'a> {
         }
     }
 
+    /// The names of a body's locked degrees of freedom: the coordinate is
+    /// the parameter it became, the speed is zero (named as the mech
+    /// layer named them: the given names, else `q<k>`/`u<k>` counted as
+    /// the coordinate was).
+    fn declare_locked(
+        &mut self,
+        b: &ast::Body,
+        spec: &BodySpec,
+        id: crate::mech::BodyId,
+        before: usize,
+    ) {
+        let dofs = self.sys.body(id).dofs.clone();
+        for (k, locked) in spec.locked.iter().enumerate() {
+            let Some((q, _)) = dofs.get(k).copied().filter(|_| *locked) else {
+                continue;
+            };
+            let given =
+                |names: &Option<Vec<String>>| names.as_ref().and_then(|v| v.get(k).cloned());
+            let un = given(&spec.speed_names).unwrap_or_else(|| format!("u{}", before + k + 1));
+            if let Some(p) = self.sys.arena.as_symbol(q) {
+                let qn = self.sys.arena.symbol(p).name.clone();
+                self.names
+                    .entry(qn)
+                    .or_insert((Named::Symbol(p), b.name.span));
+            }
+            let zero = self.sys.arena.zero();
+            self.names
+                .entry(un)
+                .or_insert((Named::Constant(zero), b.name.span));
+        }
+    }
+
     /// The parent of each body (index among `bodies`, `None` for `N` or an
     /// unknown parent), and whether it is usable.
     fn parents(
@@ -106,6 +138,7 @@ impl<'a> Resolver<'a> {
     /// every mistake `mech` finds in it.
     fn add_body(&mut self, b: &ast::Body, spec: BodySpec) {
         let parameters_before = self.sys.parameters().len();
+        let coordinates_before = self.sys.coordinates().len();
         match self.sys.add_body(spec.clone()) {
             Ok(id) => {
                 for &p in &self.sys.parameters()[parameters_before..] {
@@ -119,6 +152,7 @@ impl<'a> Resolver<'a> {
                         self.names.insert(name, (Named::Symbol(s), b.name.span));
                     }
                 }
+                self.declare_locked(b, &spec, id, coordinates_before);
                 self.names
                     .insert(b.name.text.clone(), (Named::Body(Some(id)), b.name.span));
             }

@@ -103,6 +103,7 @@ impl Resolver<'_> {
     fn eval_name(&mut self, name: &ast::Name) -> Option<Value> {
         match self.names.get(&name.text).cloned() {
             Some((Named::Symbol(s), _)) => Some(Value::Scalar(self.sys.arena.sym(s))),
+            Some((Named::Constant(e), _)) => Some(Value::Scalar(e)),
             Some((Named::Body(Some(b)), _)) => Some(Value::Body(b)),
             Some((Named::Body(None), _)) => None,
             Some((Named::Point(i), _)) => self.point_value(i, name.span).map(Value::Point),

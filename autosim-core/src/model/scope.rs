@@ -28,6 +28,9 @@ pub(crate) enum Named {
     Load,
     /// A user subroutine (its outputs are the names to use).
     Subroutine,
+    /// A scalar fixed at compile time (the speed of a locked degree of
+    /// freedom, zero).
+    Constant(crate::expr::ExprId),
 }
 
 /// Lazy evaluation state of a `let` or a point.
@@ -220,7 +223,7 @@ impl<'a> Resolver<'a> {
 /// "a parameter", "a point", ... for messages.
 pub(crate) fn describe(n: &Named) -> &'static str {
     match n {
-        Named::Symbol(_) => "a scalar",
+        Named::Symbol(_) | Named::Constant(_) => "a scalar",
         Named::Body(_) => "a body",
         Named::Point(_) => "a point",
         Named::Let(_) => "a `let` value",

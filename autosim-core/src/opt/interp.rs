@@ -73,13 +73,29 @@ impl<'a> Interpreter<'a> {
         inputs: &[f64],
         user: &mut UserCalls<'_>,
     ) -> Result<Vec<f64>, SolveError> {
+        self.block_at(BlockKind::Derivatives, t, x, inputs, user)
+    }
+
+    /// The slots of a block that reads the state at `(t, x)` with `inputs`
+    /// (not the accelerations); empty if the program has no such block.
+    pub fn block_at(
+        &self,
+        kind: BlockKind,
+        t: f64,
+        x: &[f64],
+        inputs: &[f64],
+        user: &mut UserCalls<'_>,
+    ) -> Result<Vec<f64>, SolveError> {
+        if self.prog.try_block(kind).is_none() {
+            return Ok(Vec::new());
+        }
         let at = At {
             t,
             x,
             inputs,
             accel: &[],
         };
-        self.run(BlockKind::Derivatives, at, user)
+        self.run(kind, at, user)
     }
 
     /// The outputs (computing the derivatives first if they need them).
@@ -117,16 +133,7 @@ impl<'a> Interpreter<'a> {
         inputs: &[f64],
         user: &mut UserCalls<'_>,
     ) -> Result<Vec<f64>, SolveError> {
-        if self.prog.try_block(BlockKind::Assembly).is_none() {
-            return Ok(Vec::new());
-        }
-        let at = At {
-            t,
-            x,
-            inputs,
-            accel: &[],
-        };
-        self.run(BlockKind::Assembly, at, user)
+        self.block_at(BlockKind::Assembly, t, x, inputs, user)
     }
 
     /// The linear model's entries at `(t, x)`: `A`, `B`, `C`, `D` row-major,
@@ -138,16 +145,7 @@ impl<'a> Interpreter<'a> {
         inputs: &[f64],
         user: &mut UserCalls<'_>,
     ) -> Result<Vec<f64>, SolveError> {
-        if self.prog.try_block(BlockKind::Linearize).is_none() {
-            return Ok(Vec::new());
-        }
-        let at = At {
-            t,
-            x,
-            inputs,
-            accel: &[],
-        };
-        self.run(BlockKind::Linearize, at, user)
+        self.block_at(BlockKind::Linearize, t, x, inputs, user)
     }
 
     /// The mass matrix (row-major) and the forcing vector.
@@ -158,14 +156,8 @@ impl<'a> Interpreter<'a> {
         inputs: &[f64],
         user: &mut UserCalls<'_>,
     ) -> (Vec<f64>, Vec<f64>) {
-        let at = At {
-            t,
-            x,
-            inputs,
-            accel: &[],
-        };
-        let m = self.run(BlockKind::MassMatrix, at, user);
-        let f = self.run(BlockKind::Forcing, at, user);
+        let m = self.block_at(BlockKind::MassMatrix, t, x, inputs, user);
+        let f = self.block_at(BlockKind::Forcing, t, x, inputs, user);
         (m.unwrap_or_default(), f.unwrap_or_default())
     }
 

@@ -3,8 +3,8 @@
 //!
 //! ```toml
 //! # Parameters of model Satellite.
-//! kb = 2000.0 # [N m/rad]
-//! db = 10.0 # [N m s/rad]
+//! KB = 2000.0 # [N m/rad]
+//! DB = 10.0 # [N m s/rad]
 //! ```
 
 use std::prelude::rust_2024::*;

@@ -115,12 +115,7 @@ impl<M: Model> Driver<M> {
         observer: &mut O,
     ) -> Result<(), RunError<O::Error>> {
         let t = self.t;
-        model
-            .outputs(t, x, &mut self.y)
-            .map_err(|error| IntegrationError::Model {
-                t: t.to_f64(),
-                error,
-            })?;
+        self.outputs(model, x)?;
         let mut inputs = [M::Float::ZERO; MAX_RECORDED_INPUTS];
         let inputs = &mut inputs[..M::INPUT_NAMES.len().min(MAX_RECORDED_INPUTS)];
         model.input_values(inputs);

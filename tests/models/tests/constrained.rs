@@ -5,22 +5,14 @@
 //! solved with nalgebra's LU. A differential test of the unrolled,
 //! statically pivoted constraint solve and of the reduction.
 
+mod common;
 use autosim::runtime::Model;
-use autosim_core::diag::SourceFile;
 use autosim_core::expr::{Bindings, ExprId, NoUserFunctions};
-use autosim_core::pipeline::{Compiled, compile_source};
+use autosim_core::pipeline::Compiled;
 use autosim_models_check::{via_build, via_macro};
 use autosim_test_support::*;
+use common::compile;
 use nalgebra::{DMatrix, DVector};
-
-fn compile(file: &str) -> Compiled {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples/models")
-        .join(file);
-    let text = std::fs::read_to_string(&path).expect("model file");
-    let src = SourceFile::new(file, text);
-    compile_source(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)))
-}
 
 /// dq/dt of the state's coordinates and du/dt of the independent speeds,
 /// by nalgebra (no motions in these models: every coordinate is a state).

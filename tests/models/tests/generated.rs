@@ -2,22 +2,14 @@
 //! model (both paths) matches the core's evaluation of its unoptimized
 //! equations at random states (a differential test of the optimizer).
 
+mod common;
 use autosim::runtime::Model;
-use autosim_core::diag::SourceFile;
 use autosim_core::expr::Bindings;
-use autosim_core::pipeline::{Compiled, compile_source};
+use autosim_core::pipeline::Compiled;
 use autosim_models_check::{scenes, via_build, via_macro};
 use autosim_test_support::*;
+use common::compile;
 use nalgebra::{DMatrix, DVector};
-
-fn compile(file: &str) -> Compiled {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples/models")
-        .join(file);
-    let text = std::fs::read_to_string(&path).expect("model file");
-    let src = SourceFile::new(file, text);
-    compile_source(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)))
-}
 
 /// du/dt from the symbolic equations: evaluate M and f, solve with nalgebra.
 fn reference_derivatives(

@@ -1,0 +1,86 @@
+//! The paper's slew in two forms, shared by `examples/sampled_control.rs`
+//! and `tests/sampled_control.rs`: the thruster logic in the derivatives (a
+//! stateful `extern fn`) and as a 100 Hz sampled controller. Include it
+//! after `figure8.rs` (as `figure8`).
+
+use autosim::runtime::{Model, RunSettings, Stepper, run, run_sampled};
+
+pub mod models {
+    autosim::model!(file = "examples/models/satellite.sim");
+    autosim::model!(file = "examples/models/satellite_sampled.sim");
+}
+pub use models::satellite::Satellite;
+pub use models::satellite_sampled::SatelliteSampled;
+
+use super::figure8::Figure8;
+
+figure8_externs!(models::satellite => f64);
+
+/// The sampled model calls only the commands (a function of time).
+impl models::satellite_sampled::Externs for Figure8 {
+    fn cmd(&mut self, t: f64) -> [f64; 2] {
+        Figure8::cmd(self, t)
+    }
+}
+
+/// The slew's length.
+pub const STOP: f64 = 15.0;
+
+/// Roll, pitch, yaw at the end and the derivative evaluations, the
+/// thrusters in the derivatives.
+pub fn in_derivatives<S: Stepper<Satellite<Figure8>>>(
+    mut stepper: S,
+    step: f64,
+) -> ([f64; 3], u64) {
+    let mut m = Satellite::new(Figure8::new());
+    let mut x = m.initial_state();
+    let settings = RunSettings::new(0.0, STOP, step, STOP).with_max_steps(100_000_000);
+    let mut end = [0.0; 3];
+    let summary = run(
+        &mut m,
+        &mut stepper,
+        &mut x,
+        &settings,
+        &mut |_t, _x: &[f64; 20], y: &[f64; 6]| {
+            end = [y[0], y[1], y[2]];
+        },
+    )
+    .expect("the slew runs");
+    (end, summary.evaluations)
+}
+
+/// The same, the thruster logic sampled at 100 Hz (thrust held between
+/// samples).
+pub fn sampled<S: Stepper<SatelliteSampled<Figure8>>>(
+    mut stepper: S,
+    step: f64,
+) -> ([f64; 3], u64) {
+    let mut m = SatelliteSampled::new(Figure8::new());
+    let mut x = m.initial_state();
+    let settings = RunSettings::new(0.0, STOP, step, STOP).with_max_steps(100_000_000);
+    let mut logic = Figure8::new();
+    let mut controller = |t: f64, _x: &[f64; 20], y: &[f64; 9], w: &mut [f64]| {
+        for axis in 0..3 {
+            w[axis] = logic.thrust(t, (axis + 1) as f64, y[axis]);
+        }
+    };
+    let mut end = [0.0; 3];
+    let summary = run_sampled(
+        &mut m,
+        &mut stepper,
+        &mut x,
+        &settings,
+        0.01,
+        &mut controller,
+        &mut |_t, _x: &[f64; 20], y: &[f64; 9]| {
+            end = [y[3], y[4], y[5]];
+        },
+    )
+    .expect("the slew runs");
+    (end, summary.evaluations)
+}
+
+/// The largest difference of two attitudes.
+pub fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max)
+}

@@ -16,10 +16,10 @@
 use super::elim::Elimination;
 use super::ir::{Ir, Leaf, Nid};
 use super::lower::Lowering;
-use super::program::{
-    Assembly, Lowered, ProgramError, collect_calls, leaves, lower_all, lower_one,
-    with_accelerations,
+use super::lowered::{
+    Assembly, Lowered, collect_calls, leaves, lower_all, lower_one, with_accelerations,
 };
+use super::program::ProgramError;
 use super::solve::ldlt_solve;
 use super::split::Split;
 use crate::expr::{ExprId, SymId};

@@ -12,7 +12,7 @@
 
 use super::elim::Elimination;
 use super::ir::{Ir, Leaf, Nid};
-use super::program::with_accelerations;
+use super::lowered::with_accelerations;
 use super::solve::Solver;
 use super::tangent::Tangent;
 

@@ -11,12 +11,15 @@ mod interp;
 mod ir;
 mod linearize;
 mod lower;
+mod lowered;
+mod naming;
 mod program;
 mod schedule;
 mod solve;
 mod split;
 mod tangent;
 mod text;
+mod tree;
 mod verify;
 
 pub use interface::{

@@ -1,0 +1,171 @@
+//! Lowering a tree's equations: kinematics, mass matrix, forcing, the
+//! solve of the accelerations (the mass matrix's LDLᵀ or the
+//! articulated-body recursion), extra states, outputs and initial values,
+//! in the order that numbers the IR.
+
+use super::articulated::TreeBody;
+use super::ir::{Ir, Leaf, Nid};
+use super::lower::Lowering;
+use super::lowered::{Lowered, collect_calls, lower_all, lower_one, with_accelerations};
+use super::program::ProgramError;
+use super::solve::{ldlt_solve, recursive_solve};
+use crate::expr::{ExprId, SymId};
+use crate::mech::{BodyKinetics, Equations, ItemRef};
+use crate::model::ResolvedModel;
+use rustc_hash::FxHashMap;
+
+/// Lowers every equation, in the order that numbers the IR (and so the
+/// generated constants): kinematics, mass matrix, forcing, subroutine
+/// arguments, the solve, extra states, outputs, initial values.
+pub(super) fn lower(
+    model: &mut ResolvedModel,
+    eqs: &Equations,
+    ir: &mut Ir,
+    leaves: &FxHashMap<SymId, Nid>,
+    recursive: bool,
+) -> Result<Lowered, ProgramError> {
+    let sys = &mut model.system;
+    let n = eqs.coordinates.len();
+    let coordinate_bodies: Vec<ItemRef> = sys
+        .coordinates()
+        .iter()
+        .map(|c| ItemRef::Body(c.body))
+        .collect();
+    let subs = sys.subroutines().to_vec();
+    let mut user_calls: Vec<(ExprId, Nid)> = Vec::new();
+
+    let mut lw = Lowering::new(&mut sys.arena, ir, leaves);
+    let kinematics = lower_all(&mut lw, &eqs.kinematics, |k| coordinate_bodies[k])?;
+    let mut mass: Vec<Vec<Option<Nid>>> = vec![vec![None; n]; n];
+    for i in 0..n {
+        for j in 0..=i {
+            let e = eqs.mass_matrix[i][j];
+            if !lw.is_zero(e) {
+                mass[i][j] = Some(lower_all(&mut lw, &[e], |_| coordinate_bodies[i])?[0]);
+            }
+        }
+    }
+    let forcing = lower_all(&mut lw, &eqs.forcing, |_| ItemRef::Model)?;
+    let mut sub_args = Vec::with_capacity(subs.len());
+    for (k, s) in subs.iter().enumerate() {
+        sub_args.push(lower_all(&mut lw, &s.args, |_| ItemRef::Subroutine(k))?);
+    }
+    user_calls.extend(lw.user_calls());
+
+    let solve = match recursive {
+        false => ldlt_solve(ir, &mass, &forcing),
+        true => {
+            let mut lw = Lowering::new(&mut sys.arena, ir, leaves);
+            let bodies = tree_bodies(&mut lw, &eqs.tree)?;
+            recursive_solve(ir, bodies, &forcing)
+        }
+    };
+    // Extra states read the accelerations as leaves, replaced by the
+    // solve's values (the linearization differentiates the leaf form).
+    let mut with_rates = leaves.clone();
+    for (i, s) in eqs.speed_rates.iter().enumerate() {
+        with_rates.insert(*s, ir.leaf(Leaf::Accel(i)));
+    }
+    let mut lw = Lowering::new(&mut sys.arena, ir, &with_rates);
+    let state_syms = eqs.states.clone();
+    let extra_in_rates = lower_all(&mut lw, &eqs.state_derivatives, |k| {
+        ItemRef::State(state_syms[k])
+    })?;
+    user_calls.extend(lw.user_calls());
+    let extra = with_accelerations(ir, &extra_in_rates, &solve.du);
+
+    // Outputs read du/dt from the derivatives.
+    let mut with_accel = leaves.clone();
+    for (i, s) in eqs.speed_rates.iter().enumerate() {
+        with_accel.insert(*s, ir.leaf(Leaf::Accel(i)));
+    }
+    let output_exprs: Vec<ExprId> = sys.outputs().iter().map(|o| o.expr).collect();
+    let mut lw = Lowering::new(&mut sys.arena, ir, &with_accel);
+    let outputs = lower_all(&mut lw, &output_exprs, ItemRef::Output)?;
+    user_calls.extend(lw.user_calls());
+
+    let mut initial_exprs: Vec<ExprId> = sys.coordinates().iter().map(|c| c.initial_q).collect();
+    initial_exprs.extend(sys.coordinates().iter().map(|c| c.initial_u));
+    initial_exprs.extend(sys.states().iter().map(|s| s.initial));
+    let mut lw = Lowering::new(&mut sys.arena, ir, leaves);
+    let initial = lower_all(&mut lw, &initial_exprs, |_| ItemRef::Model)?;
+
+    Ok(Lowered {
+        kinematics,
+        mass,
+        forcing,
+        solve,
+        constraint_checks: Vec::new(),
+        extra,
+        extra_in_rates,
+        outputs,
+        initial,
+        sub_args,
+        call_order: collect_calls(user_calls),
+        named: Vec::new(),
+        assembly: None,
+    })
+}
+
+/// The bodies' data for the recursive solve, lowered.
+fn tree_bodies(
+    lw: &mut Lowering<'_>,
+    tree: &[BodyKinetics],
+) -> Result<Vec<TreeBody>, ProgramError> {
+    let mut out = Vec::with_capacity(tree.len());
+    for b in tree {
+        let mut one = |e: ExprId| lower_one(lw, e, ItemRef::Model);
+        let mut rotation = [[Nid(0); 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                rotation[i][j] = one(b.rotation[i][j])?;
+            }
+        }
+        let offset = [one(b.offset[0])?, one(b.offset[1])?, one(b.offset[2])?];
+        let m = one(b.mass)?;
+        let h = [
+            one(b.first_moment[0])?,
+            one(b.first_moment[1])?,
+            one(b.first_moment[2])?,
+        ];
+        let mut j = [[Nid(0); 3]; 3];
+        for r in 0..3 {
+            for c in 0..3 {
+                j[r][c] = one(b.inertia[r][c])?;
+            }
+        }
+        let mut speeds = Vec::with_capacity(b.speeds.len());
+        for (k, s) in &b.speeds {
+            let mut v = [Nid(0); 6];
+            for r in 0..6 {
+                v[r] = one(s[r])?;
+            }
+            speeds.push((*k, v));
+        }
+        out.push(TreeBody {
+            parent: b.parent,
+            rotation,
+            offset,
+            inertia: rigid_inertia(lw.ir(), m, &h, &j),
+            speeds,
+        });
+    }
+    Ok(out)
+}
+
+/// `[[J, h̃], [h̃ᵀ, m 1]]` about the origin (`h = m c`).
+fn rigid_inertia(ir: &mut Ir, m: Nid, h: &[Nid; 3], j: &[[Nid; 3]; 3]) -> [[Nid; 6]; 6] {
+    let zero = ir.num(0.0);
+    let (n0, n1, n2) = (ir.neg(h[0]), ir.neg(h[1]), ir.neg(h[2]));
+    let skew = [[zero, n2, h[1]], [h[2], zero, n0], [n1, h[0], zero]];
+    let mut out = [[zero; 6]; 6];
+    for r in 0..3 {
+        for c in 0..3 {
+            out[r][c] = j[r][c];
+            out[r][3 + c] = skew[r][c];
+            out[3 + c][r] = skew[r][c];
+        }
+        out[3 + r][3 + r] = m;
+    }
+    out
+}

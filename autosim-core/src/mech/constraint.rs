@@ -255,30 +255,47 @@ impl System {
                 }
             }
         }
-        let Some(d) = dependent else { return Ok(()) };
+        match dependent {
+            Some(d) => self.check_dependent(name, kind, &symbols, d),
+            None => Ok(()),
+        }
+    }
+
+    /// The dependent a constraint names is a coordinate (position) or a
+    /// speed (speed constraint) that the constraint uses.
+    fn check_dependent(
+        &self,
+        name: &str,
+        kind: ConstraintKind,
+        symbols: &[SymId],
+        d: SymId,
+    ) -> Result<(), ModelError> {
+        let at = |message, help: &str| ModelError::Option {
+            item: name.to_string(),
+            key: "dependent",
+            message,
+            help: help.to_string(),
+        };
         let wanted = match kind {
             ConstraintKind::Position => "coordinate",
             ConstraintKind::Speed => "speed",
         };
         let right_kind = matches!(
-            (kind, kind_of(&d)),
+            (kind, &self.arena.symbol(d).kind),
             (ConstraintKind::Position, SymbolKind::Coordinate { .. })
                 | (ConstraintKind::Speed, SymbolKind::Speed { .. })
         );
         let n = &self.arena.symbol(d).name;
         if !right_kind {
-            let m = format!("the dependent `{n}` is not a {wanted}");
             let help = match kind {
                 ConstraintKind::Position => "a position constraint determines a coordinate",
                 ConstraintKind::Speed => "a speed constraint determines a speed",
             };
-            return Err(at("dependent", m, help));
+            return Err(at(format!("the dependent `{n}` is not a {wanted}"), help));
         }
         if !symbols.contains(&d) {
-            let m = format!("the dependent {wanted} `{n}` does not appear in the constraint");
             return Err(at(
-                "dependent",
-                m,
+                format!("the dependent {wanted} `{n}` does not appear in the constraint"),
                 "name one the constraint uses, or leave `dependent` out to let the compiler choose",
             ));
         }

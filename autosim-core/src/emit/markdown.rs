@@ -157,7 +157,7 @@ fn write_linear(s: &mut String, prog: &Program) -> std::fmt::Result {
         function: &mut function,
         subroutine: &mut subroutine,
     };
-    let Ok(values) = it.linearize(0.0, &x, &inputs, &mut user) else {
+    let Ok(values) = it.block_at(BlockKind::Linearize, 0.0, &x, &inputs, &mut user) else {
         return Ok(());
     };
     let nl = states.len();

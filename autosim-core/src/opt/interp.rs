@@ -77,7 +77,8 @@ impl<'a> Interpreter<'a> {
     }
 
     /// The slots of a block that reads the state at `(t, x)` with `inputs`
-    /// (not the accelerations); empty if the program has no such block.
+    /// (not the accelerations: derivatives, mass matrix, forcing, assembly,
+    /// linearize); empty if the program has no such block.
     pub fn block_at(
         &self,
         kind: BlockKind,
@@ -121,31 +122,6 @@ impl<'a> Interpreter<'a> {
             accel: &accel,
         };
         self.run(BlockKind::Outputs, at, user)
-    }
-
-    /// One Newton step of assembly at `(t, x)`: the corrections of the
-    /// dependent coordinates, then the residuals of the position
-    /// constraints (empty without them).
-    pub fn assembly_step(
-        &self,
-        t: f64,
-        x: &[f64],
-        inputs: &[f64],
-        user: &mut UserCalls<'_>,
-    ) -> Result<Vec<f64>, SolveError> {
-        self.block_at(BlockKind::Assembly, t, x, inputs, user)
-    }
-
-    /// The linear model's entries at `(t, x)`: `A`, `B`, `C`, `D` row-major,
-    /// one after the other (empty unless the program linearizes).
-    pub fn linearize(
-        &self,
-        t: f64,
-        x: &[f64],
-        inputs: &[f64],
-        user: &mut UserCalls<'_>,
-    ) -> Result<Vec<f64>, SolveError> {
-        self.block_at(BlockKind::Linearize, t, x, inputs, user)
     }
 
     /// The mass matrix (row-major) and the forcing vector.

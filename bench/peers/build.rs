@@ -1,0 +1,14 @@
+//! Compiles every chain model `run.sh` generated into `models/`.
+
+fn main() {
+    let mut models: Vec<std::path::PathBuf> = std::fs::read_dir("models")
+        .map(|dir| dir.filter_map(|e| e.ok().map(|e| e.path())).collect())
+        .unwrap_or_default();
+    models.retain(|p| p.extension().is_some_and(|x| x == "sim"));
+    models.sort();
+    println!("cargo::rerun-if-changed=models");
+    if let Err(e) = autosim::build::Config::new().compile(&models) {
+        eprintln!("{e}");
+        std::process::exit(1);
+    }
+}

@@ -1,0 +1,55 @@
+"""Tables of bench/peers/run.sh: median ns per call of every (tool, method)
+over all batches of all rounds, autosim against the fastest peer."""
+import json, statistics, sys, datetime, os
+
+out, md_path, jsonl_path = sys.argv[1], sys.argv[2], sys.argv[3]
+rows = [json.loads(l) for l in open(os.path.join(out, "rounds.jsonl")) if l.strip()]
+batches = {}
+for r in rows:
+    batches.setdefault((r["kind"], r["n"], r["tool"], r["method"]), []).extend(r["batches_ns"])
+# Forward dynamics only: Pinocchio's RNEA (inverse dynamics) and SymPy's bare
+# mass-matrix evaluation (no solve) do a different job.
+NOT_FORWARD = {"rnea", "sympy_eval_M_f"}
+med = {k: statistics.median(v) for k, v in batches.items() if k[3] not in NOT_FORWARD}
+cases = sorted({(k[0], k[1]) for k in med}, key=lambda c: (c[0], c[1]))
+table = ["| model | autosim | Pinocchio (best method) | CasADi (best method) | SymPy C | autosim / fastest peer |",
+         "|---|---:|---:|---:|---:|---:|"]
+summary = []
+for kind, n in cases:
+    def best(tool):
+        v = [(t, m) for (k, nn, tt, m), t in med.items() if k == kind and nn == n and tt == tool]
+        return min(v) if v else None
+    a = best("autosim"); p = best("pinocchio"); c = best("casadi"); s = best("sympy")
+    peers = [x[0] for x in (p, c, s) if x]
+    ratio = a[0] / min(peers) if a and peers else None
+    fmt = lambda x: f"{x[0]:.1f} ({x[1]})" if x else "—"
+    table.append(f"| chain-{kind}-{n} | {a[0]:.1f} | {fmt(p)} | {fmt(c)} | {fmt(s)} | "
+                 + (f"{ratio:.2f}" if ratio else "—") + " |")
+    summary.append({"model": f"chain-{kind}-{n}", "autosim_ns": a[0] if a else None,
+                    "pinocchio": p, "casadi": c, "sympy": s, "ratio_to_fastest_peer": ratio})
+comp = [json.loads(l) for l in open(os.path.join(out, "compile.jsonl")) if l.strip()] \
+    if os.path.exists(os.path.join(out, "compile.jsonl")) else []
+ctab = ["| model | generated lines | rustc (release, s) |", "|---|---:|---:|"]
+for c in comp:
+    ctab.append(f"| chain-{c['kind']}-{c['n']} | {c['lines']} | {c['rustc_s']:.1f} |")
+text = f"""# autosim against the peers on the chain models
+
+`bash bench/peers/run.sh` (after the peers' own scripts in `../shared/bench`),
+{datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC. Median ns per forward-dynamics call over
+every batch (1000 calls over 1000 random states) of every round; the rounds
+interleave the programs, so load hits all alike. The best method of each
+peer is shown with its name.
+
+{chr(10).join(table)}
+
+Compile cost of the generated module (one model per crate, dependencies
+built, `cargo build --release` after touching the source; the model
+compiler itself runs in the macro):
+
+{chr(10).join(ctab)}
+"""
+open(md_path, "w").write(text)
+with open(jsonl_path, "w") as f:
+    for s in summary:
+        f.write(json.dumps(s) + "\n")
+print(text)

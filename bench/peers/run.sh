@@ -1,0 +1,96 @@
+#!/usr/bin/env bash
+# autosim against the peers of ../shared/bench on the chain models, in one
+# interleaved run: Pinocchio (ABA, CRBA variants; pin_bench), CasADi-generated
+# C of the articulated-body and CRBA algorithms (cas_bench), SymPy + cse C
+# where it exists, and autosim's generated derivatives() (autosim_bench,
+# this crate), all timed the same way (1000 random states, batches of 1000
+# calls, the same JSON lines), one round of each program in turn.
+#
+#   bash bench/peers/run.sh        (from the repository root)
+#
+# Needs the peers built by their own scripts first (each installs what it
+# needs; about 30 minutes together):
+#   NS_SYMPY="1 2 3 5" bash ../shared/bench/perf/run.sh    # -> /tmp/anchors
+#   CAS_METHODS=aba,aba_plain bash ../shared/bench/casadi/run.sh   # -> /tmp/casadi
+# Then this script (about 10 minutes): generates chain-{planar,spatial}-n for
+# n = 1, 2, 3, 5, 7, 10, 20, 50, builds autosim_bench, runs ROUNDS (default 5)
+# interleaved rounds pinned to one CPU when taskset exists, measures the
+# compile cost (generated lines, rustc time) for n = 10, 20, 50, and writes
+# bench/peers/results.md and results.jsonl.
+set -euo pipefail
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+REPO="$(cd "$HERE/../.." && pwd)"
+AROOT="${ANCHORS_ROOT:-/tmp/anchors}"
+CROOT="${CASADI_ROOT:-/tmp/casadi}"
+ROUNDS="${ROUNDS:-5}"
+TARGET="${CARGO_TARGET_DIR:-$REPO/target/peers}"
+PIN="$AROOT/build/pin_bench"
+CAS="$CROOT/build/cas_bench"
+[ -x "$PIN" ] || { echo "no $PIN: run ../shared/bench/perf/run.sh first"; exit 1; }
+[ -x "$CAS" ] || { echo "no $CAS: run ../shared/bench/casadi/run.sh first"; exit 1; }
+PINCPU=(); command -v taskset >/dev/null && PINCPU=(taskset -c 1)
+
+echo "== 1. models"
+rm -rf "$HERE/models" && mkdir -p "$HERE/models"
+(cd "$REPO" && cargo run -q --release --example gen_chains -- "$HERE/models" 1 2 3 5 7 10 20 50)
+
+echo "== 2. autosim_bench (release; the model compiler optimized)"
+(cd "$HERE" && CARGO_TARGET_DIR="$TARGET" cargo build -q --release)
+BENCH="$TARGET/release/autosim-peer-bench"
+
+echo "== 3. $ROUNDS interleaved rounds (${PINCPU[*]:-unpinned})"
+OUT="$HERE/out"; mkdir -p "$OUT"
+: > "$OUT/rounds.jsonl"
+# SymPy + cse C: one binary per derived model (work/<kind>_<n>_bench), the
+# model's parameter values on its command line; it prints no kind, so add it.
+SYM=()
+for exe in "$AROOT"/work/*_bench; do [ -x "$exe" ] && SYM+=("$exe"); done
+sym_round() {  # sym_round EXE
+  local base kind params
+  base="$(basename "$1" _bench)"; kind="${base%_*}"
+  params="$(python3 -c 'import json,sys; print(" ".join(repr(v) for v in json.load(open(sys.argv[1]))["param_values"]))' "$AROOT/work/$base.json")"
+  # shellcheck disable=SC2086
+  "${PINCPU[@]}" "$1" bench $params 2>/dev/null \
+    | sed "s/^{/{\"tool\": \"sympy\", \"kind\": \"$kind\", /"
+}
+for r in $(seq 1 "$ROUNDS"); do
+  "${PINCPU[@]}" "$PIN" bench 1 2>/dev/null | sed 's/"method": "/"tool": "pinocchio", "method": "/' >> "$OUT/rounds.jsonl"
+  "${PINCPU[@]}" "$CAS" bench 1 | sed 's/"method": "/"tool": "casadi", "method": "/' >> "$OUT/rounds.jsonl"
+  for exe in "${SYM[@]}"; do sym_round "$exe" >> "$OUT/rounds.jsonl"; done
+  "${PINCPU[@]}" "$BENCH" bench 1 | sed 's/"method": "/"tool": "autosim", "method": "/' >> "$OUT/rounds.jsonl"
+  echo "round $r/$ROUNDS done"
+done
+
+echo "== 4. compile cost (one model per crate, release, dependencies built)"
+: > "$OUT/compile.jsonl"
+for kind in spatial planar; do
+  for n in 10 20 50; do
+    CRATE="$TARGET/compile-$kind-$n"
+    mkdir -p "$CRATE/src"
+    cp "$HERE/models/chain_${kind}_$n.sim" "$CRATE/model.sim"
+    cat > "$CRATE/Cargo.toml" <<TOML
+[package]
+name = "compile-$kind-$n"
+version = "0.1.0"
+edition = "2024"
+[workspace]
+[dependencies]
+autosim = { path = "$REPO", default-features = false, features = ["std"] }
+[profile.release.build-override]
+opt-level = 3
+TOML
+    echo 'autosim::model!(file = "model.sim"); fn main() {}' > "$CRATE/src/main.rs"
+    (cd "$CRATE" && CARGO_TARGET_DIR="$TARGET" cargo build -q --release)  # dependencies
+    touch "$CRATE/src/main.rs"
+    start=$(date +%s.%N)
+    (cd "$CRATE" && CARGO_TARGET_DIR="$TARGET" cargo build -q --release)
+    end=$(date +%s.%N)
+    lines=$(cd "$REPO" && cargo run -q --release -p autosim-core --example emit -- "$HERE/models/chain_${kind}_$n.sim" | wc -l)
+    secs=$(printf '%.3f' "$(echo "$end - $start" | bc)")
+    echo "{\"kind\": \"$kind\", \"n\": $n, \"lines\": $lines, \"rustc_s\": $secs}" >> "$OUT/compile.jsonl"
+    echo "$kind-$n: $lines lines, $secs s"
+  done
+done
+
+echo "== 5. tables"
+python3 "$HERE/report.py" "$OUT" "$HERE/results.md" "$HERE/results.jsonl"

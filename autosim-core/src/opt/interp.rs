@@ -3,7 +3,7 @@
 //! symbolic equations without compiling anything.
 
 use super::ir::{Leaf, Nid, Op};
-use super::program::{BlockKind, Program};
+use super::program::{BlockKind, MassLayout, Program};
 use super::schedule::{Guard, Stmt};
 use crate::expr::Func;
 use rustc_hash::FxHashMap;
@@ -77,8 +77,9 @@ impl<'a> Interpreter<'a> {
     }
 
     /// The slots of a block that reads the state at `(t, x)` with `inputs`
-    /// (not the accelerations: derivatives, mass matrix, forcing, assembly,
-    /// linearize); empty if the program has no such block.
+    /// and not the accelerations (derivatives, forcing, assembly,
+    /// linearize, the entries of the mass matrix); empty if the program
+    /// has no such block.
     pub fn block_at(
         &self,
         kind: BlockKind,
@@ -132,9 +133,36 @@ impl<'a> Interpreter<'a> {
         inputs: &[f64],
         user: &mut UserCalls<'_>,
     ) -> (Vec<f64>, Vec<f64>) {
-        let m = self.block_at(BlockKind::MassMatrix, t, x, inputs, user);
+        let m = match self.prog.mass_layout {
+            MassLayout::Entries => self.block_at(BlockKind::MassMatrix, t, x, inputs, user),
+            MassLayout::Products => self.mass_by_columns(t, x, inputs, user),
+        };
         let f = self.block_at(BlockKind::Forcing, t, x, inputs, user);
         (m.unwrap_or_default(), f.unwrap_or_default())
+    }
+
+    /// The mass matrix from the products `M e_j`: column `j` is row `j`
+    /// (`M` is symmetric), as generated code computes it.
+    fn mass_by_columns(
+        &self,
+        t: f64,
+        x: &[f64],
+        inputs: &[f64],
+        user: &mut UserCalls<'_>,
+    ) -> Result<Vec<f64>, SolveError> {
+        let n = self.prog.n();
+        let mut m = Vec::with_capacity(n * n);
+        for j in 0..n {
+            let unit: Vec<f64> = (0..n).map(|k| if k == j { 1.0 } else { 0.0 }).collect();
+            let at = At {
+                t,
+                x,
+                inputs,
+                accel: &unit,
+            };
+            m.extend(self.run(BlockKind::MassMatrix, at, user)?);
+        }
+        Ok(m)
     }
 
     /// A block that reads the parameters only.

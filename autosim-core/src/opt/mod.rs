@@ -28,6 +28,6 @@ pub use interface::{
 pub use interp::{Interpreter, SolveError, UserCalls};
 pub use ir::{Ir, Leaf, Nid, Op};
 pub use lower::{Lowering, UnboundSymbol};
-pub use program::{BlockKind, Program, ProgramError, build};
+pub use program::{BlockKind, MassLayout, Program, ProgramError, build};
 pub use schedule::{Block, Guard, Ops, Stmt, Task};
 pub use split::Split;

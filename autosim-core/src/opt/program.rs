@@ -10,6 +10,7 @@ use super::linearize::{Linear, Linearizable};
 use super::lowered::{Lowered, leaves};
 use super::naming::Naming;
 use super::schedule::{Block, Guard, Options, Task, schedule};
+use super::solve::Solver;
 use super::split::Split;
 use super::tree;
 use crate::mech::{Equations, ItemRef};
@@ -25,7 +26,9 @@ pub enum BlockKind {
     Outputs,
     /// Constants computed once per parameter set: slot `k` is `hoisted[k]`.
     Constants,
-    /// The mass matrix, slot `i*n + j`.
+    /// The mass matrix: slot `i*n + j` (`MassLayout::Entries`), or the
+    /// products `M du/dt` for accelerations read as `Leaf::Accel`
+    /// (`MassLayout::Products`).
     MassMatrix,
     /// The forcing vector.
     Forcing,
@@ -79,6 +82,21 @@ pub struct Program {
     pub outputs_need_derivatives: bool,
     /// Names, units, defaults and docs of everything generated code exposes.
     pub interface: Interface,
+    /// What the mass matrix block computes.
+    pub mass_layout: MassLayout,
+}
+
+/// What the mass matrix block computes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MassLayout {
+    /// Every entry of `M` (the mass-matrix and constrained routes, which
+    /// form `M` anyway).
+    Entries,
+    /// `M du/dt` in O(n) operations for accelerations read as
+    /// `Leaf::Accel` (the recursive route, which never forms `M`):
+    /// generated code calls it once per column, O(n) lines instead of
+    /// O(n²).
+    Products,
 }
 
 impl Program {
@@ -111,7 +129,10 @@ impl Program {
             BlockKind::Derivatives | BlockKind::Initial => self.states().len(),
             BlockKind::Outputs => self.interface.outputs.len(),
             BlockKind::Constants => self.hoisted.len(),
-            BlockKind::MassMatrix => n * n,
+            BlockKind::MassMatrix => match self.mass_layout {
+                MassLayout::Entries => n * n,
+                MassLayout::Products => n,
+            },
             BlockKind::Forcing => n,
             BlockKind::Assembly => 2 * self.interface.closures.len(),
             BlockKind::Linearize => {
@@ -321,17 +342,7 @@ fn schedule_blocks(
     let outputs = schedule(&ir, &out_tasks, &options(true, &names.output_reserved));
     let outputs_need_derivatives = outputs.leaves.iter().any(|l| matches!(l, Leaf::Accel(_)));
 
-    let zero = ir.num(0.0);
-    let mut mm_tasks = Vec::with_capacity(n * n);
-    for i in 0..n {
-        for j in 0..n {
-            let v = lowered.mass[i.max(j)][i.min(j)].unwrap_or(zero);
-            mm_tasks.push(Task::Store {
-                slot: i * n + j,
-                value: v,
-            });
-        }
-    }
+    let (mass_layout, mm_tasks) = mass_tasks(&mut ir, &lowered);
     // `mass_matrix` and `forcing` return no error: at a state where the
     // constraints are singular their values are not finite.
     let mass_matrix = schedule(&ir, &mm_tasks, &all);
@@ -374,5 +385,32 @@ fn schedule_blocks(
         sub_args: lowered.sub_args,
         outputs_need_derivatives,
         interface,
+        mass_layout,
     }
+}
+
+/// The mass matrix block's tasks: `M du/dt` with the accelerations as
+/// leaves where the recursion solves (no entry of `M` is formed), every
+/// entry otherwise.
+fn mass_tasks(ir: &mut Ir, lowered: &Lowered) -> (MassLayout, Vec<Task>) {
+    if let Solver::Articulated(a) = &lowered.solve.factor {
+        let accel: Vec<Nid> = (0..lowered.forcing.len())
+            .map(|k| ir.leaf(Leaf::Accel(k)))
+            .collect();
+        let products = a.times_mass(ir, &accel);
+        return (MassLayout::Products, stores(&products, 0).collect());
+    }
+    let n = lowered.forcing.len();
+    let zero = ir.num(0.0);
+    let mut tasks = Vec::with_capacity(n * n);
+    for i in 0..n {
+        for j in 0..n {
+            let v = lowered.mass[i.max(j)][i.min(j)].unwrap_or(zero);
+            tasks.push(Task::Store {
+                slot: i * n + j,
+                value: v,
+            });
+        }
+    }
+    (MassLayout::Entries, tasks)
 }

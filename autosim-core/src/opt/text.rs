@@ -5,7 +5,7 @@
 //! emitter changes.
 
 use super::ir::{Ir, Leaf, Nid, Op};
-use super::program::{BlockKind, Program};
+use super::program::{BlockKind, MassLayout, Program};
 use super::schedule::{Guard, Stmt};
 use crate::expr::Func;
 use rustc_hash::FxHashMap;
@@ -21,7 +21,10 @@ impl Program {
             BlockKind::Initial => format!("{}(0)", self.states().state(k).name),
             BlockKind::Outputs => self.interface.outputs[k].name.clone(),
             BlockKind::Constants => format!("p{}", k + 1),
-            BlockKind::MassMatrix => format!("M[{},{}]", k / n + 1, k % n + 1),
+            BlockKind::MassMatrix => match self.mass_layout {
+                MassLayout::Entries => format!("M[{},{}]", k / n + 1, k % n + 1),
+                MassLayout::Products => format!("(M du/dt)[{}]", k + 1),
+            },
             BlockKind::Forcing => format!("f[{}]", k + 1),
             BlockKind::Linearize => self.linear_slot_name(k),
             BlockKind::Assembly => {

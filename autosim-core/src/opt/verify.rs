@@ -12,13 +12,13 @@
 //!    block (whose slots cover every constant the other blocks read), a
 //!    subroutine's output by an earlier call of it.
 //! 5. A block reads only what its function has: the constants block and
-//!    the initial state read parameters only; only the outputs read the
-//!    accelerations.
+//!    the initial state read parameters only; only the outputs and the
+//!    products `M du/dt` (`MassLayout::Products`) read the accelerations.
 //! 6. Names a block binds are unique and do not shadow a state, input or
 //!    subroutine output.
 
 use super::ir::{Leaf, Nid, Op};
-use super::program::{BlockKind, Program};
+use super::program::{BlockKind, MassLayout, Program};
 use super::schedule::{Block, Stmt};
 use rustc_hash::FxHashSet;
 
@@ -172,12 +172,21 @@ impl<'a> BlockCheck<'a> {
             && self.prog.hoisted.binary_search(&n).is_ok()
     }
 
+    /// The outputs may read du/dt, and so do the products `M du/dt`.
+    fn reads_accelerations(&self) -> bool {
+        match self.kind {
+            BlockKind::Outputs => true,
+            BlockKind::MassMatrix => self.prog.mass_layout == MassLayout::Products,
+            _ => false,
+        }
+    }
+
     fn leaf(&self, l: Leaf) -> Result<(), String> {
         let parameters_only = matches!(self.kind, BlockKind::Constants | BlockKind::Initial);
         match l {
             Leaf::Param(_) => Ok(()),
             _ if parameters_only => Err(format!("reads {l:?}, not a parameter")),
-            Leaf::Accel(_) if self.kind != BlockKind::Outputs => {
+            Leaf::Accel(_) if !self.reads_accelerations() => {
                 Err(format!("reads the acceleration {l:?}"))
             }
             Leaf::SubOut(s, _) if !self.subs_called.contains(&s) => Err(format!(

@@ -4,7 +4,7 @@
 
 use crate::emit::block::{BlockEmitter, Target};
 use crate::emit::expr::Locals;
-use crate::opt::{Block, BlockKind, Leaf, Program, Stmt};
+use crate::opt::{Block, BlockKind, Leaf, MassLayout, Ops, Program, Stmt};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
@@ -51,7 +51,10 @@ pub(super) fn body(be: &BlockEmitter<'_>, kind: BlockKind) -> TokenStream {
     let n_states = Literal::usize_unsuffixed(prog.states().len());
     match kind {
         BlockKind::Derivatives => be.emit(block, true, Target::Array(&l.dx)),
-        BlockKind::MassMatrix => be.emit(block, true, Target::Matrix(&l.m, prog.n().max(1))),
+        BlockKind::MassMatrix => match prog.mass_layout {
+            MassLayout::Entries => be.emit(block, true, Target::Matrix(&l.m, prog.n().max(1))),
+            MassLayout::Products => be.emit(block, true, Target::Array(&l.f)),
+        },
         BlockKind::Forcing => be.emit(block, true, Target::Array(&l.f)),
         BlockKind::Outputs => {
             let body = be.emit(block, true, Target::Array(&l.y));
@@ -69,6 +72,74 @@ pub(super) fn body(be: &BlockEmitter<'_>, kind: BlockKind) -> TokenStream {
         BlockKind::Constants => constants_new(be, block),
         BlockKind::Assembly => be.emit(block, true, Target::Array(&l.step)),
         BlockKind::Linearize => linearize_body(be, block),
+    }
+}
+
+/// `mass_matrix`: the block's entries, or (`MassLayout::Products`) one
+/// call per column of a private `inertia_forces` computing `M du/dt` in
+/// O(n) operations (`M` is symmetric, so column `j` fills row `j`).
+pub(super) fn mass_matrix(be: &BlockEmitter<'_>, t: TokenStream, x: TokenStream) -> TokenStream {
+    let prog = be.prog;
+    let l = be.locals;
+    let ty = crate::emit::expr::float_type(be.float);
+    let n = prog.n();
+    let n_lit = Literal::usize_unsuffixed(n);
+    let n_states = Literal::usize_unsuffixed(prog.states().len());
+    let body = body(be, BlockKind::MassMatrix);
+    let (lm, lx, ldx, lf) = (&l.m, &l.x, &l.dx, &l.f);
+    if prog.mass_layout == MassLayout::Entries {
+        let m_arg = if n == 0 { quote!(_) } else { quote!(#lm) };
+        return quote! {
+            /// The mass matrix `M(q)` of `M du/dt = f` (symmetric).
+            pub fn mass_matrix(&mut self, #t: #ty, #x: &[#ty; #n_states], #m_arg: &mut [[#ty; #n_lit]; #n_lit]) {
+                #body
+            }
+        };
+    }
+    let first = prog.states().speed_slot(0);
+    let is_unit = match first {
+        0 => quote!(slot == column),
+        _ => {
+            let first = Literal::usize_unsuffixed(first);
+            quote!(slot == column + #first)
+        }
+    };
+    quote! {
+        /// The mass matrix `M(q)` of `M du/dt = f` (symmetric), a column
+        /// at a time: the articulated-body recursion never forms it.
+        pub fn mass_matrix(&mut self, t: #ty, #lx: &[#ty; #n_states], #lm: &mut [[#ty; #n_lit]; #n_lit]) {
+            for (column, row) in #lm.iter_mut().enumerate() {
+                let unit: [#ty; #n_states] =
+                    core::array::from_fn(|slot| if #is_unit { 1.0 } else { 0.0 });
+                self.inertia_forces(t, #lx, &unit, row);
+            }
+        }
+
+        /// The generalized inertia forces `M du/dt` for the accelerations
+        /// in the speed slots of `dx` (the others are not read), in O(n)
+        /// operations.
+        fn inertia_forces(&mut self, #t: #ty, #x: &[#ty; #n_states], #ldx: &[#ty; #n_states], #lf: &mut [#ty; #n_lit]) {
+            #body
+        }
+    }
+}
+
+/// What one call of a block's function costs: the block's operations,
+/// times the columns where `mass_matrix` runs it per column.
+pub(super) fn ops_per_call(prog: &Program, kind: BlockKind, block: &Block) -> Ops {
+    let o = block.ops;
+    match (kind, prog.mass_layout) {
+        (BlockKind::MassMatrix, MassLayout::Products) => {
+            let n = prog.n();
+            Ops {
+                adds: o.adds * n,
+                muls: o.muls * n,
+                divs: o.divs * n,
+                funcs: o.funcs * n,
+                user_calls: o.user_calls * n,
+            }
+        }
+        _ => o,
     }
 }
 

@@ -332,16 +332,15 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
         .filter_map(|(kind, block)| {
             let (name, d) = functions::ops_constant(*kind)?;
             let name = format_ident!("{}", name);
-            let value = ops_tokens(rt, &block.ops);
+            let value = ops_tokens(rt, &functions::ops_per_call(prog, *kind, block));
             Some(quote!(#d pub const #name: #rt::OpCount = #value;))
         })
         .collect();
     let functions::Args { t: mt, x: mx } = functions::args(prog, BlockKind::MassMatrix, be.locals);
     let functions::Args { t: ft, x: fx } = functions::args(prog, BlockKind::Forcing, be.locals);
-    let mm = functions::body(be, BlockKind::MassMatrix);
+    let mass_matrix = functions::mass_matrix(be, mt, mx);
     let fo = functions::body(be, BlockKind::Forcing);
-    let (lm, lf) = (&be.locals.m, &be.locals.f);
-    let m_arg = if n == 0 { quote!(_) } else { quote!(#lm) };
+    let lf = &be.locals.f;
     let f_arg = if n == 0 { quote!(_) } else { quote!(#lf) };
     let model_trait = model_trait_impl(be);
     let assembly = assembly::inherent(be);
@@ -363,10 +362,7 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
 
             #(#ops)*
 
-            /// The mass matrix `M(q)` of `M du/dt = f` (symmetric).
-            pub fn mass_matrix(&mut self, #mt: #ty, #mx: &[#ty; #n_states], #m_arg: &mut [[#ty; #n_lit]; #n_lit]) {
-                #mm
-            }
+            #mass_matrix
 
             /// The forcing vector `f(q, u, t)` of `M du/dt = f`.
             pub fn forcing(&mut self, #ft: #ty, #fx: &[#ty; #n_states], #f_arg: &mut [#ty; #n_lit]) {

@@ -21,7 +21,9 @@ pub use error::{BodyField, ItemRef, LocatedError, ModelError};
 pub use frames::{Frame, FrameId, Frames, Uv, UvId};
 pub use framevec::{Fv, Mat3};
 pub use joint::{Axis, Direction, DofKind, FixedTurn, Joint, Rotation, UnitMotion};
-pub use kane::{BodyKinetics, ConstraintEquations, ConstraintRow, Equations, Prescribed};
+pub use kane::{
+    BodyKinetics, ConstraintEquations, ConstraintRow, Equations, Prescribed, TreeKinetics,
+};
 pub use system::{
     Body, BodyId, BodySpec, Coordinate, ExtraState, Force, Moment, Output, Point, PointId,
     Subroutine, System,

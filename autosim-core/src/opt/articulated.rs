@@ -1,7 +1,9 @@
 //! `M u̇ = f` solved in O(n) by the articulated-body recursion
-//! (Featherstone's, with Kane's forcing `f` as the joint forces: no
-//! velocities or gravity enter), unrolled in the IR so the optimizer's
-//! zero folding, hoisting and naming apply. Spatial quantities are
+//! (Featherstone's), unrolled in the IR so the optimizer's zero folding,
+//! hoisting and naming apply. Kane's forcing `f` enters as each body's
+//! own bias force (its applied and velocity-dependent inertia forces,
+//! summed into the subtrees by the inward pass, as Featherstone's `p^A`)
+//! plus joint forces `τ` for what is not a body's (moving-point terms). Spatial quantities are
 //! `[angular; linear]` in each body's axes about its origin.
 //!
 //! Inward, each body's articulated inertia `I^A` (its own inertia plus its
@@ -34,6 +36,9 @@ pub(super) struct TreeBody {
     pub inertia: M6,
     /// Speed index and unit motion of each of its speeds.
     pub speeds: Vec<(usize, V6)>,
+    /// Its bias force (applied plus velocity-dependent inertia forces,
+    /// negated), body axes.
+    pub bias: V6,
 }
 
 /// What the inward pass leaves for solves: per body `W` and the
@@ -113,9 +118,23 @@ impl Articulated {
 
     /// `M⁻¹ τ` (`τ` and the result by speed index).
     pub fn solve(&self, ir: &mut Ir, tau: &[Nid]) -> Vec<Nid> {
+        let zero = ir.num(0.0);
+        self.solve_from(ir, tau, vec![[zero; 6]; self.bodies.len()])
+    }
+
+    /// `M⁻¹ f` for `f` the projections of every subtree's bias forces (the
+    /// bodies' `bias`, negated) plus `tau`: Kane's forcing, summed once
+    /// inside the recursion.
+    pub fn solve_biased(&self, ir: &mut Ir, tau: &[Nid]) -> Vec<Nid> {
+        let bias = self.bodies.iter().map(|b| b.bias).collect();
+        self.solve_from(ir, tau, bias)
+    }
+
+    /// The inward and outward passes, each body's bias force starting at
+    /// `pa`.
+    fn solve_from(&self, ir: &mut Ir, tau: &[Nid], mut pa: Vec<V6>) -> Vec<Nid> {
         let nb = self.bodies.len();
         let zero = ir.num(0.0);
-        let mut pa: Vec<V6> = vec![[zero; 6]; nb];
         let mut own: Vec<Vec<Nid>> = vec![Vec::new(); nb];
         for i in (0..nb).rev() {
             let (b, j) = (&self.bodies[i], &self.joints[i]);

@@ -39,10 +39,11 @@ impl Solver {
     }
 }
 
-/// `M du = f` by the articulated-body recursion over `bodies`.
-pub(super) fn recursive_solve(ir: &mut Ir, bodies: Vec<TreeBody>, f: &[Nid]) -> Solve {
-    let a = Articulated::new(ir, bodies, f.len());
-    let du = a.solve(ir, f);
+/// `M du = f` by the articulated-body recursion over `bodies`, `f` the
+/// projections of the bodies' bias forces plus `joint_forcing`.
+pub(super) fn recursive_solve(ir: &mut Ir, bodies: Vec<TreeBody>, joint_forcing: &[Nid]) -> Solve {
+    let a = Articulated::new(ir, bodies, joint_forcing.len());
+    let du = a.solve_biased(ir, joint_forcing);
     Solve {
         pivots: a.pivots.clone(),
         du,

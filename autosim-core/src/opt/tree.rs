@@ -56,8 +56,9 @@ pub(super) fn lower(
         false => ldlt_solve(ir, &mass, &forcing),
         true => {
             let mut lw = Lowering::new(&mut sys.arena, ir, leaves);
-            let bodies = tree_bodies(&mut lw, &eqs.tree)?;
-            recursive_solve(ir, bodies, &forcing)
+            let bodies = tree_bodies(&mut lw, &eqs.tree.bodies)?;
+            let joint_forcing = lower_all(&mut lw, &eqs.tree.joint_forcing, |_| ItemRef::Model)?;
+            recursive_solve(ir, bodies, &joint_forcing)
         }
     };
     // Extra states read the accelerations as leaves, replaced by the
@@ -142,12 +143,17 @@ fn tree_bodies(
             }
             speeds.push((*k, v));
         }
+        let mut bias = [Nid(0); 6];
+        for r in 0..6 {
+            bias[r] = one(b.bias[r])?;
+        }
         out.push(TreeBody {
             parent: b.parent,
             rotation,
             offset,
             inertia: rigid_inertia(lw.ir(), m, &h, &j),
             speeds,
+            bias,
         });
     }
     Ok(out)

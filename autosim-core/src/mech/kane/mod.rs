@@ -22,7 +22,7 @@ mod recursion;
 mod tree;
 
 pub use constraints::{ConstraintEquations, ConstraintRow, Prescribed};
-pub use tree::BodyKinetics;
+pub use tree::{BodyKinetics, TreeKinetics};
 
 use super::error::{ItemRef, LocatedError, ModelError};
 use super::joint::UnitMotion;
@@ -55,7 +55,7 @@ pub struct Equations {
     /// The prescribed coordinates (none without motions).
     pub prescribed: Vec<Prescribed>,
     /// Each body's data for a recursive solve of `M du/dt = f`.
-    pub tree: Vec<BodyKinetics>,
+    pub tree: TreeKinetics,
 }
 
 impl Equations {
@@ -79,6 +79,7 @@ impl System {
         let loads = self.applied_loads();
         let acc = self.accelerations();
         let mut resultants = self.body_resultants(&loads, &acc);
+        let own = resultants.clone();
         let composite = self.subtrees(&mut resultants);
         let (res, mom) = (&resultants.force, &resultants.moment);
 
@@ -93,7 +94,9 @@ impl System {
         }
         self.moving_point_forcing(&mut forcing)?;
         let mass = self.mass_matrix(&motions, &composite);
-        let tree = self.tree_kinetics(&motions);
+        let mut joint_forcing = vec![zero; n];
+        self.moving_point_forcing(&mut joint_forcing)?;
+        let tree = self.tree_kinetics(&motions, &own, joint_forcing);
         let state_derivatives = self.state_derivatives()?;
         let prescribed = self.prescribed()?;
         let constraints = self.constraint_equations(&prescribed)?;

@@ -20,6 +20,7 @@ pub(super) struct Accelerations {
 
 /// Applied plus (velocity-dependent) inertia forces: the resultant force
 /// and moment about the origin, per body (then per subtree), body axes.
+#[derive(Clone)]
 pub(super) struct Resultants {
     pub force: Vec<Fv>,
     pub moment: Vec<Fv>,

@@ -1,9 +1,13 @@
 //! What an articulated-body (recursive, O(n)) solve of `M u̇ = f` needs of
 //! each body: how it sits in its parent (rotation and offset), its rigid
 //! inertia about its origin, and the unit motions of its speeds, all in
-//! its own axes. `opt` builds the recursion from these in the IR; the
-//! forcing `f` is Kane's, so the solve needs no velocities or gravity.
+//! its own axes, and the forces the recursion carries inward: each body's
+//! applied plus velocity-dependent inertia forces (with du/dt = 0 and N
+//! accelerating at -g, as Kane's forcing has them), so the recursion
+//! needs no velocities or gravity of its own and sums each subtree's
+//! forces once, not again for Kane's forcing.
 
+use super::recursion::Resultants;
 use crate::expr::ExprId;
 use crate::mech::framevec::Mat3;
 use crate::mech::joint::UnitMotion;
@@ -28,12 +32,32 @@ pub struct BodyKinetics {
     /// Each of the body's speeds: its index and its unit motion
     /// `[ω; v_origin]` in body axes.
     pub speeds: Vec<(usize, [ExprId; 6])>,
+    /// The body's applied plus velocity-dependent inertia forces, negated
+    /// (the bias force of the recursion): `[−moment about the origin;
+    /// −force]`, body axes.
+    pub bias: [ExprId; 6],
+}
+
+/// The recursive solve's data: `M du/dt = f` with `f` the projections of
+/// every subtree's bias forces plus `joint_forcing`.
+#[derive(Clone, Debug)]
+pub struct TreeKinetics {
+    /// The bodies, parent first (N not listed).
+    pub bodies: Vec<BodyKinetics>,
+    /// The generalized forces not carried by the bodies' resultants (of
+    /// forces at points moving in their body), per speed.
+    pub joint_forcing: Vec<ExprId>,
 }
 
 impl System {
     /// The bodies' data for the recursive solve, given the unit motion of
-    /// every speed.
-    pub(super) fn tree_kinetics(&mut self, motions: &[UnitMotion]) -> Vec<BodyKinetics> {
+    /// every speed, each body's own resultants and the rest of the forcing.
+    pub(super) fn tree_kinetics(
+        &mut self,
+        motions: &[UnitMotion],
+        own: &Resultants,
+        joint_forcing: Vec<ExprId>,
+    ) -> TreeKinetics {
         let mut out = Vec::with_capacity(self.bodies.len().saturating_sub(1));
         for b in 1..self.bodies.len() {
             let body = self.bodies[b].clone();
@@ -53,6 +77,8 @@ impl System {
                     (k, [w[0], w[1], w[2], v[0], v[1], v[2]])
                 })
                 .collect();
+            let (f, t) = (own.force[b].c, own.moment[b].c);
+            let bias = [t[0], t[1], t[2], f[0], f[1], f[2]].map(|x| self.arena.neg(x));
             out.push(BodyKinetics {
                 parent: body
                     .parent
@@ -64,9 +90,13 @@ impl System {
                 first_moment,
                 inertia,
                 speeds,
+                bias,
             });
         }
-        out
+        TreeKinetics {
+            bodies: out,
+            joint_forcing,
+        }
     }
 
     /// `J_O = J_C + m (|c|² 1 − c cᵀ)` (parallel axes).

@@ -46,6 +46,8 @@ pub(super) struct TreeBody {
 struct Joint {
     w: Vec<V6>,
     d: SmallLdlt,
+    /// The coordinate axis of each speed's unit motion, where it is one.
+    axes: Vec<Option<usize>>,
 }
 
 /// The factored recursion: solves `M x = τ` for any `τ` in O(n).
@@ -84,11 +86,28 @@ impl Articulated {
                     w[c][row] = x[c];
                 }
             }
+            // Where a unit motion is a coordinate axis `e_a`, `Sᵀ W = 1`
+            // gives row `a` of `W` and `I^a S = U − W Sᵀ U = 0` row and
+            // column `a` of `I^a`: exact values the algebra would only
+            // reach as `x − x D D⁻¹`.
+            let axes: Vec<Option<usize>> = s.iter().map(|sk| coordinate_axis(ir, sk)).collect();
+            for (c2, axis) in axes.iter().enumerate() {
+                if let Some(a) = *axis {
+                    for (c, wc) in w.iter_mut().enumerate() {
+                        wc[a] = ir.num(if c == c2 { 1.0 } else { 0.0 });
+                    }
+                }
+            }
+            let annulled = |x: usize| axes.contains(&Some(x));
             let mut articulated = ia[i];
             for r in 0..6 {
                 for c in r..6 {
-                    let terms: Vec<Nid> = (0..k).map(|j| ir.mul(w[j][r], u[j][c])).collect();
-                    let v = ir.sum(vec![articulated[r][c]], terms);
+                    let v = if annulled(r) || annulled(c) {
+                        ir.num(0.0)
+                    } else {
+                        let terms: Vec<Nid> = (0..k).map(|j| ir.mul(w[j][r], u[j][c])).collect();
+                        ir.sum(vec![articulated[r][c]], terms)
+                    };
                     articulated[r][c] = v;
                     articulated[c][r] = v;
                 }
@@ -103,7 +122,7 @@ impl Articulated {
                     }
                 }
             }
-            joints[i] = Some(Joint { w, d });
+            joints[i] = Some(Joint { w, d, axes });
         }
         Articulated {
             joints: joints
@@ -151,6 +170,12 @@ impl Articulated {
                 for r in 0..6 {
                     let t = ir.mul(j.w[c][r], *ec);
                     bias[r] = ir.sum(vec![bias[r], t], Vec::new());
+                }
+            }
+            // Along a coordinate axis, `Sᵀ p^a = Sᵀ p^A + e = τ` exactly.
+            for ((k, _), axis) in b.speeds.iter().zip(&j.axes) {
+                if let Some(a) = *axis {
+                    bias[a] = tau[*k];
                 }
             }
             own[i] = j.d.solve(ir, &e);
@@ -282,6 +307,20 @@ impl SmallLdlt {
         }
         x
     }
+}
+
+/// `Some(a)` if `s` is the coordinate axis `e_a` (literal ones and
+/// zeros).
+fn coordinate_axis(ir: &Ir, s: &V6) -> Option<usize> {
+    let mut axis = None;
+    for (r, x) in s.iter().enumerate() {
+        match ir.as_num(*x) {
+            Some(0.0) => {}
+            Some(v) if v == 1.0 && axis.is_none() => axis = Some(r),
+            _ => return None,
+        }
+    }
+    axis
 }
 
 fn dot(ir: &mut Ir, a: &[Nid], b: &[Nid]) -> Nid {

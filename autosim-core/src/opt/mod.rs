@@ -7,6 +7,7 @@ mod articulated;
 mod constrained;
 mod elim;
 mod interface;
+mod interleave;
 mod interp;
 mod ir;
 mod linearize;

@@ -3,6 +3,7 @@
 //! (subroutines first, then user functions in model order, then each result
 //! with what it needs just before it), and what the block costs.
 
+use super::interleave::interleave;
 use super::ir::{Ir, Leaf, Nid, Op};
 use crate::expr::Func;
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -226,6 +227,7 @@ pub fn schedule(ir: &Ir, tasks: &[Task], opts: &Options<'_>) -> Block {
     s.bound_nesting();
     s.pair_sines_and_cosines();
     s.order_statements(tasks);
+    s.interleave_statements();
     s.choose_names();
     s.count_operations();
     s.block
@@ -404,6 +406,15 @@ impl Sched<'_> {
                 }
             }
         }
+    }
+
+    /// Big blocks: independent chains of computation advance together
+    /// (`interleave.rs`).
+    fn interleave_statements(&mut self) {
+        let stmts = std::mem::take(&mut self.block.stmts);
+        let bound = |n: Nid| self.named.contains(&n);
+        let opaque = |n: Nid| self.opaque(n);
+        self.block.stmts = interleave(self.ir, stmts, self.opts.sub_args, &bound, &opaque);
     }
 
     /// Names: hints where free, otherwise `z1`, `z2`, ... in order of use.

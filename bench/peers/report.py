@@ -53,13 +53,15 @@ text = f"""# autosim against the peers on the chain models
 every batch (1000 calls over 1000 random states) of every round; the rounds
 interleave the programs, so load hits all alike. The best method of each
 peer is shown with its name. The last column compares the fastest round's
-median of each program instead (timings here are bimodal).
+median of each program instead (timings here are bimodal). Everything is
+compiled for this machine's CPU: the peers with gcc/g++ `-O3 -march=native`,
+autosim's generated Rust with `-C target-cpu=native`.
 
 {chr(10).join(table)}
 
 Compile cost of the generated module (one model per crate, dependencies
-built, `cargo build --release` after touching the source; the model
-compiler itself runs in the macro):
+built, `cargo build --release` with default flags after touching the
+source; the model compiler itself runs in the macro):
 
 {chr(10).join(ctab)}
 """

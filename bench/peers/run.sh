@@ -4,7 +4,9 @@
 # C of the articulated-body and CRBA algorithms (cas_bench), SymPy + cse C
 # where it exists, and autosim's generated derivatives() (autosim_bench,
 # this crate), all timed the same way (1000 random states, batches of 1000
-# calls, the same JSON lines), one round of each program in turn.
+# calls, the same JSON lines), one round of each program in turn. Everything
+# is compiled for this machine's CPU (gcc -O3 -march=native for the peers,
+# rustc -C target-cpu=native for autosim).
 #
 #   bash bench/peers/run.sh        (from the repository root)
 #
@@ -34,8 +36,11 @@ echo "== 1. models"
 rm -rf "$HERE/models" && mkdir -p "$HERE/models"
 (cd "$REPO" && cargo run -q --release --example gen_chains -- "$HERE/models" 1 2 3 5 7 10 20 50)
 
-echo "== 2. autosim_bench (release; the model compiler optimized)"
-(cd "$HERE" && CARGO_TARGET_DIR="$TARGET" cargo build -q --release)
+echo "== 2. autosim_bench (release, -C target-cpu=native as the peers' -march=native)"
+# The peers' C and C++ are compiled for this machine's CPU (-march=native);
+# the generated Rust gets the same (AUTOSIM_BENCH_RUSTFLAGS to change it).
+(cd "$HERE" && RUSTFLAGS="${AUTOSIM_BENCH_RUSTFLAGS--C target-cpu=native}" \
+  CARGO_TARGET_DIR="$TARGET" cargo build -q --release)
 BENCH="$TARGET/release/autosim-peer-bench"
 
 echo "== 3. $ROUNDS interleaved rounds (${PINCPU[*]:-unpinned})"

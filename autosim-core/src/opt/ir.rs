@@ -188,11 +188,31 @@ impl Ir {
                 });
                 self.neg(s)
             }
-            _ => self.intern(Op::Sum {
+            (1, 1) | (2, 0) => self.intern(Op::Sum {
                 pos: p.into(),
                 neg: m.into(),
             }),
+            _ => self.chain(&p, &m),
         }
+    }
+
+    /// A sum of three or more terms (added ones first) as a chain of
+    /// binary sums, left to right: the order generated code adds them in
+    /// anyway, and sums sharing their first terms share their first links
+    /// (the absolute angular speeds `u1 + ... + uk` of a chain about
+    /// parallel axes cost one addition each, not `k - 1`).
+    fn chain(&mut self, p: &[Nid], m: &[Nid]) -> Nid {
+        let mut acc = p[0];
+        for (k, t) in p.iter().chain(m).enumerate().skip(1) {
+            let (pos, neg): (Box<[Nid]>, Box<[Nid]>) = match (k < p.len(), k == 1) {
+                // The first link is the ordinary sum of its two terms.
+                (true, true) => (Box::new([p[0], *t]), Box::new([])),
+                (true, false) => (Box::new([acc, *t]), Box::new([])),
+                (false, _) => (Box::new([acc]), Box::new([*t])),
+            };
+            acc = self.intern(Op::Sum { pos, neg });
+        }
+        acc
     }
 
     /// `a * b` (commutative: operands ordered; ±1 and 0 folded).

@@ -208,6 +208,11 @@ impl Sched<'_> {
     }
 }
 
+/// The arguments of subroutine `sub`.
+fn sub_args<'a>(opts: &'a Options<'_>, sub: usize) -> &'a [Nid] {
+    opts.sub_args.get(sub).map_or(&[], Vec::as_slice)
+}
+
 /// Schedules the tasks of one block.
 pub fn schedule(ir: &Ir, tasks: &[Task], opts: &Options<'_>) -> Block {
     let mut s = Sched {
@@ -267,13 +272,7 @@ impl Sched<'_> {
             }
             let before = self.roots.len();
             for &sub in &self.subs_used {
-                for a in self
-                    .opts
-                    .sub_args
-                    .get(sub)
-                    .map(Vec::as_slice)
-                    .unwrap_or(&[])
-                {
+                for a in sub_args(self.opts, sub) {
                     if !self.roots.contains(a) {
                         self.roots.push(*a);
                     }
@@ -378,13 +377,7 @@ impl Sched<'_> {
     /// each with what it needs just before it.
     fn order_statements(&mut self, tasks: &[Task]) {
         for sub in self.subs_used.clone() {
-            for a in self
-                .opts
-                .sub_args
-                .get(sub)
-                .map(Vec::as_slice)
-                .unwrap_or(&[])
-            {
+            for a in sub_args(self.opts, sub) {
                 self.emit_node(*a);
             }
             self.block.stmts.push(Stmt::CallSub(sub));

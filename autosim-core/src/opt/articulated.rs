@@ -15,10 +15,10 @@
 //! The mass matrix is never formed; each `D`'s pivots are checked as the
 //! mass matrix's are.
 
+use super::axis_rotation::AxisRotation;
 use super::ir::{Ir, Nid};
 
-/// Three by three matrices of IR nodes.
-type M3 = [[Nid; 3]; 3];
+use super::axis_rotation::M3;
 /// Spatial vectors `[angular; linear]`.
 type V6 = [Nid; 6];
 /// Spatial inertias, blocks `[[A, B], [Bᵀ, C]]`.
@@ -422,9 +422,14 @@ fn inertia_to_parent(ir: &mut Ir, m: &M6, c: &M3, r: &[Nid; 3]) -> M6 {
     let part = |row: usize, col: usize| -> M3 {
         std::array::from_fn(|i| std::array::from_fn(|j| m[row + i][col + j]))
     };
-    let a = rotate_block(ir, c, &part(0, 0), true);
-    let b = rotate_block(ir, c, &part(0, 3), false);
-    let cm = rotate_block(ir, c, &part(3, 3), true);
+    let axis = AxisRotation::of(ir, c);
+    let turn = |ir: &mut Ir, b: &M3, symmetric: bool| match &axis {
+        Some(axis) => axis.rotate(ir, b, symmetric),
+        None => rotate_block(ir, c, b, symmetric),
+    };
+    let a = turn(ir, &part(0, 0), true);
+    let b = turn(ir, &part(0, 3), false);
+    let cm = turn(ir, &part(3, 3), true);
     let zero = ir.num(0.0);
     let (n1, n2, n3) = (ir.neg(r[0]), ir.neg(r[1]), ir.neg(r[2]));
     let skew: M3 = [[zero, n3, r[1]], [r[2], zero, n1], [n2, r[0], zero]];

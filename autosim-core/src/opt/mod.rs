@@ -4,6 +4,7 @@
 //! interface generated code exposes, a text form and a verifier.
 
 mod articulated;
+mod axis_rotation;
 mod constrained;
 mod elim;
 mod interface;

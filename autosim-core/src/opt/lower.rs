@@ -4,8 +4,9 @@
 //! become divisions, and the constant terms of a sum are grouped into one
 //! constant.
 
-use super::ir::{Ir, Nid};
+use super::ir::{Ir, Nid, Op};
 use crate::expr::{Arena, ExprId, Node, Number, SymId};
+use indexmap::IndexMap;
 use rustc_hash::FxHashMap;
 
 /// Lowers expressions of one arena into an IR, memoized per expression.
@@ -101,7 +102,51 @@ impl<'a> Lowering<'a> {
             let c = self.ir.sum(cpos, cneg);
             vpos.push(c);
         }
+        let (vpos, vneg) = self.common_constant_factors(vpos, vneg);
         Ok(self.ir.sum(vpos, vneg))
+    }
+
+    /// Terms `k·a ± k·b ± …` with one constant factor `k` become
+    /// `k·(a ± b ± …)`: one multiplication instead of one per term.
+    fn common_constant_factors(&mut self, pos: Vec<Nid>, neg: Vec<Nid>) -> (Vec<Nid>, Vec<Nid>) {
+        let split = |ir: &Ir, n: Nid| match *ir.op(n) {
+            Op::Mul(a, b) if ir.is_constant(a) && !ir.is_constant(b) => Some((a, b)),
+            Op::Mul(a, b) if ir.is_constant(b) && !ir.is_constant(a) => Some((b, a)),
+            _ => None,
+        };
+        // Factor → (added, subtracted) cofactors, in order of appearance.
+        let mut groups: IndexMap<Nid, (Vec<Nid>, Vec<Nid>)> = IndexMap::new();
+        for (negative, n) in pos
+            .iter()
+            .map(|n| (false, *n))
+            .chain(neg.iter().map(|n| (true, *n)))
+        {
+            if let Some((k, v)) = split(self.ir, n) {
+                let g = groups.entry(k).or_default();
+                if negative { g.1.push(v) } else { g.0.push(v) }
+            }
+        }
+        groups.retain(|_, (p, m)| p.len() + m.len() >= 2);
+        if groups.is_empty() {
+            return (pos, neg);
+        }
+        let grouped =
+            |ir: &Ir, n: &Nid| split(ir, *n).is_some_and(|(k, _)| groups.contains_key(&k));
+        let mut out_pos: Vec<Nid> = pos
+            .iter()
+            .copied()
+            .filter(|n| !grouped(self.ir, n))
+            .collect();
+        let out_neg: Vec<Nid> = neg
+            .iter()
+            .copied()
+            .filter(|n| !grouped(self.ir, n))
+            .collect();
+        for (k, (p, m)) in groups {
+            let inner = self.ir.sum(p, m);
+            out_pos.push(self.ir.mul(k, inner));
+        }
+        (out_pos, out_neg)
     }
 
     fn lower_prod(&mut self, c: Number, fs: &[ExprId]) -> Result<Nid, UnboundSymbol> {

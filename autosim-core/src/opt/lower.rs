@@ -1,8 +1,10 @@
 //! Lowering canonical expressions to the program IR: products are split into
 //! a constant factor (hoisted, computed once per parameter set) and variable
 //! factors multiplied pairwise (the paper's Eqs. 15-16), reciprocal powers
-//! become divisions, and the constant terms of a sum are grouped into one
-//! constant.
+//! become divisions, the constant terms of a sum are grouped into one
+//! constant, and terms of a sum sharing a factor multiply it once
+//! (`k·a + k·b` as `k·(a + b)`; constant factors first, which may add a
+//! sum to the constants block to save a product in every call).
 
 use super::ir::{Ir, Nid, Op};
 use crate::expr::{Arena, ExprId, Node, Number, SymId};
@@ -102,51 +104,58 @@ impl<'a> Lowering<'a> {
             let c = self.ir.sum(cpos, cneg);
             vpos.push(c);
         }
-        let (vpos, vneg) = self.common_constant_factors(vpos, vneg);
+        let (vpos, vneg) = self.common_factors(vpos, vneg);
         Ok(self.ir.sum(vpos, vneg))
     }
 
-    /// Terms `k·a ± k·b ± …` with one constant factor `k` become
-    /// `k·(a ± b ± …)`: one multiplication instead of one per term.
-    fn common_constant_factors(&mut self, pos: Vec<Nid>, neg: Vec<Nid>) -> (Vec<Nid>, Vec<Nid>) {
-        let split = |ir: &Ir, n: Nid| match *ir.op(n) {
-            Op::Mul(a, b) if ir.is_constant(a) && !ir.is_constant(b) => Some((a, b)),
-            Op::Mul(a, b) if ir.is_constant(b) && !ir.is_constant(a) => Some((b, a)),
-            _ => None,
-        };
-        // Factor → (added, subtracted) cofactors, in order of appearance.
-        let mut groups: IndexMap<Nid, (Vec<Nid>, Vec<Nid>)> = IndexMap::new();
-        for (negative, n) in pos
+    /// Terms `k·a ± k·b ± …` sharing a factor `k` become `k·(a ± b ± …)`:
+    /// one multiplication instead of one per term. Constant factors first,
+    /// then the factor shared by the most terms, until none is shared.
+    fn common_factors(&mut self, pos: Vec<Nid>, neg: Vec<Nid>) -> (Vec<Nid>, Vec<Nid>) {
+        let mut terms: Vec<(bool, Nid)> = pos
             .iter()
             .map(|n| (false, *n))
             .chain(neg.iter().map(|n| (true, *n)))
-        {
-            if let Some((k, v)) = split(self.ir, n) {
-                let g = groups.entry(k).or_default();
-                if negative { g.1.push(v) } else { g.0.push(v) }
+            .collect();
+        loop {
+            // How many product terms each operand appears in.
+            let mut count: IndexMap<Nid, usize> = IndexMap::new();
+            for (_, n) in &terms {
+                if self.ir.is_constant(*n) {
+                    continue;
+                }
+                if let Op::Mul(a, b) = *self.ir.op(*n) {
+                    *count.entry(a).or_default() += 1;
+                    *count.entry(b).or_default() += 1;
+                }
             }
-        }
-        groups.retain(|_, (p, m)| p.len() + m.len() >= 2);
-        if groups.is_empty() {
-            return (pos, neg);
-        }
-        let grouped =
-            |ir: &Ir, n: &Nid| split(ir, *n).is_some_and(|(k, _)| groups.contains_key(&k));
-        let mut out_pos: Vec<Nid> = pos
-            .iter()
-            .copied()
-            .filter(|n| !grouped(self.ir, n))
-            .collect();
-        let out_neg: Vec<Nid> = neg
-            .iter()
-            .copied()
-            .filter(|n| !grouped(self.ir, n))
-            .collect();
-        for (k, (p, m)) in groups {
+            let best = count
+                .iter()
+                .filter(|(_, c)| **c >= 2)
+                .max_by_key(|(k, c)| (self.ir.is_constant(**k), **c, std::cmp::Reverse(**k)))
+                .map(|(k, _)| *k);
+            let Some(k) = best else { break };
+            let (mut p, mut m, mut rest) = (Vec::new(), Vec::new(), Vec::new());
+            for (negative, n) in terms {
+                let other = match *self.ir.op(n) {
+                    _ if self.ir.is_constant(n) => None,
+                    Op::Mul(a, b) if a == k => Some(b),
+                    Op::Mul(a, b) if b == k => Some(a),
+                    _ => None,
+                };
+                match (other, negative) {
+                    (Some(v), false) => p.push(v),
+                    (Some(v), true) => m.push(v),
+                    (None, _) => rest.push((negative, n)),
+                }
+            }
             let inner = self.ir.sum(p, m);
-            out_pos.push(self.ir.mul(k, inner));
+            rest.push((false, self.ir.mul(k, inner)));
+            terms = rest;
         }
-        (out_pos, out_neg)
+        let pos = terms.iter().filter(|t| !t.0).map(|t| t.1).collect();
+        let neg = terms.iter().filter(|t| t.0).map(|t| t.1).collect();
+        (pos, neg)
     }
 
     fn lower_prod(&mut self, c: Number, fs: &[ExprId]) -> Result<Nid, UnboundSymbol> {

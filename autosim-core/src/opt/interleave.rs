@@ -153,15 +153,16 @@ impl Graph {
         let count = self.reads.len();
         let mut waiting_on: Vec<usize> = self.reads.iter().map(Vec::len).collect();
         let mut unread: Vec<usize> = self.readers.iter().map(Vec::len).collect();
+        let mut scheduled = vec![false; count];
+        // For a ready statement: how many of the values it reads it is the
+        // last to read (kept up to date as readers are scheduled).
+        let mut frees = vec![0usize; count];
         let mut ready: Vec<usize> = (0..count).filter(|i| waiting_on[*i] == 0).collect();
         let mut live = 0usize;
         let mut out = Vec::with_capacity(count);
         while !ready.is_empty() {
-            // Live values this statement adds less those it reads last.
-            let growth = |i: usize| -> isize {
-                let frees = self.reads[i].iter().filter(|p| unread[**p] == 1).count();
-                isize::from(!self.readers[i].is_empty()) - frees as isize
-            };
+            // Live values a statement adds less those it reads last.
+            let growth = |i: usize| isize::from(!self.readers[i].is_empty()) - frees[i] as isize;
             let pick = if live > MAX_LIVE {
                 (0..ready.len()).min_by_key(|k| {
                     let i = ready[*k];
@@ -173,13 +174,22 @@ impl Graph {
             let Some(k) = pick else { break };
             let i = ready.swap_remove(k);
             live = live.saturating_add_signed(growth(i));
+            scheduled[i] = true;
+            out.push(i);
             for &p in &self.reads[i] {
                 unread[p] -= 1;
+                if unread[p] == 1 {
+                    // Its one reader left, if ready, now frees it.
+                    let last = self.readers[p].iter().find(|r| !scheduled[**r]);
+                    if let Some(&r) = last.filter(|r| waiting_on[**r] == 0) {
+                        frees[r] += 1;
+                    }
+                }
             }
-            out.push(i);
             for &s in &self.readers[i] {
                 waiting_on[s] -= 1;
                 if waiting_on[s] == 0 {
+                    frees[s] = self.reads[s].iter().filter(|p| unread[**p] == 1).count();
                     ready.push(s);
                 }
             }

@@ -365,18 +365,7 @@ impl Frames {
         v: &Vector,
         d: &super::vector::Dyadic,
     ) -> Vector {
-        let mut acc = Vector::zero();
-        for &((l, r), c) in d.terms() {
-            let lv = Vector::uv(arena, l);
-            let k = self.dot_vec(arena, v, &lv);
-            if arena.is_zero(k) {
-                continue;
-            }
-            let k = arena.mul(k, c);
-            let t = Vector::term(arena, r, k);
-            acc = acc.add(arena, &t);
-        }
-        acc
+        self.dyadic_product(arena, d, v, true)
     }
 
     /// `D · v` for a dyadic and a vector.
@@ -386,15 +375,31 @@ impl Frames {
         d: &super::vector::Dyadic,
         v: &Vector,
     ) -> Vector {
+        self.dyadic_product(arena, d, v, false)
+    }
+
+    /// `v · D` (`vector_first`) or `D · v`: each term `c l r` dots `v`
+    /// into `l` (or `r`) and keeps the other unit vector.
+    fn dyadic_product(
+        &mut self,
+        arena: &mut Arena,
+        d: &super::vector::Dyadic,
+        v: &Vector,
+        vector_first: bool,
+    ) -> Vector {
         let mut acc = Vector::zero();
         for &((l, r), c) in d.terms() {
-            let rv = Vector::uv(arena, r);
-            let k = self.dot_vec(arena, &rv, v);
+            let (dotted, kept) = if vector_first { (l, r) } else { (r, l) };
+            let u = Vector::uv(arena, dotted);
+            let k = match vector_first {
+                true => self.dot_vec(arena, v, &u),
+                false => self.dot_vec(arena, &u, v),
+            };
             if arena.is_zero(k) {
                 continue;
             }
             let k = arena.mul(k, c);
-            let t = Vector::term(arena, l, k);
+            let t = Vector::term(arena, kept, k);
             acc = acc.add(arena, &t);
         }
         acc

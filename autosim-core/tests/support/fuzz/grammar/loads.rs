@@ -25,47 +25,44 @@ impl Grammar<'_> {
 
     fn force(&mut self, i: usize) -> String {
         let name = self.name("F", i);
-        let mut entries = Vec::new();
-        if !self.wrong() {
-            let on = self.point(1);
-            entries.push(format!("on: {on}"));
-        }
-        if self.rng.chance(40) {
-            let r = self.point(1);
-            entries.push(format!("reaction: {r}"));
-        }
-        if self.wrong() {
-            for key in ["vector", "along", "magnitude", "about"] {
-                if self.rng.chance(40) {
-                    let v = self.any(2);
-                    entries.push(format!("{key}: {v}"));
-                }
-            }
-        } else if self.rng.chance(50) {
-            let v = self.vector(3);
-            entries.push(format!("vector: {v}"));
-        } else {
-            let a = self.vector(2);
-            let m = self.scalar(3);
-            entries.push(format!("along: {a}"));
-            entries.push(format!("magnitude: {m}"));
-        }
+        let entries = self.load_entries(
+            |g| g.point(1),
+            ["vector", "along", "magnitude", "about"],
+            ("along", 2),
+        );
         format!("force {name} {{ {} }}", entries.join(", "))
     }
 
     fn moment(&mut self, i: usize) -> String {
         let name = self.name("M", i);
+        let entries = self.load_entries(
+            |g| g.body_ref(),
+            ["vector", "about", "magnitude", "along"],
+            ("about", 1),
+        );
+        format!("moment {name} {{ {} }}", entries.join(", "))
+    }
+
+    /// A load's entries: what it acts on (`target`), a reaction, then a
+    /// vector or a direction (`axis`: its key and depth) with a
+    /// magnitude; going wrong, any of `wrong_keys` with any expression.
+    fn load_entries(
+        &mut self,
+        target: impl Fn(&mut Self) -> String,
+        wrong_keys: [&str; 4],
+        axis: (&str, usize),
+    ) -> Vec<String> {
         let mut entries = Vec::new();
         if !self.wrong() {
-            let on = self.body_ref();
+            let on = target(self);
             entries.push(format!("on: {on}"));
         }
         if self.rng.chance(40) {
-            let r = self.body_ref();
+            let r = target(self);
             entries.push(format!("reaction: {r}"));
         }
         if self.wrong() {
-            for key in ["vector", "about", "magnitude", "along"] {
+            for key in wrong_keys {
                 if self.rng.chance(40) {
                     let v = self.any(2);
                     entries.push(format!("{key}: {v}"));
@@ -75,11 +72,11 @@ impl Grammar<'_> {
             let v = self.vector(3);
             entries.push(format!("vector: {v}"));
         } else {
-            let a = self.vector(1);
+            let a = self.vector(axis.1);
             let m = self.scalar(3);
-            entries.push(format!("about: {a}"));
+            entries.push(format!("{}: {a}", axis.0));
             entries.push(format!("magnitude: {m}"));
         }
-        format!("moment {name} {{ {} }}", entries.join(", "))
+        entries
     }
 }

@@ -3,8 +3,9 @@
 //! hoisting and naming apply. Kane's forcing `f` enters as each body's
 //! own bias force (its applied and velocity-dependent inertia forces,
 //! summed into the subtrees by the inward pass, as Featherstone's `p^A`)
-//! plus joint forces `τ` for what is not a body's (moving-point terms). Spatial quantities are
-//! `[angular; linear]` in each body's axes about its origin.
+//! plus joint forces `τ` for what is not a body's (moving-point terms).
+//! Spatial quantities are `[angular; linear]` in each body's axes about
+//! its origin.
 //!
 //! Inward, each body's articulated inertia `I^A` (its own inertia plus its
 //! children's, each less what its joint lets move): `U = I^A S`,
@@ -15,10 +16,9 @@
 //! The mass matrix is never formed; each `D`'s pivots are checked as the
 //! mass matrix's are.
 
-use super::axis_rotation::AxisRotation;
+use super::axis_rotation::{AxisRotation, M3};
 use super::ir::{Ir, Nid};
 
-use super::axis_rotation::M3;
 /// Spatial vectors `[angular; linear]`.
 type V6 = [Nid; 6];
 /// Spatial inertias, blocks `[[A, B], [Bᵀ, C]]`.

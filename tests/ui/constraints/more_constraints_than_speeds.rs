@@ -1,3 +1,4 @@
+// Three constraints on a model with two speeds.
 autosim::model! {
     model MoreConstraintsThanSpeeds;
     parameters { L = 1 [m] }

@@ -8,36 +8,13 @@ use autosim::runtime::{Linearize, Model, StateArray};
 use autosim_test_support::Rng;
 
 mod chains {
-    autosim::model!(
-        file = "examples/models/chain_planar_1.sim",
-        name = Planar1,
-        linearize = true
-    );
-    autosim::model!(
-        file = "examples/models/chain_planar_5.sim",
-        name = Planar5,
-        linearize = true
-    );
-    autosim::model!(
-        file = "examples/models/chain_planar_10.sim",
-        name = Planar10,
-        linearize = true
-    );
-    autosim::model!(
-        file = "examples/models/chain_spatial_1.sim",
-        name = Spatial1,
-        linearize = true
-    );
-    autosim::model!(
-        file = "examples/models/chain_spatial_3.sim",
-        name = Spatial3,
-        linearize = true
-    );
-    autosim::model!(
-        file = "examples/models/chain_spatial_10.sim",
-        name = Spatial10,
-        linearize = true
-    );
+    use autosim_test_support::models_from;
+    models_from! { "examples/models/chain_planar_1.sim": Planar1, linearize = true; }
+    models_from! { "examples/models/chain_planar_5.sim": Planar5, linearize = true; }
+    models_from! { "examples/models/chain_planar_10.sim": Planar10, linearize = true; }
+    models_from! { "examples/models/chain_spatial_1.sim": Spatial1, linearize = true; }
+    models_from! { "examples/models/chain_spatial_3.sim": Spatial3, linearize = true; }
+    models_from! { "examples/models/chain_spatial_10.sim": Spatial10, linearize = true; }
 }
 mod satellite {
     autosim::model!(file = "examples/models/satellite.sim", linearize = true);

@@ -77,83 +77,42 @@ mod report;
 mod scenes;
 mod study;
 
+/// Models from one file, each named and tailored by scene options.
+macro_rules! from_file {
+    ($file:tt: $($name:ident $(, $option:ident = $value:tt)*;)+) => {
+        $(autosim::model!(file = $file, name = $name $(, $option = $value)*);)+
+    };
+}
+
 /// The work–precision models: one file each, in `f64` and `f32`.
 mod wp {
-    autosim::model!(file = "examples/models/satellite.sim");
-    autosim::model!(
-        file = "examples/models/satellite.sim",
-        name = SatelliteF32,
-        float = f32
+    from_file!("examples/models/satellite.sim":
+        Satellite;
+        SatelliteF32, float = f32;
+        SatelliteSmall, small = [B, E, F];
+        SatelliteSmallF32, small = [B, E, F], float = f32;
     );
-    autosim::model!(
-        file = "examples/models/satellite.sim",
-        name = SatelliteSmall,
-        small = [B, E, F]
+    from_file!("examples/models/chain_spatial_5.sim":
+        ChainSpatial5;
+        ChainSpatial5F32, float = f32;
     );
-    autosim::model!(
-        file = "examples/models/satellite.sim",
-        name = SatelliteSmallF32,
-        small = [B, E, F],
-        float = f32
-    );
-    autosim::model!(file = "examples/models/chain_spatial_5.sim");
-    autosim::model!(
-        file = "examples/models/chain_spatial_5.sim",
-        name = ChainSpatial5F32,
-        float = f32
-    );
-    autosim::model!(file = "examples/models/chain_spatial_3_stiff.sim");
-    autosim::model!(
-        file = "examples/models/chain_spatial_3_stiff.sim",
-        name = ChainSpatial3StiffF32,
-        float = f32
+    from_file!("examples/models/chain_spatial_3_stiff.sim":
+        ChainSpatial3Stiff;
+        ChainSpatial3StiffF32, float = f32;
     );
 }
 
 /// The satellite tailored at the use site (scene options).
 mod scene {
-    autosim::model!(
-        file = "examples/models/satellite.sim",
-        name = SmallBus,
-        small = [B]
-    );
-    autosim::model!(
-        file = "examples/models/satellite.sim",
-        name = SmallBoom,
-        small = [E, F]
-    );
-    autosim::model!(
-        file = "examples/models/satellite.sim",
-        name = SmallAngles,
-        small = [q4, q5, q6, q9, q10]
-    );
-    autosim::model!(
-        file = "examples/models/satellite.sim",
-        name = SmallThreshold1,
-        small = [B, E, F],
-        threshold = 1
-    );
-    autosim::model!(
-        file = "examples/models/satellite.sim",
-        name = SmallThreshold3,
-        small = [B, E, F],
-        threshold = 3
-    );
-    autosim::model!(
-        file = "examples/models/satellite.sim",
-        name = Attitude,
-        outputs = [roll, pitch, yaw]
-    );
-    autosim::model!(
-        file = "examples/models/satellite.sim",
-        name = RigidBoomAll,
-        lock = [q9, q10]
-    );
-    autosim::model!(
-        file = "examples/models/satellite.sim",
-        name = RigidBoom,
-        lock = [q9, q10],
-        outputs = [roll, pitch, yaw]
+    from_file!("examples/models/satellite.sim":
+        SmallBus, small = [B];
+        SmallBoom, small = [E, F];
+        SmallAngles, small = [q4, q5, q6, q9, q10];
+        SmallThreshold1, small = [B, E, F], threshold = 1;
+        SmallThreshold3, small = [B, E, F], threshold = 3;
+        Attitude, outputs = [roll, pitch, yaw];
+        RigidBoomAll, lock = [q9, q10];
+        RigidBoom, lock = [q9, q10], outputs = [roll, pitch, yaw];
     );
 }
 

@@ -31,27 +31,13 @@ pub mod via_macro {
 
 /// Scenes: one model file tailored at the use site.
 pub mod scenes {
-    autosim::model!(
-        file = "../../examples/models/satellite.sim",
-        name = SatelliteSmallScene,
-        small = [B, E, F]
-    );
-    autosim::model!(
-        file = "../../examples/models/satellite.sim",
-        name = RigidBoom,
-        lock = [q9, q10],
-        outputs = [roll, pitch, yaw]
-    );
-    autosim::model!(
-        file = "../../examples/models/chain_spatial_5.sim",
-        name = ChainSpatial5F32,
-        float = f32
-    );
-    autosim::model!(
-        file = "../../examples/models/four_bar.sim",
-        name = FourBarF32,
-        float = f32
-    );
+    use autosim_test_support::models_from;
+    models_from! { "../../examples/models/satellite.sim":
+        SatelliteSmallScene, small = [B, E, F];
+        RigidBoom, lock = [q9, q10], outputs = [roll, pitch, yaw];
+    }
+    models_from! { "../../examples/models/chain_spatial_5.sim": ChainSpatial5F32, float = f32; }
+    models_from! { "../../examples/models/four_bar.sim": FourBarF32, float = f32; }
 }
 
 /// The models written by the build script.

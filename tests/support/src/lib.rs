@@ -59,3 +59,20 @@ macro_rules! model_header {
         const STATE_UNITS: &'static [&'static str] = &[$($u),*];
     };
 }
+
+/// Models from one `.sim` file (a path relative to the calling crate),
+/// each under its own name with its scene options, as `autosim::model!`
+/// takes them:
+///
+/// ```ignore
+/// autosim_test_support::models_from! { "examples/models/satellite.sim":
+///     SatelliteF32, float = f32;
+///     RigidBoom, lock = [q9, q10], outputs = [roll, pitch, yaw];
+/// }
+/// ```
+#[macro_export]
+macro_rules! models_from {
+    ($file:tt: $($name:ident $(, $option:ident = $value:tt)*;)+) => {
+        $(::autosim::model!(file = $file, name = $name $(, $option = $value)*);)+
+    };
+}

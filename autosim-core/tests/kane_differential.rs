@@ -74,7 +74,7 @@ fn textbook(sys: &mut System) -> Textbook {
     }
     for f in sys.forces().to_vec() {
         for r in 0..n {
-            let vp = sys.partial_velocity(f.point, r).unwrap();
+            let vp = sys.partial_velocity(f.at, r).unwrap();
             let x = sys.frames.dot_vec(&mut sys.arena, &vp, &f.vector);
             add(sys, &mut kr, r, x);
             if let Some(q) = f.reaction {
@@ -87,7 +87,7 @@ fn textbook(sys: &mut System) -> Textbook {
     }
     for m in sys.moments().to_vec() {
         for r in 0..n {
-            let wa = sys.partial_angular_velocity(m.body, r).unwrap();
+            let wa = sys.partial_angular_velocity(m.at, r).unwrap();
             let x = sys.frames.dot_vec(&mut sys.arena, &wa, &m.vector);
             add(sys, &mut kr, r, x);
             if let Some(b) = m.reaction {

@@ -4,7 +4,7 @@
 
 use super::error::ModelError;
 use super::system::{
-    BodyId, ExtraState, Force, Moment, Output, Point, PointId, Subroutine, System,
+    BodyId, ExtraState, Load, Output, Point, PointId, Subroutine, System,
 };
 use super::vector::Vector;
 use crate::expr::{ExprId, SymId, SymbolKind, UserFnId};
@@ -218,23 +218,29 @@ impl System {
         }
     }
 
-    /// A new load named `name` on the items `ids` (of `count`, called
-    /// `what`): forces and moments share one namespace.
-    fn check_load(
+    /// A new load named `name` at `at` with its reaction, on items of a
+    /// list of `count` (`index` gives their place, `what` their kind):
+    /// forces and moments share one namespace.
+    fn new_load<At: Copy>(
         &self,
         name: &str,
-        ids: impl IntoIterator<Item = usize>,
-        count: usize,
-        what: &str,
-    ) -> Result<(), ModelError> {
+        (at, reaction): (At, Option<At>),
+        vector: Vector,
+        (index, count, what): (fn(At) -> usize, usize, &str),
+    ) -> Result<Load<At>, ModelError> {
         if self.forces.iter().any(|f| f.name == name) || self.moments.iter().any(|m| m.name == name)
         {
             return Err(ModelError::DuplicateName(name.to_string()));
         }
-        match ids.into_iter().all(|i| i < count) {
-            true => Ok(()),
-            false => Err(ModelError::Invalid(format!("unknown {what} id"))),
+        if std::iter::once(at).chain(reaction).any(|i| index(i) >= count) {
+            return Err(ModelError::Invalid(format!("unknown {what} id")));
         }
+        Ok(Load {
+            name: name.to_string(),
+            at,
+            reaction,
+            vector,
+        })
     }
 
     /// Adds a force `vector` at `point`, with `-vector` at `reaction`.
@@ -245,15 +251,9 @@ impl System {
         reaction: Option<PointId>,
         vector: Vector,
     ) -> Result<(), ModelError> {
-        let ids = std::iter::once(point).chain(reaction).map(PointId::index);
-        self.check_load(name, ids, self.points.len(), "point")?;
-        let name = name.to_string();
-        self.forces.push(Force {
-            name,
-            point,
-            reaction,
-            vector,
-        });
+        let points = (PointId::index as fn(_) -> _, self.points.len(), "point");
+        let force = self.new_load(name, (point, reaction), vector, points)?;
+        self.forces.push(force);
         Ok(())
     }
 
@@ -265,15 +265,9 @@ impl System {
         reaction: Option<BodyId>,
         vector: Vector,
     ) -> Result<(), ModelError> {
-        let ids = std::iter::once(body).chain(reaction).map(BodyId::index);
-        self.check_load(name, ids, self.bodies.len(), "body")?;
-        let name = name.to_string();
-        self.moments.push(Moment {
-            name,
-            body,
-            reaction,
-            vector,
-        });
+        let bodies = (BodyId::index as fn(_) -> _, self.bodies.len(), "body");
+        let moment = self.new_load(name, (body, reaction), vector, bodies)?;
+        self.moments.push(moment);
         Ok(())
     }
 }

@@ -25,7 +25,7 @@ pub use kane::{
     BodyKinetics, ConstraintEquations, ConstraintRow, Equations, Prescribed, TreeKinetics,
 };
 pub use system::{
-    Body, BodyId, BodySpec, Coordinate, ExtraState, Force, Moment, Output, Point, PointId,
+    Body, BodyId, BodySpec, Coordinate, ExtraState, Force, Load, Moment, Output, Point, PointId,
     Subroutine, System,
 };
 pub use tree::{ParentOrder, order_parents_first};

@@ -178,32 +178,26 @@ pub struct Point {
     pub coordinates: [ExprId; 3],
 }
 
-/// A force on a point of a body, with an optional equal and opposite
-/// reaction on a point of another body.
+/// A force or a moment: `vector` acting at `at` (a point for a force, a
+/// body for a moment), with an optional equal and opposite reaction.
 #[derive(Clone, Debug)]
-pub struct Force {
+pub struct Load<At> {
     /// Name.
     pub name: String,
     /// Where it acts (with +vector).
-    pub point: PointId,
+    pub at: At,
     /// Where the reaction acts (with -vector).
-    pub reaction: Option<PointId>,
-    /// The force vector.
+    pub reaction: Option<At>,
+    /// The force or moment vector.
     pub vector: Vector,
 }
 
+/// A force on a point of a body, with an optional equal and opposite
+/// reaction on a point of another body.
+pub type Force = Load<PointId>;
+
 /// A moment on a body, with an optional reaction on another body.
-#[derive(Clone, Debug)]
-pub struct Moment {
-    /// Name.
-    pub name: String,
-    /// The body it acts on (with +vector).
-    pub body: BodyId,
-    /// The body that takes the reaction (with -vector).
-    pub reaction: Option<BodyId>,
-    /// The moment vector.
-    pub vector: Vector,
-}
+pub type Moment = Load<BodyId>;
 
 /// An added state variable with its own differential equation.
 #[derive(Clone, Debug)]

@@ -21,7 +21,7 @@ impl System {
         let mut f_app: Vec<Vector> = vec![Vector::zero(); nb];
         let mut t_app: Vec<Vector> = vec![Vector::zero(); nb];
         for force in self.forces.clone() {
-            for (p, sign) in [(Some(force.point), 1), (force.reaction, -1)] {
+            for (p, sign) in [(Some(force.at), 1), (force.reaction, -1)] {
                 let Some(p) = p else { continue };
                 let point = self.points[p.index()].clone();
                 let b = point.body.index();
@@ -40,7 +40,7 @@ impl System {
             }
         }
         for moment in self.moments.clone() {
-            let b = moment.body.index();
+            let b = moment.at.index();
             t_app[b] = t_app[b].add(&mut self.arena, &moment.vector);
             if let Some(c) = moment.reaction {
                 let neg = moment.vector.neg(&mut self.arena);
@@ -66,7 +66,7 @@ impl System {
         let n = forcing.len();
         for (index, force) in self.forces.clone().into_iter().enumerate() {
             let at = |e| LocatedError::new(ItemRef::Force(index), e);
-            for (p, negate) in [(Some(force.point), false), (force.reaction, true)] {
+            for (p, negate) in [(Some(force.at), false), (force.reaction, true)] {
                 let Some(p) = p else { continue };
                 let point = self.points[p.index()].clone();
                 let mut syms: Vec<SymId> = Vec::new();

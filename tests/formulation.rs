@@ -1,6 +1,7 @@
 //! The recursive (articulated-body) formulation equals the mass-matrix
-//! formulation at random states (derivatives, and `mass_matrix`, which
-//! the recursion computes a column at a time), for the reference chains and the
+//! formulation at random states (derivatives; `mass_matrix`, which the
+//! recursion computes a column at a time; `forcing`, which it sums body
+//! by body and the other form takes as derived), for the reference chains and the
 //! satellite with its small-variable variant: a differential test of the
 //! O(n) solve. (The formulation chosen by default is the cheaper one; this
 //! forces each.)
@@ -98,13 +99,12 @@ where
     worst
 }
 
-/// Largest difference of the mass matrices, relative to their largest
-/// entry, at `cases` random states (`small` as in [`compare`]): the
-/// recursive formulation computes `mass_matrix` a column at a time from
-/// O(n) products `M du/dt`, the other forms every entry.
-fn compare_mass<const N: usize, const S: usize>(
-    mut a: impl FnMut(&[f64; N], &mut [[f64; S]; S]),
-    mut b: impl FnMut(&[f64; N], &mut [[f64; S]; S]),
+/// Largest difference of two functions of the state, relative to the
+/// largest entry of the first, at `cases` random states (`small` as in
+/// [`compare`]).
+fn compare_at<const N: usize>(
+    mut a: impl FnMut(&[f64; N]) -> Vec<f64>,
+    mut b: impl FnMut(&[f64; N]) -> Vec<f64>,
     cases: usize,
     small: &[usize],
 ) -> f64 {
@@ -115,14 +115,70 @@ fn compare_mass<const N: usize, const S: usize>(
         for k in small {
             x[*k] *= 1e-6;
         }
-        let (mut ma, mut mb) = ([[0.0; S]; S], [[0.0; S]; S]);
-        a(&x, &mut ma);
-        b(&x, &mut mb);
-        let scale = ma.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
-        for (ra, rb) in ma.iter().zip(&mb) {
-            for (va, vb) in ra.iter().zip(rb) {
-                worst = worst.max((va - vb).abs() / scale);
-            }
+        let (va, vb) = (a(&x), b(&x));
+        let scale = va.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (ea, eb) in va.iter().zip(&vb) {
+            worst = worst.max((ea - eb).abs() / scale);
+        }
+    }
+    worst
+}
+
+/// `mass_matrix`, row by row, as one vector.
+fn mass<M: Model<Float = f64, State = [f64; N]>, const N: usize, const S: usize>(
+    model: &mut M,
+    entries: fn(&mut M, f64, &[f64; N], &mut [[f64; S]; S]),
+) -> impl FnMut(&[f64; N]) -> Vec<f64> + '_ {
+    move |x| {
+        let mut m = [[0.0; S]; S];
+        entries(model, 0.0, x, &mut m);
+        m.concat()
+    }
+}
+
+/// `forcing` as a function of the state.
+fn vector<M: Model<Float = f64, State = [f64; N]>, const N: usize, const S: usize>(
+    model: &mut M,
+    values: fn(&mut M, f64, &[f64; N], &mut [f64; S]),
+) -> impl FnMut(&[f64; N]) -> Vec<f64> + '_ {
+    move |x| {
+        let mut f = [0.0; S];
+        values(model, 0.0, x, &mut f);
+        f.to_vec()
+    }
+}
+
+/// Largest difference of `forcing` and `M du/dt` (with `du/dt` from
+/// `derivatives`, the speeds' rates following the coordinates' in the
+/// state), relative to the largest force, at `cases` random states
+/// (`small` as in [`compare`]).
+fn forcing_against_mass<M, const N: usize, const S: usize>(
+    model: &mut M,
+    forcing: fn(&mut M, f64, &[f64; N], &mut [f64; S]),
+    entries: fn(&mut M, f64, &[f64; N], &mut [[f64; S]; S]),
+    cases: usize,
+    small: &[usize],
+) -> f64
+where
+    M: Model<Float = f64, State = [f64; N]>,
+{
+    let mut rng = Rng::new(0xf0_5c1e);
+    let mut worst = 0.0f64;
+    for _ in 0..cases {
+        let mut x: [f64; N] = std::array::from_fn(|_| rng.uniform(-2.0, 2.0));
+        for k in small {
+            x[*k] *= 1e-6;
+        }
+        let (mut f, mut m, mut dx) = ([0.0; S], [[0.0; S]; S], [0.0; N]);
+        if model.derivatives(0.0, &x, &mut dx).is_err() {
+            continue;
+        }
+        forcing(model, 0.0, &x, &mut f);
+        entries(model, 0.0, &x, &mut m);
+        let scale = f.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (row, fi) in m.iter().zip(&f) {
+            let m_du: f64 = row.iter().zip(&dx[S..]).map(|(mk, duk)| mk * duk).sum();
+            worst = worst.max((m_du - fi).abs() / scale);
         }
     }
     worst
@@ -137,9 +193,9 @@ macro_rules! check {
             eprintln!("{}: recursive vs mass matrix {worst:e}", stringify!($module));
             assert!(worst < 1e-12, "{worst:e}");
             let (mut a, mut b) = (matrix::Matrix::new($($user)?), recursive::Recursive::new($($user)?));
-            let worst = compare_mass(
-                |x, m| a.mass_matrix(0.0, x, m),
-                |x, m| b.mass_matrix(0.0, x, m),
+            let worst = compare_at(
+                mass(&mut a, matrix::Matrix::mass_matrix),
+                mass(&mut b, recursive::Recursive::mass_matrix),
                 20,
                 &$small,
             );
@@ -150,6 +206,21 @@ macro_rules! check {
             let small: &[usize] = &$small;
             let tolerance = if small.is_empty() { 1e-12 } else { 1e-10 };
             assert!(worst < tolerance, "{worst:e}");
+            // The recursion sums each subtree's forces for `forcing`, the
+            // other form lowers Kane's forcing as derived; each is also
+            // `M du/dt` of its own mass matrix and derivatives.
+            let worst = compare_at(
+                vector(&mut a, matrix::Matrix::forcing),
+                vector(&mut b, recursive::Recursive::forcing),
+                20,
+                &$small,
+            );
+            eprintln!("{}: forcing {worst:e}", stringify!($module));
+            assert!(worst < tolerance, "{worst:e}");
+            let worst = forcing_against_mass(&mut a, matrix::Matrix::forcing, matrix::Matrix::mass_matrix, 20, &$small)
+                .max(forcing_against_mass(&mut b, recursive::Recursive::forcing, recursive::Recursive::mass_matrix, 20, &$small));
+            eprintln!("{}: forcing against M du/dt {worst:e}", stringify!($module));
+            assert!(worst < 1e-11, "{worst:e}");
         }
     };
 }

@@ -3,9 +3,7 @@
 //! and moments, gravity. Bodies are added in `body.rs`.
 
 use super::error::ModelError;
-use super::system::{
-    BodyId, ExtraState, Load, Output, Point, PointId, Subroutine, System,
-};
+use super::system::{BodyId, ExtraState, Load, Output, Point, PointId, Subroutine, System};
 use super::vector::Vector;
 use crate::expr::{ExprId, SymId, SymbolKind, UserFnId};
 
@@ -232,7 +230,10 @@ impl System {
         {
             return Err(ModelError::DuplicateName(name.to_string()));
         }
-        if std::iter::once(at).chain(reaction).any(|i| index(i) >= count) {
+        if std::iter::once(at)
+            .chain(reaction)
+            .any(|i| index(i) >= count)
+        {
             return Err(ModelError::Invalid(format!("unknown {what} id")));
         }
         Ok(Load {

@@ -209,6 +209,28 @@ impl Articulated {
         out
     }
 
+    /// Kane's forcing `f` (by speed index) without the mass matrix: every
+    /// subtree's bias forces summed inward and projected on the speeds'
+    /// unit motions, plus the joint forces `tau`.
+    pub fn forcing(&self, ir: &mut Ir, tau: &[Nid]) -> Vec<Nid> {
+        let mut force: Vec<V6> = self.bodies.iter().map(|b| b.bias).collect();
+        let mut out = tau.to_vec();
+        for i in (0..self.bodies.len()).rev() {
+            let b = &self.bodies[i];
+            for (k, s) in &b.speeds {
+                let projected = dot6(ir, s, &force[i]);
+                out[*k] = ir.sum(vec![tau[*k]], vec![projected]);
+            }
+            if let Some(p) = b.parent {
+                let moved = force_to_parent(ir, &force[i], &b.rotation, &b.offset);
+                for r in 0..6 {
+                    force[p][r] = ir.sum(vec![force[p][r], moved[r]], Vec::new());
+                }
+            }
+        }
+        out
+    }
+
     /// `M v` (by speed index) without forming `M`: outward accelerations
     /// at rest, inward forces of the rigid inertias, projected on the
     /// speeds' unit motions.

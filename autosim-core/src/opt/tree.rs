@@ -8,7 +8,7 @@ use super::ir::{Ir, Leaf, Nid};
 use super::lower::Lowering;
 use super::lowered::{Lowered, collect_calls, lower_all, lower_one, with_accelerations};
 use super::program::ProgramError;
-use super::solve::{ldlt_solve, recursive_solve};
+use super::solve::{Solver, ldlt_solve, recursive_solve};
 use crate::expr::{ExprId, SymId};
 use crate::mech::{BodyKinetics, Equations, ItemRef};
 use crate::model::ResolvedModel;
@@ -45,7 +45,7 @@ pub(super) fn lower(
             }
         }
     }
-    let forcing = lower_all(&mut lw, &eqs.forcing, |_| ItemRef::Model)?;
+    let mut forcing = lower_all(&mut lw, &eqs.forcing, |_| ItemRef::Model)?;
     let mut sub_args = Vec::with_capacity(subs.len());
     for (k, s) in subs.iter().enumerate() {
         sub_args.push(lower_all(&mut lw, &s.args, |_| ItemRef::Subroutine(k))?);
@@ -58,7 +58,11 @@ pub(super) fn lower(
             let mut lw = Lowering::new(&mut sys.arena, ir, leaves);
             let bodies = tree_bodies(&mut lw, &eqs.tree.bodies)?;
             let joint_forcing = lower_all(&mut lw, &eqs.tree.joint_forcing, |_| ItemRef::Model)?;
-            recursive_solve(ir, bodies, &joint_forcing)
+            let solve = recursive_solve(ir, bodies, &joint_forcing);
+            if let Solver::Articulated(a) = &solve.factor {
+                forcing = a.forcing(ir, &joint_forcing);
+            }
+            solve
         }
     };
     // Extra states read the accelerations as leaves, replaced by the

@@ -207,37 +207,16 @@ pub(super) fn reads_parameters(block: &Block) -> bool {
 }
 
 /// The constant reporting the cost of a block's function, if it has one:
-/// its name and doc comment.
-pub(super) fn ops_constant(kind: BlockKind) -> Option<(&'static str, TokenStream)> {
+/// its name and what one call of it is.
+pub(super) fn ops_constant(kind: BlockKind) -> Option<(&'static str, &'static str)> {
     Some(match kind {
-        BlockKind::Derivatives => (
-            "DERIVATIVE_OPS",
-            quote!(#[doc = r" Operations of one `derivatives` call."]),
-        ),
-        BlockKind::Outputs => (
-            "OUTPUT_OPS",
-            quote!(#[doc = r" Operations of one `outputs` call."]),
-        ),
-        BlockKind::Constants => (
-            "CONSTANT_OPS",
-            quote!(#[doc = r" Operations of a parameter change."]),
-        ),
-        BlockKind::MassMatrix => (
-            "MASS_MATRIX_OPS",
-            quote!(#[doc = r" Operations of one `mass_matrix` call."]),
-        ),
-        BlockKind::Forcing => (
-            "FORCING_OPS",
-            quote!(#[doc = r" Operations of one `forcing` call."]),
-        ),
-        BlockKind::Assembly => (
-            "ASSEMBLY_OPS",
-            quote!(#[doc = r" Operations of one `assembly_step` call."]),
-        ),
-        BlockKind::Linearize => (
-            "LINEARIZE_OPS",
-            quote!(#[doc = r" Operations of one `linearize` call."]),
-        ),
+        BlockKind::Derivatives => ("DERIVATIVE_OPS", "one `derivatives` call"),
+        BlockKind::Outputs => ("OUTPUT_OPS", "one `outputs` call"),
+        BlockKind::Constants => ("CONSTANT_OPS", "a parameter change"),
+        BlockKind::MassMatrix => ("MASS_MATRIX_OPS", "one `mass_matrix` call"),
+        BlockKind::Forcing => ("FORCING_OPS", "one `forcing` call"),
+        BlockKind::Assembly => ("ASSEMBLY_OPS", "one `assembly_step` call"),
+        BlockKind::Linearize => ("LINEARIZE_OPS", "one `linearize` call"),
         BlockKind::Initial => return None,
     })
 }

@@ -330,10 +330,10 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
         .blocks
         .iter()
         .filter_map(|(kind, block)| {
-            let (name, d) = functions::ops_constant(*kind)?;
-            let name = format_ident!("{}", name);
+            let (name, call) = functions::ops_constant(*kind)?;
+            let (name, d) = (format_ident!("{}", name), format!(" Operations of {call}."));
             let value = ops_tokens(rt, &functions::ops_per_call(prog, *kind, block));
-            Some(quote!(#d pub const #name: #rt::OpCount = #value;))
+            Some(quote!(#[doc = #d] pub const #name: #rt::OpCount = #value;))
         })
         .collect();
     let functions::Args { t: mt, x: mx } = functions::args(prog, BlockKind::MassMatrix, be.locals);

@@ -3,7 +3,7 @@
 
 use core::fmt;
 
-use super::explicit::{RK4, rk_step_from_first_stage};
+use super::explicit::{RK4, rk_step};
 use super::vector::{check_step, combine, eval, evaluations_since, same};
 use super::{StepInfo, StepResult, Stepper};
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
@@ -149,7 +149,7 @@ impl<M: Model> Stepper<M> for AdamsBashforthMoulton<M> {
         let result = if self.count < self.order.history() {
             self.startup_steps += 1;
             self.k[0] = self.f[self.head];
-            rk_step_from_first_stage(
+            rk_step(
                 model,
                 t,
                 x,

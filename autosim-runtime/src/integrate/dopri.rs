@@ -2,7 +2,7 @@
 
 use core::fmt;
 
-use super::explicit::{Tableau, explicit_stages};
+use super::explicit::{Tableau, rk_step};
 use super::vector::{combine, combine_row, eval, evaluations_since, same, weighted_rms};
 use super::{StepInfo, StepResult, Stepper};
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
@@ -167,7 +167,6 @@ const DENSE: [f64; 7] = [
 pub struct DormandPrince<M: Model> {
     settings: DopriSettings<M::Float>,
     k: [M::State; 7],
-    stage: M::State,
     x_new: M::State,
     err: M::State,
     /// Coefficients of the dense-output polynomial of the last step.
@@ -194,7 +193,6 @@ impl<M: Model> DormandPrince<M> {
         Ok(Self {
             settings,
             k: [z; 7],
-            stage: z,
             x_new: z,
             err: z,
             dense: [z; 5],
@@ -270,7 +268,9 @@ impl<M: Model> DormandPrince<M> {
     }
 
     /// Stages 2–7 from `(t, x)` with step `h`, given `k[0] = f(t, x)`;
-    /// leaves the fifth-order result in `x_new` and the error in `err`.
+    /// leaves the fifth-order result in `x_new` (the stages' states are
+    /// formed there too) and the error in `err`. The seventh stage is at the
+    /// result itself (first same as last).
     fn stages(
         &mut self,
         model: &mut M,
@@ -280,8 +280,7 @@ impl<M: Model> DormandPrince<M> {
     ) -> Result<(), IntegrationError> {
         let [first_six @ .., k7] = &mut self.k;
         let evals = &mut self.evals;
-        explicit_stages(model, t, x, h, &DOPRI5, first_six, &mut self.stage, evals)?;
-        combine_row(&mut self.x_new, x, h, &DOPRI5.b, first_six);
+        rk_step(model, t, x, h, &DOPRI5, first_six, &mut self.x_new, evals)?;
         eval(model, t + h, &self.x_new, k7, evals)?;
         combine_row(&mut self.err, &M::State::zeros(), h, &ERROR, &self.k);
         Ok(())

@@ -41,8 +41,10 @@ pub(crate) const RK4: Tableau<4> = Tableau {
     b: [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0],
 };
 
-/// One step of `tableau` from `(t, x)` into `out`, with `k` as workspace
-/// (it ends up holding the stages' derivatives).
+/// One step of `tableau` from `(t, x)` into `out`, given the first stage's
+/// derivative `k[0] = f(t, x)`: for each later stage `i`,
+/// `out = x + h·Σⱼ<ᵢ aᵢⱼ·kⱼ` and `kᵢ = f(t + cᵢ·h, out)`; then
+/// `out = x + h·Σᵢ bᵢ·kᵢ`.
 // The arguments are the disjoint workspace borrows of the steppers.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn rk_step<M: Model, const S: usize>(
@@ -55,51 +57,13 @@ pub(crate) fn rk_step<M: Model, const S: usize>(
     out: &mut M::State,
     evals: &mut u64,
 ) -> Result<(), IntegrationError> {
-    eval(model, t, x, &mut k[0], evals)?;
-    rk_step_from_first_stage(model, t, x, h, tableau, k, out, evals)
-}
-
-/// [`rk_step`] given the first stage's derivative `k[0] = f(t, x)` (the
-/// Adams–Bashforth–Moulton start-up has it from its history).
-// The arguments are the disjoint workspace borrows of the steppers.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn rk_step_from_first_stage<M: Model, const S: usize>(
-    model: &mut M,
-    t: M::Float,
-    x: &M::State,
-    h: M::Float,
-    tableau: &Tableau<S>,
-    k: &mut [M::State; S],
-    out: &mut M::State,
-    evals: &mut u64,
-) -> Result<(), IntegrationError> {
-    explicit_stages(model, t, x, h, tableau, k, out, evals)?;
-    combine_row(out, x, h, &tableau.b, k);
-    Ok(())
-}
-
-/// Stages 2, 3, … of an explicit Runge–Kutta method, given `k[0] = f(t, x)`:
-/// `stage = x + h·Σⱼ<ᵢ aᵢⱼ·kⱼ`, then `kᵢ = f(t + cᵢ·h, stage)`. The rows of
-/// `tableau` past `k.len()` are not used; `stage` is workspace (it ends up
-/// holding the last stage's state).
-// The arguments are the disjoint workspace borrows of the steppers.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn explicit_stages<M: Model, const S: usize>(
-    model: &mut M,
-    t: M::Float,
-    x: &M::State,
-    h: M::Float,
-    tableau: &Tableau<S>,
-    k: &mut [M::State],
-    stage: &mut M::State,
-    evals: &mut u64,
-) -> Result<(), IntegrationError> {
-    for i in 1..k.len().min(S) {
+    for i in 1..S {
         let (earlier, rest) = k.split_at_mut(i);
-        combine_row(stage, x, h, tableau.a[i], earlier);
+        combine_row(out, x, h, tableau.a[i], earlier);
         let t_stage = t + M::Float::from_f64(tableau.c[i]) * h;
-        eval(model, t_stage, stage, &mut rest[0], evals)?;
+        eval(model, t_stage, out, &mut rest[0], evals)?;
     }
+    combine_row(out, x, h, &tableau.b, k);
     Ok(())
 }
 
@@ -151,6 +115,7 @@ macro_rules! fixed_stepper {
         impl<M: Model> Stepper<M> for $ty<M> {
             fn step(&mut self, model: &mut M, t: M::Float, x: &mut M::State, h: M::Float) -> StepResult<M> {
                 check_step(h)?;
+                eval(model, t, x, &mut self.k[0], &mut self.evals)?;
                 rk_step(model, t, x, h, &$tableau, &mut self.k, &mut self.out, &mut self.evals)?;
                 check_finite::<M>(t + h, &self.out)?;
                 *x = self.out;

@@ -286,16 +286,7 @@ fn draw(
         let style = ShapeStyle::from(color).stroke_width(2);
         // Split the line at non-finite values rather than drawing through them.
         let points = time.iter().copied().zip(s.values.iter().copied());
-        let mut segment: Vec<(f64, f64)> = Vec::new();
-        let mut segments: Vec<Vec<(f64, f64)>> = Vec::new();
-        for (t, v) in points {
-            if t.is_finite() && v.is_finite() {
-                segment.push((t, v));
-            } else if !segment.is_empty() {
-                segments.push(std::mem::take(&mut segment));
-            }
-        }
-        segments.push(segment);
+        let segments = split_line(points, |t, v| t.is_finite() && v.is_finite());
         let mut first = true;
         for seg in segments {
             let drawn = chart.draw_series(LineSeries::new(seg, style))?;
@@ -308,14 +299,49 @@ fn draw(
             }
         }
     }
+    draw_legend(&mut chart, 14, SeriesLabelPosition::UpperLeft)?;
+    root.present()?;
+    Ok(())
+}
+
+/// The runs of consecutive points that `keep` accepts, in order: a line
+/// split where it cannot be drawn. The last run is there even when empty
+/// (a series with nothing to draw still gets its legend entry).
+fn split_line(
+    points: impl Iterator<Item = (f64, f64)>,
+    keep: impl Fn(f64, f64) -> bool,
+) -> Vec<Vec<(f64, f64)>> {
+    let mut segment: Vec<(f64, f64)> = Vec::new();
+    let mut segments: Vec<Vec<(f64, f64)>> = Vec::new();
+    for (x, y) in points {
+        if keep(x, y) {
+            segment.push((x, y));
+        } else if !segment.is_empty() {
+            segments.push(std::mem::take(&mut segment));
+        }
+    }
+    segments.push(segment);
+    segments
+}
+
+/// The legend: a framed box of the labelled series at `position`.
+fn draw_legend<'a, DB, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    font_size: u32,
+    position: SeriesLabelPosition,
+) -> Result<(), Box<dyn std::error::Error>>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+    CT: CoordTranslate,
+{
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
-        .label_font(("sans-serif", 14))
-        .position(SeriesLabelPosition::UpperLeft)
+        .label_font(("sans-serif", font_size))
+        .position(position)
         .draw()?;
-    root.present()?;
     Ok(())
 }
 
@@ -412,16 +438,10 @@ where
         let color = Palette99::pick(s.color).to_rgba();
         let style = ShapeStyle::from(color).stroke_width(2);
         // Split the line where a point cannot be drawn.
-        let mut segment: Vec<(f64, f64)> = Vec::new();
-        let mut segments: Vec<Vec<(f64, f64)>> = Vec::new();
-        for (x, y) in s.x.iter().copied().zip(s.y.iter().copied()) {
-            if drawable(x, axes.x_scale) && drawable(y, axes.y_scale) {
-                segment.push((x, y));
-            } else if !segment.is_empty() {
-                segments.push(std::mem::take(&mut segment));
-            }
-        }
-        segments.push(segment);
+        let points = s.x.iter().copied().zip(s.y.iter().copied());
+        let segments = split_line(points, |x, y| {
+            drawable(x, axes.x_scale) && drawable(y, axes.y_scale)
+        });
         let mut first = true;
         for seg in segments.into_iter().filter(|seg| !seg.is_empty()) {
             chart.draw_series(seg.iter().map(|p| Circle::new(*p, 3, style.filled())))?;
@@ -442,18 +462,13 @@ where
             }
         }
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 13))
-        .position(match axes.legend {
-            Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
-            Corner::UpperRight => SeriesLabelPosition::UpperRight,
-            Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
-            Corner::LowerRight => SeriesLabelPosition::LowerRight,
-        })
-        .draw()?;
+    let position = match axes.legend {
+        Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
+        Corner::UpperRight => SeriesLabelPosition::UpperRight,
+        Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
+        Corner::LowerRight => SeriesLabelPosition::LowerRight,
+    };
+    draw_legend(&mut chart, 13, position)?;
     root.present()?;
     Ok(())
 }

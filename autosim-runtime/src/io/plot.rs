@@ -54,8 +54,11 @@ pub fn write_svg_plot(
     time: &[f64],
     series: &[Series<'_>],
 ) -> Result<(), OutputError> {
-    let svg = svg_plot(title, time, series)?;
-    let path = path.as_ref();
+    write_svg(path.as_ref(), svg_plot(title, time, series)?)
+}
+
+/// Writes an SVG document to `path`, naming the path if that fails.
+fn write_svg(path: &Path, svg: String) -> Result<(), OutputError> {
     std::fs::write(path, svg).map_err(|source| OutputError::Io {
         path: path.to_path_buf(),
         source,
@@ -177,12 +180,7 @@ pub fn write_xy_svg_plot(
     axes: &Axes<'_>,
     series: &[XySeries<'_>],
 ) -> Result<(), OutputError> {
-    let svg = xy_svg_plot(title, axes, series)?;
-    let path = path.as_ref();
-    std::fs::write(path, svg).map_err(|source| OutputError::Io {
-        path: path.to_path_buf(),
-        source,
-    })
+    write_svg(path.as_ref(), xy_svg_plot(title, axes, series)?)
 }
 
 impl<M: Model> Recording<M> {

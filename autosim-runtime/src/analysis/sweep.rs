@@ -70,20 +70,17 @@ impl Sweep {
             .collect();
         let mut series = Vec::with_capacity(2 * n);
         for k in 0..n {
-            series.push(XySeries {
-                name: &names[k].0,
+            // In the eigenvalue's color: the real part solid, the imaginary
+            // part dashed.
+            let line = |name, y, dashed| XySeries {
+                name,
                 x: &self.values,
-                y: &re[k],
+                y,
                 color: k,
-                dashed: false,
-            });
-            series.push(XySeries {
-                name: &names[k].1,
-                x: &self.values,
-                y: &im[k],
-                color: k,
-                dashed: true,
-            });
+                dashed,
+            };
+            series.push(line(&names[k].0, &re[k], false));
+            series.push(line(&names[k].1, &im[k], true));
         }
         let axes = Axes {
             x_label: &self.parameter,

@@ -5,6 +5,7 @@ use std::{format, vec};
 
 use std::path::Path;
 
+use plotters::coord::Shift;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
 
@@ -265,13 +266,8 @@ fn draw(
     x_range: Range,
     y_range: Range,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let root = SVGBackend::with_string(svg, SIZE).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 22))
-        .margin(16)
-        .x_label_area_size(48)
-        .y_label_area_size(72)
+    let root = canvas(svg)?;
+    let mut chart = chart_frame(&root, title, 72)
         .build_cartesian_2d(x_range.0..x_range.1, y_range.0..y_range.1)?;
     chart
         .configure_mesh()
@@ -300,6 +296,31 @@ fn draw(
     draw_legend(&mut chart, 14, SeriesLabelPosition::UpperLeft)?;
     root.present()?;
     Ok(())
+}
+
+/// A white drawing area of [`SIZE`] that draws into `svg`.
+fn canvas(
+    svg: &mut String,
+) -> Result<DrawingArea<SVGBackend<'_>, Shift>, Box<dyn std::error::Error>> {
+    let root = SVGBackend::with_string(svg, SIZE).into_drawing_area();
+    root.fill(&WHITE)?;
+    Ok(root)
+}
+
+/// The frame of a chart on `root`: the title, the margins, and room for the
+/// axis labels (`y_label_width` pixels left of the plot).
+fn chart_frame<'a, 'b>(
+    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    title: &str,
+    y_label_width: u32,
+) -> ChartBuilder<'a, 'static, SVGBackend<'b>> {
+    let mut frame = ChartBuilder::on(root);
+    frame
+        .caption(title, ("sans-serif", 22))
+        .margin(16)
+        .x_label_area_size(48)
+        .y_label_area_size(y_label_width);
+    frame
 }
 
 /// The runs of consecutive points that `keep` accepts, in order: a line
@@ -409,14 +430,8 @@ where
     X::CoordDescType: ValueFormatter<f64>,
     Y::CoordDescType: ValueFormatter<f64>,
 {
-    let root = SVGBackend::with_string(svg, SIZE).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 22))
-        .margin(16)
-        .x_label_area_size(48)
-        .y_label_area_size(80)
-        .build_cartesian_2d(x_spec, y_spec)?;
+    let root = canvas(svg)?;
+    let mut chart = chart_frame(&root, title, 80).build_cartesian_2d(x_spec, y_spec)?;
     let x_log = axes.x_scale == Scale::Log;
     let y_log = axes.y_scale == Scale::Log;
     let x_fmt = |v: &f64| if x_log { log_label(*v) } else { format!("{v}") };

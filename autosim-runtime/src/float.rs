@@ -65,8 +65,33 @@ pub trait Float:
     fn min(self, other: Self) -> Self;
 }
 
+/// Functions that only pass their arguments on: each line
+/// `fn name(args) -> R => target;` becomes an `#[inline(always)]` function
+/// calling `target(args)`. Methods take `self` first; free functions take a
+/// visibility (`pub fn`).
+macro_rules! forward {
+    ($(fn $name:ident(self $(, $arg:ident: $ty:ty)*) -> $ret:ty => $($target:ident)::+;)+) => {
+        $(
+            #[inline(always)]
+            fn $name(self $(, $arg: $ty)*) -> $ret {
+                $($target)::+(self $(, $arg)*)
+            }
+        )+
+    };
+    ($(pub fn $name:ident($($arg:ident: $ty:ty),+) -> $ret:ty => $($target:ident)::+;)+) => {
+        $(
+            #[inline(always)]
+            pub fn $name($($arg: $ty),+) -> $ret {
+                $($target)::+($($arg),+)
+            }
+        )+
+    };
+}
+
+/// [`Float`] for `f32` or `f64`: the basic operations from `core`, the math
+/// functions from `imp` (std or libm).
 macro_rules! impl_float {
-    ($t:ident, $sfx:ident) => {
+    ($t:ident) => {
         impl Float for $t {
             const ZERO: Self = 0.0;
             const ONE: Self = 1.0;
@@ -79,129 +104,51 @@ macro_rules! impl_float {
             fn to_f64(self) -> f64 {
                 self as f64
             }
-            #[inline(always)]
-            fn is_finite(self) -> bool {
-                $t::is_finite(self)
-            }
-            #[inline(always)]
-            fn abs(self) -> Self {
-                $t::abs(self)
-            }
-            #[inline(always)]
-            fn sqrt(self) -> Self {
-                imp::$sfx::sqrt(self)
-            }
-            #[inline(always)]
-            fn sin(self) -> Self {
-                imp::$sfx::sin(self)
-            }
-            #[inline(always)]
-            fn cos(self) -> Self {
-                imp::$sfx::cos(self)
-            }
-            #[inline(always)]
-            fn sin_cos(self) -> (Self, Self) {
-                imp::$sfx::sin_cos(self)
-            }
-            #[inline(always)]
-            fn tan(self) -> Self {
-                imp::$sfx::tan(self)
-            }
-            #[inline(always)]
-            fn asin(self) -> Self {
-                imp::$sfx::asin(self)
-            }
-            #[inline(always)]
-            fn acos(self) -> Self {
-                imp::$sfx::acos(self)
-            }
-            #[inline(always)]
-            fn atan2(self, x: Self) -> Self {
-                imp::$sfx::atan2(self, x)
-            }
-            #[inline(always)]
-            fn exp(self) -> Self {
-                imp::$sfx::exp(self)
-            }
-            #[inline(always)]
-            fn ln(self) -> Self {
-                imp::$sfx::ln(self)
-            }
-            #[inline(always)]
-            fn powf(self, e: Self) -> Self {
-                imp::$sfx::powf(self, e)
-            }
-            #[inline(always)]
-            fn powi(self, n: i32) -> Self {
-                imp::$sfx::powi(self, n)
-            }
-            #[inline(always)]
-            fn max(self, other: Self) -> Self {
-                $t::max(self, other)
-            }
-            #[inline(always)]
-            fn min(self, other: Self) -> Self {
-                $t::min(self, other)
+            forward! {
+                fn is_finite(self) -> bool => $t::is_finite;
+                fn abs(self) -> Self => $t::abs;
+                fn sqrt(self) -> Self => imp::$t::sqrt;
+                fn sin(self) -> Self => imp::$t::sin;
+                fn cos(self) -> Self => imp::$t::cos;
+                fn sin_cos(self) -> (Self, Self) => imp::$t::sin_cos;
+                fn tan(self) -> Self => imp::$t::tan;
+                fn asin(self) -> Self => imp::$t::asin;
+                fn acos(self) -> Self => imp::$t::acos;
+                fn atan2(self, x: Self) -> Self => imp::$t::atan2;
+                fn exp(self) -> Self => imp::$t::exp;
+                fn ln(self) -> Self => imp::$t::ln;
+                fn powf(self, e: Self) -> Self => imp::$t::powf;
+                fn powi(self, n: i32) -> Self => imp::$t::powi;
+                fn max(self, other: Self) -> Self => $t::max;
+                fn min(self, other: Self) -> Self => $t::min;
             }
         }
     };
 }
 
-impl_float!(f64, f64);
-impl_float!(f32, f32);
+impl_float!(f64);
+impl_float!(f32);
 
+/// The math functions of [`Float`] as free functions `imp::f64::sin`, … from
+/// the standard library.
 #[cfg(feature = "std")]
 mod imp {
     macro_rules! std_math {
         ($t:ident) => {
             pub mod $t {
-                #[inline(always)]
-                pub fn sqrt(x: $t) -> $t {
-                    x.sqrt()
-                }
-                #[inline(always)]
-                pub fn sin(x: $t) -> $t {
-                    x.sin()
-                }
-                #[inline(always)]
-                pub fn cos(x: $t) -> $t {
-                    x.cos()
-                }
-                #[inline(always)]
-                pub fn sin_cos(x: $t) -> ($t, $t) {
-                    x.sin_cos()
-                }
-                #[inline(always)]
-                pub fn tan(x: $t) -> $t {
-                    x.tan()
-                }
-                #[inline(always)]
-                pub fn asin(x: $t) -> $t {
-                    x.asin()
-                }
-                #[inline(always)]
-                pub fn acos(x: $t) -> $t {
-                    x.acos()
-                }
-                #[inline(always)]
-                pub fn atan2(y: $t, x: $t) -> $t {
-                    y.atan2(x)
-                }
-                #[inline(always)]
-                pub fn exp(x: $t) -> $t {
-                    x.exp()
-                }
-                #[inline(always)]
-                pub fn ln(x: $t) -> $t {
-                    x.ln()
-                }
-                #[inline(always)]
-                pub fn powf(x: $t, e: $t) -> $t {
-                    x.powf(e)
-                }
-                #[inline(always)]
-                pub fn powi(x: $t, n: i32) -> $t {
-                    x.powi(n)
+                forward! {
+                    pub fn sqrt(x: $t) -> $t => $t::sqrt;
+                    pub fn sin(x: $t) -> $t => $t::sin;
+                    pub fn cos(x: $t) -> $t => $t::cos;
+                    pub fn sin_cos(x: $t) -> ($t, $t) => $t::sin_cos;
+                    pub fn tan(x: $t) -> $t => $t::tan;
+                    pub fn asin(x: $t) -> $t => $t::asin;
+                    pub fn acos(x: $t) -> $t => $t::acos;
+                    pub fn atan2(y: $t, x: $t) -> $t => $t::atan2;
+                    pub fn exp(x: $t) -> $t => $t::exp;
+                    pub fn ln(x: $t) -> $t => $t::ln;
+                    pub fn powf(x: $t, e: $t) -> $t => $t::powf;
+                    pub fn powi(x: $t, n: i32) -> $t => $t::powi;
                 }
             }
         };
@@ -210,54 +157,25 @@ mod imp {
     std_math!(f32);
 }
 
+/// The math functions of [`Float`] as free functions `imp::f64::sin`, … from
+/// `libm` (no standard library).
 #[cfg(all(not(feature = "std"), feature = "libm"))]
 mod imp {
     macro_rules! libm_math {
         ($t:ident, $sqrt:ident, $sin:ident, $cos:ident, $sincos:ident, $tan:ident, $asin:ident, $acos:ident, $atan2:ident, $exp:ident, $ln:ident, $pow:ident) => {
             pub mod $t {
-                #[inline(always)]
-                pub fn sqrt(x: $t) -> $t {
-                    libm::$sqrt(x)
-                }
-                #[inline(always)]
-                pub fn sin(x: $t) -> $t {
-                    libm::$sin(x)
-                }
-                #[inline(always)]
-                pub fn cos(x: $t) -> $t {
-                    libm::$cos(x)
-                }
-                #[inline(always)]
-                pub fn sin_cos(x: $t) -> ($t, $t) {
-                    libm::$sincos(x)
-                }
-                #[inline(always)]
-                pub fn tan(x: $t) -> $t {
-                    libm::$tan(x)
-                }
-                #[inline(always)]
-                pub fn asin(x: $t) -> $t {
-                    libm::$asin(x)
-                }
-                #[inline(always)]
-                pub fn acos(x: $t) -> $t {
-                    libm::$acos(x)
-                }
-                #[inline(always)]
-                pub fn atan2(y: $t, x: $t) -> $t {
-                    libm::$atan2(y, x)
-                }
-                #[inline(always)]
-                pub fn exp(x: $t) -> $t {
-                    libm::$exp(x)
-                }
-                #[inline(always)]
-                pub fn ln(x: $t) -> $t {
-                    libm::$ln(x)
-                }
-                #[inline(always)]
-                pub fn powf(x: $t, e: $t) -> $t {
-                    libm::$pow(x, e)
+                forward! {
+                    pub fn sqrt(x: $t) -> $t => libm::$sqrt;
+                    pub fn sin(x: $t) -> $t => libm::$sin;
+                    pub fn cos(x: $t) -> $t => libm::$cos;
+                    pub fn sin_cos(x: $t) -> ($t, $t) => libm::$sincos;
+                    pub fn tan(x: $t) -> $t => libm::$tan;
+                    pub fn asin(x: $t) -> $t => libm::$asin;
+                    pub fn acos(x: $t) -> $t => libm::$acos;
+                    pub fn atan2(y: $t, x: $t) -> $t => libm::$atan2;
+                    pub fn exp(x: $t) -> $t => libm::$exp;
+                    pub fn ln(x: $t) -> $t => libm::$ln;
+                    pub fn powf(x: $t, e: $t) -> $t => libm::$pow;
                 }
                 #[inline(always)]
                 pub fn powi(x: $t, n: i32) -> $t {

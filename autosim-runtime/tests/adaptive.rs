@@ -3,8 +3,8 @@
 mod common;
 
 use autosim_runtime::integrate::{DopriSettings, DormandPrince};
-use autosim_runtime::{IntegrationError, Model, RunSettings, Stepper, run};
-use common::{BlowUp, Oscillator, Polynomial, max_diff};
+use autosim_runtime::{IntegrationError, Model, RunSettings, Stepper};
+use common::{BlowUp, Oscillator, Polynomial, max_diff, run_unobserved};
 
 /// Steps the oscillator to `t_end` with DOPRI5, returning the global error
 /// and the stepper.
@@ -156,14 +156,7 @@ fn blow_up_stops_with_step_size_underflow_near_the_singularity() {
     let mut x = model.initial_state();
     let mut dp = DormandPrince::new(DopriSettings::new(1e-8, 1e-8)).unwrap();
     let settings = RunSettings::new(0.0, 2.0, 1e-3, 0.1);
-    let err = run(
-        &mut model,
-        &mut dp,
-        &mut x,
-        &settings,
-        &mut |_, _: &[f64; 1], _: &[f64; 0]| {},
-    )
-    .unwrap_err();
+    let err = run_unobserved(&mut model, &mut dp, &mut x, &settings).unwrap_err();
     // The closure observer cannot fail, so the run error is an integration error.
     let err = IntegrationError::from(err);
     let t = err.time().unwrap();

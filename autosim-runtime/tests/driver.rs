@@ -8,7 +8,7 @@ use autosim_runtime::integrate::{DopriSettings, DormandPrince, Euler, Heun, Rk4}
 use autosim_runtime::{
     IntegrationError, Model, ModelError, Observer, RunError, RunSettings, Stepper, run,
 };
-use common::{Decay, Oscillator, max_diff};
+use common::{Decay, Oscillator, max_diff, run_recorded, run_unobserved};
 
 /// Records every call of `derivatives`: (t, x).
 #[derive(Default)]
@@ -82,24 +82,15 @@ fn outputs_land_on_output_times_with_exact_step_counts() {
     let mut x = model.initial_state();
     let mut rk4 = Rk4::new();
     let settings = RunSettings::new(0.0, 1.0, 0.01, 0.1);
-    let mut seen = Vec::new();
-    let summary = run(
-        &mut model,
-        &mut rk4,
-        &mut x,
-        &settings,
-        &mut |t, x: &[f64; 2], y: &[f64; 1]| {
-            seen.push((t, *x, y[0]));
-        },
-    )
-    .unwrap();
+    let (summary, seen) = run_recorded(&mut model, &mut rk4, &mut x, &settings);
+    let summary = summary.unwrap();
     assert_eq!(summary.steps, 100);
     assert_eq!(summary.evaluations, 400);
     assert_eq!(summary.outputs, 11);
     assert_eq!(summary.end_time, 1.0);
     assert_eq!(summary.rejected_steps, 0);
     let exact = Oscillator::default();
-    for (k, (t, x, energy)) in seen.iter().enumerate() {
+    for (k, (t, x, [energy])) in seen.iter().enumerate() {
         assert!((t - 0.1 * k as f64).abs() < 1e-15, "output {k} at {t}");
         assert!(max_diff(x, &exact.exact(*t)) < 1e-9);
         // Energy ½·m·v² + ½·m·ω²·x² of x = cos t with m = 2: exactly 1.
@@ -116,17 +107,9 @@ fn steps_divide_output_intervals_and_the_last_interval_is_short() {
     // 0.1 / 0.03 → 4 steps of 0.025 per interval; the last interval [0.2, 0.25]
     // takes 2 steps of 0.025.
     let settings = RunSettings::new(0.0, 0.25, 0.03, 0.1);
-    let mut times = Vec::new();
-    let summary = run(
-        &mut model,
-        &mut rk4,
-        &mut x,
-        &settings,
-        &mut |t, _: &[f64; 1], _: &[f64; 0]| {
-            times.push(t);
-        },
-    )
-    .unwrap();
+    let (summary, seen) = run_recorded(&mut model, &mut rk4, &mut x, &settings);
+    let summary = summary.unwrap();
+    let times: Vec<f64> = seen.iter().map(|output| output.0).collect();
     assert_eq!(times, [0.0, 0.1, 0.2, 0.25]);
     assert_eq!(summary.steps, 10);
     assert!((summary.max_step - 0.025).abs() < 1e-15);
@@ -139,20 +122,11 @@ fn adaptive_runs_land_on_output_times() {
     let mut x = model.initial_state();
     let mut dp = DormandPrince::new(DopriSettings::new(1e-9, 1e-9)).unwrap();
     let settings = RunSettings::new(0.0, 10.0, 0.01, 0.25);
-    let mut seen = Vec::new();
-    let summary = run(
-        &mut model,
-        &mut dp,
-        &mut x,
-        &settings,
-        &mut |t, x: &[f64; 2], _: &[f64; 1]| {
-            seen.push((t, *x));
-        },
-    )
-    .unwrap();
+    let (summary, seen) = run_recorded(&mut model, &mut dp, &mut x, &settings);
+    let summary = summary.unwrap();
     assert_eq!(seen.len(), 41);
     let exact = Oscillator::default();
-    for (k, (t, x)) in seen.iter().enumerate() {
+    for (k, (t, x, _)) in seen.iter().enumerate() {
         assert_eq!(*t, if k == 40 { 10.0 } else { 0.25 * k as f64 });
         assert!(max_diff(x, &exact.exact(*t)) < 1e-8, "t = {t}");
     }
@@ -168,14 +142,7 @@ fn a_model_error_is_wrapped_with_its_time() {
     };
     let mut x = [0.0];
     let settings = RunSettings::new(0.0, 1.0, 0.1, 0.1);
-    let err = run(
-        &mut model,
-        &mut Euler::new(),
-        &mut x,
-        &settings,
-        &mut |_, _: &[f64; 1], _: &[f64; 1]| {},
-    )
-    .unwrap_err();
+    let err = run_unobserved(&mut model, &mut Euler::new(), &mut x, &settings).unwrap_err();
     match err {
         RunError::Integration(IntegrationError::Model { t, error }) => {
             // x = t; the call at x ≈ 0.6 fails.
@@ -236,15 +203,9 @@ fn step_limit_is_a_typed_error() {
     let mut model = Decay { k: 1.0 };
     let mut x = model.initial_state();
     let settings = RunSettings::new(0.0, 1.0, 0.1, 0.5).with_max_steps(7);
-    let err: IntegrationError = run(
-        &mut model,
-        &mut Rk4::new(),
-        &mut x,
-        &settings,
-        &mut |_, _: &[f64; 1], _: &[f64; 0]| {},
-    )
-    .unwrap_err()
-    .into();
+    let err: IntegrationError = run_unobserved(&mut model, &mut Rk4::new(), &mut x, &settings)
+        .unwrap_err()
+        .into();
     assert!(
         matches!(err, IntegrationError::TooManySteps { steps: 7, t } if (t - 0.7).abs() < 1e-12),
         "{err:?}"
@@ -252,14 +213,7 @@ fn step_limit_is_a_typed_error() {
     // Exactly enough steps is fine.
     let settings = settings.with_max_steps(10);
     let mut x = model.initial_state();
-    let summary = run(
-        &mut model,
-        &mut Rk4::new(),
-        &mut x,
-        &settings,
-        &mut |_, _: &[f64; 1], _: &[f64; 0]| {},
-    )
-    .unwrap();
+    let summary = run_unobserved(&mut model, &mut Rk4::new(), &mut x, &settings).unwrap();
     assert_eq!(summary.steps, 10);
 }
 
@@ -343,13 +297,6 @@ fn f32_models_run_too() {
     let mut x = [1.0f32];
     let mut dp = DormandPrince::new(DopriSettings::new(1e-5f32, 1e-6)).unwrap();
     let settings = RunSettings::new(0.0f32, 5.0, 0.1, 0.5);
-    run(
-        &mut DecayF32,
-        &mut dp,
-        &mut x,
-        &settings,
-        &mut |_, _: &[f32; 1], _: &[f32; 0]| {},
-    )
-    .unwrap();
+    run_unobserved(&mut DecayF32, &mut dp, &mut x, &settings).unwrap();
     assert!((x[0] - (-5.0f32).exp()).abs() < 1e-5, "{}", x[0]);
 }

@@ -4,10 +4,13 @@
 //! and Dormand–Prince retries a trial step smaller, instead of giving up,
 //! when the model cannot evaluate one of its stages.
 
+mod common;
+
 use autosim_runtime::integrate::{
     AbmOrder, AdamsBashforthMoulton, DormandPrince, Euler, Heun, Rk4, Sdirk3, SdirkSettings,
 };
-use autosim_runtime::{IntegrationError, Model, ModelError, RunSettings, Stepper, run};
+use autosim_runtime::{IntegrationError, Model, ModelError, RunSettings, Stepper};
+use common::run_unobserved;
 
 /// `x'' = -ω² x` with ω = 1000, failing like a generated model on a
 /// non-finite state.
@@ -43,15 +46,9 @@ fn go<S: Stepper<Guarded> + ?Sized>(
 ) -> (Result<(), IntegrationError>, [f64; 2]) {
     let mut x = Guarded.initial_state();
     let settings = RunSettings::new(0.0, stop, step, stop).with_max_steps(100_000);
-    let r = run(
-        &mut Guarded,
-        stepper,
-        &mut x,
-        &settings,
-        &mut |_, _: &_, _: &_| {},
-    )
-    .map(|_| ())
-    .map_err(IntegrationError::from);
+    let r = run_unobserved(&mut Guarded, stepper, &mut x, &settings)
+        .map(|_| ())
+        .map_err(IntegrationError::from);
     (r, x)
 }
 
@@ -141,14 +138,7 @@ fn dormand_prince_retries_a_trial_the_model_cannot_evaluate() {
     let mut x = model.initial_state();
     // Stages of a 100 s trial leave |x| <= 2: retried smaller.
     let settings = RunSettings::new(0.0, 10.0, 100.0, 10.0);
-    run(
-        &mut model,
-        &mut dopri,
-        &mut x,
-        &settings,
-        &mut |_, _: &_, _: &_| {},
-    )
-    .unwrap();
+    run_unobserved(&mut model, &mut dopri, &mut x, &settings).unwrap();
     assert!((x[0] - 10.0f64.cos()).abs() < 1e-6, "{x:?}");
 
     // A solution that leaves the model's domain is still reported, naming
@@ -157,15 +147,9 @@ fn dormand_prince_retries_a_trial_the_model_cannot_evaluate() {
     let mut dopri = DormandPrince::<Fenced>::with_tolerances(1e-8, 1e-8).unwrap();
     let mut x = model.initial_state();
     let settings = RunSettings::new(0.0, 5.0, 0.1, 5.0);
-    let err = run(
-        &mut model,
-        &mut dopri,
-        &mut x,
-        &settings,
-        &mut |_, _: &_, _: &_| {},
-    )
-    .map_err(IntegrationError::from)
-    .unwrap_err();
+    let err = run_unobserved(&mut model, &mut dopri, &mut x, &settings)
+        .map_err(IntegrationError::from)
+        .unwrap_err();
     match err {
         IntegrationError::Model { t, error } => {
             assert!((t - 2.0).abs() < 1e-6, "t = {t}");

@@ -4,8 +4,8 @@
 mod common;
 
 use autosim_runtime::integrate::{Analytic, Rk4, Sdirk3, SdirkSettings};
-use autosim_runtime::{IntegrationError, Model, ModelError, RunError, RunSettings, Stepper, run};
-use common::{StiffLinear, VanDerPol, max_diff};
+use autosim_runtime::{IntegrationError, Model, ModelError, RunError, RunSettings, Stepper};
+use common::{StiffLinear, VanDerPol, max_diff, run_recorded, run_unobserved};
 
 /// Runs `stepper` on the stiff linear system over [0, 1] with step `h`.
 fn stiff_run<S: Stepper<StiffLinear>>(
@@ -15,13 +15,7 @@ fn stiff_run<S: Stepper<StiffLinear>>(
     let mut model = StiffLinear::default();
     let mut x = model.initial_state();
     let settings = RunSettings::new(0.0, 1.0, h, 0.1);
-    run(
-        &mut model,
-        stepper,
-        &mut x,
-        &settings,
-        &mut |_, _: &[f64; 3], _: &[f64; 0]| {},
-    )?;
+    run_unobserved(&mut model, stepper, &mut x, &settings)?;
     Ok(x)
 }
 
@@ -61,17 +55,8 @@ fn rk4_failure_leaves_the_last_finite_state() {
     let mut x = model.initial_state();
     let mut rk4 = Rk4::new();
     let settings = RunSettings::new(0.0, 1.0, 0.01, 0.01);
-    let mut last_output = [0.0; 3];
-    let err = run(
-        &mut model,
-        &mut rk4,
-        &mut x,
-        &settings,
-        &mut |_, x: &[f64; 3], _: &[f64; 0]| {
-            last_output = *x;
-        },
-    )
-    .unwrap_err();
+    let (result, outputs) = run_recorded(&mut model, &mut rk4, &mut x, &settings);
+    let err = result.unwrap_err();
     assert!(matches!(
         err,
         RunError::Integration(IntegrationError::NonFinite { .. })
@@ -80,6 +65,7 @@ fn rk4_failure_leaves_the_last_finite_state() {
         x.iter().all(|v| v.is_finite()),
         "state after the error: {x:?}"
     );
+    let (_, last_output, _) = outputs.last().unwrap();
     assert!(last_output.iter().all(|v| v.is_finite()));
 }
 
@@ -118,14 +104,7 @@ fn sdirk_handles_stiff_van_der_pol() {
     let mut x = model.initial_state();
     let mut sdirk = Sdirk3::new(SdirkSettings::default());
     let settings = RunSettings::new(0.0, 100.0, 0.05, 10.0);
-    let summary = run(
-        &mut model,
-        &mut sdirk,
-        &mut x,
-        &settings,
-        &mut |_, _: &[f64; 2], _: &[f64; 1]| {},
-    )
-    .unwrap();
+    let summary = run_unobserved(&mut model, &mut sdirk, &mut x, &settings).unwrap();
     assert_eq!(summary.steps, 2000);
     // On the slow manifold dx/dt = x / (μ (1 − x²)) (to O(1/μ²)), whose
     // solution from x = 2 satisfies ln x − x²/2 = ln 2 − 2 + t/μ (g decreases
@@ -165,14 +144,7 @@ fn newton_failure_is_a_typed_error_with_the_time() {
     let mut x = [1.0];
     let mut sdirk = Sdirk3::new(SdirkSettings::default());
     let settings = RunSettings::new(0.5, 2.0, 1.0, 1.0);
-    let err = run(
-        &mut model,
-        &mut sdirk,
-        &mut x,
-        &settings,
-        &mut |_, _: &[f64; 1], _: &[f64; 0]| {},
-    )
-    .unwrap_err();
+    let err = run_unobserved(&mut model, &mut sdirk, &mut x, &settings).unwrap_err();
     match err {
         RunError::Integration(IntegrationError::NewtonFailed { t, h, iterations }) => {
             assert_eq!(t, 0.5);

@@ -26,6 +26,12 @@ impl models::satellite_sampled::Externs for Figure8 {
 /// The slew's length.
 pub const STOP: f64 = 15.0;
 
+/// The slew's run settings: steps of `step` (the first trial step of an
+/// adaptive stepper) and one output, at the end.
+fn slew_settings(step: f64) -> RunSettings<f64> {
+    RunSettings::new(0.0, STOP, step, STOP).with_max_steps(100_000_000)
+}
+
 /// Roll, pitch, yaw at the end and the derivative evaluations, the
 /// thrusters in the derivatives.
 pub fn in_derivatives<S: Stepper<Satellite<Figure8>>>(
@@ -34,7 +40,7 @@ pub fn in_derivatives<S: Stepper<Satellite<Figure8>>>(
 ) -> ([f64; 3], u64) {
     let mut m = Satellite::new(Figure8::new());
     let mut x = m.initial_state();
-    let settings = RunSettings::new(0.0, STOP, step, STOP).with_max_steps(100_000_000);
+    let settings = slew_settings(step);
     let mut end = [0.0; 3];
     let summary = run(
         &mut m,
@@ -57,7 +63,7 @@ pub fn sampled<S: Stepper<SatelliteSampled<Figure8>>>(
 ) -> ([f64; 3], u64) {
     let mut m = SatelliteSampled::new(Figure8::new());
     let mut x = m.initial_state();
-    let settings = RunSettings::new(0.0, STOP, step, STOP).with_max_steps(100_000_000);
+    let settings = slew_settings(step);
     let mut logic = Figure8::new();
     let mut controller = |t: f64, _x: &[f64; 20], y: &[f64; 9], w: &mut [f64]| {
         for axis in 0..3 {

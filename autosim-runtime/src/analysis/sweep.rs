@@ -41,6 +41,20 @@ impl Sweep {
         })
     }
 
+    /// The most eigenvalues at any value (the number of series to plot).
+    fn eigenvalue_count(&self) -> usize {
+        self.eigenvalues.iter().map(Vec::len).max().unwrap_or(0)
+    }
+
+    /// `part` of the `k`-th eigenvalue at each value (NaN where there are
+    /// fewer eigenvalues).
+    fn trace(&self, k: usize, part: fn(&Complex<f64>) -> f64) -> Vec<f64> {
+        self.eigenvalues
+            .iter()
+            .map(|ev| ev.get(k).map_or(f64::NAN, part))
+            .collect()
+    }
+
     /// Real parts (solid) and imaginary parts (dashed, the frequencies)
     /// of the eigenvalues against the parameter, as an SVG document; the
     /// k-th series joins the k-th eigenvalue by real part at each value.
@@ -48,34 +62,25 @@ impl Sweep {
     /// # Errors
     /// [`OutputError::Plot`] if there is nothing to draw.
     pub fn eigenvalues_svg(&self, title: &str) -> Result<String, OutputError> {
-        let n = self.eigenvalues.iter().map(Vec::len).max().unwrap_or(0);
-        let part = |k: usize, f: fn(&Complex<f64>) -> f64| -> Vec<f64> {
-            self.eigenvalues
-                .iter()
-                .map(|ev| ev.get(k).map_or(f64::NAN, f))
-                .collect()
-        };
-        let re: Vec<Vec<f64>> = (0..n).map(|k| part(k, |c| c.re)).collect();
-        let im: Vec<Vec<f64>> = (0..n).map(|k| part(k, |c| c.im.abs())).collect();
+        let n = self.eigenvalue_count();
+        let re: Vec<Vec<f64>> = (0..n).map(|k| self.trace(k, |c| c.re)).collect();
+        let im: Vec<Vec<f64>> = (0..n).map(|k| self.trace(k, |c| c.im.abs())).collect();
         let names: Vec<(String, String)> = (0..n)
             .map(|k| (format!("Re λ{}", k + 1), format!("|Im λ{}|", k + 1)))
             .collect();
         let mut series = Vec::with_capacity(2 * n);
         for k in 0..n {
-            series.push(XySeries {
-                name: &names[k].0,
+            // In the eigenvalue's color: the real part solid, the imaginary
+            // part dashed.
+            let line = |name, y, dashed| XySeries {
+                name,
                 x: &self.values,
-                y: &re[k],
+                y,
                 color: k,
-                dashed: false,
-            });
-            series.push(XySeries {
-                name: &names[k].1,
-                x: &self.values,
-                y: &im[k],
-                color: k,
-                dashed: true,
-            });
+                dashed,
+            };
+            series.push(line(&names[k].0, &re[k], false));
+            series.push(line(&names[k].1, &im[k], true));
         }
         let axes = Axes {
             x_label: &self.parameter,
@@ -93,15 +98,9 @@ impl Sweep {
     /// # Errors
     /// [`OutputError::Plot`] if there is nothing to draw.
     pub fn root_locus_svg(&self, title: &str) -> Result<String, OutputError> {
-        let n = self.eigenvalues.iter().map(Vec::len).max().unwrap_or(0);
-        let pick = |k: usize, f: fn(&Complex<f64>) -> f64| -> Vec<f64> {
-            self.eigenvalues
-                .iter()
-                .map(|ev| ev.get(k).map_or(f64::NAN, f))
-                .collect()
-        };
+        let n = self.eigenvalue_count();
         let points: Vec<(Vec<f64>, Vec<f64>)> = (0..n)
-            .map(|k| (pick(k, |c| c.re), pick(k, |c| c.im)))
+            .map(|k| (self.trace(k, |c| c.re), self.trace(k, |c| c.im)))
             .collect();
         let names: Vec<String> = (0..n).map(|k| format!("λ{}", k + 1)).collect();
         let series: Vec<XySeries<'_>> = (0..n)

@@ -3,8 +3,8 @@
 
 use core::fmt;
 
-use super::explicit::rk4_tail;
-use super::vector::{check_step, combine, eval, same};
+use super::explicit::{RK4, rk_step};
+use super::vector::{check_step, combine, eval, evaluations_since, same};
 use super::{StepInfo, StepResult, Stepper};
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 
@@ -55,7 +55,8 @@ pub struct AdamsBashforthMoulton<M: Model> {
     t_end: M::Float,
     h_last: M::Float,
     x_end: M::State,
-    k: [M::State; 3],
+    /// The RK4 stages' derivatives of a start-up step.
+    k: [M::State; 4],
     predicted: M::State,
     f_predicted: M::State,
     corrected: M::State,
@@ -75,7 +76,7 @@ impl<M: Model> AdamsBashforthMoulton<M> {
             t_end: M::Float::ZERO,
             h_last: M::Float::ZERO,
             x_end: z,
-            k: [z; 3],
+            k: [z; 4],
             predicted: z,
             f_predicted: z,
             corrected: z,
@@ -147,15 +148,14 @@ impl<M: Model> Stepper<M> for AdamsBashforthMoulton<M> {
         }
         let result = if self.count < self.order.history() {
             self.startup_steps += 1;
-            let k1 = self.f[self.head];
-            let [k2, k3, k4] = &mut self.k;
-            rk4_tail(
+            self.k[0] = self.f[self.head];
+            rk_step(
                 model,
                 t,
                 x,
                 h,
-                &k1,
-                [k2, k3, k4],
+                &RK4,
+                &mut self.k,
                 &mut self.corrected,
                 &mut self.evals,
             )
@@ -184,12 +184,10 @@ impl<M: Model> Stepper<M> for AdamsBashforthMoulton<M> {
         self.h_last = h;
         self.x_end = self.corrected;
         *x = self.corrected;
-        Ok(StepInfo {
+        Ok(StepInfo::fixed(
             h,
-            h_next: h,
-            rejected: 0,
-            evaluations: u32::try_from(self.evals - evals_before).unwrap_or(u32::MAX),
-        })
+            evaluations_since(evals_before, self.evals),
+        ))
     }
     fn evaluations(&self) -> u64 {
         self.evals

@@ -2,7 +2,8 @@
 
 use core::fmt;
 
-use super::vector::{combine, eval, same, weighted_rms};
+use super::explicit::{Tableau, rk_step};
+use super::vector::{combine, combine_row, eval, evaluations_since, same, weighted_rms};
 use super::{StepInfo, StepResult, Stepper};
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 
@@ -95,44 +96,60 @@ impl<F: Float> Default for DopriSettings<F> {
 
 // Dormand & Prince (1980) coefficients, as in Hairer, Nørsett & Wanner,
 // "Solving Ordinary Differential Equations I", DOPRI5.
-const C2: f64 = 1.0 / 5.0;
-const C3: f64 = 3.0 / 10.0;
-const C4: f64 = 4.0 / 5.0;
-const C5: f64 = 8.0 / 9.0;
-const A21: f64 = 1.0 / 5.0;
-const A31: f64 = 3.0 / 40.0;
-const A32: f64 = 9.0 / 40.0;
-const A41: f64 = 44.0 / 45.0;
-const A42: f64 = -56.0 / 15.0;
-const A43: f64 = 32.0 / 9.0;
-const A51: f64 = 19372.0 / 6561.0;
-const A52: f64 = -25360.0 / 2187.0;
-const A53: f64 = 64448.0 / 6561.0;
-const A54: f64 = -212.0 / 729.0;
-const A61: f64 = 9017.0 / 3168.0;
-const A62: f64 = -355.0 / 33.0;
-const A63: f64 = 46732.0 / 5247.0;
-const A64: f64 = 49.0 / 176.0;
-const A65: f64 = -5103.0 / 18656.0;
-const A71: f64 = 35.0 / 384.0;
-const A73: f64 = 500.0 / 1113.0;
-const A74: f64 = 125.0 / 192.0;
-const A75: f64 = -2187.0 / 6784.0;
-const A76: f64 = 11.0 / 84.0;
-// Error coefficients: 5th-order weights minus 4th-order weights.
-const E1: f64 = 71.0 / 57600.0;
-const E3: f64 = -71.0 / 16695.0;
-const E4: f64 = 71.0 / 1920.0;
-const E5: f64 = -17253.0 / 339200.0;
-const E6: f64 = 22.0 / 525.0;
-const E7: f64 = -1.0 / 40.0;
-// Dense output (Shampine's 4th-order continuous extension).
-const D1: f64 = -12715105075.0 / 11282082432.0;
-const D3: f64 = 87487479700.0 / 32700410799.0;
-const D4: f64 = -10690763975.0 / 1880347072.0;
-const D5: f64 = 701980252875.0 / 199316789632.0;
-const D6: f64 = -1453857185.0 / 822651844.0;
-const D7: f64 = 69997945.0 / 29380423.0;
+/// Stages 1–6 and the fifth-order weights. The seventh stage is the new
+/// state itself (first same as last): its derivative starts the next step.
+const DOPRI5: Tableau<6> = Tableau {
+    c: [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0],
+    a: [
+        &[],
+        &[1.0 / 5.0],
+        &[3.0 / 40.0, 9.0 / 40.0],
+        &[44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0],
+        &[
+            19372.0 / 6561.0,
+            -25360.0 / 2187.0,
+            64448.0 / 6561.0,
+            -212.0 / 729.0,
+        ],
+        &[
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+        ],
+    ],
+    b: [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
+};
+/// Error weights of the seven stages: fifth-order weights minus fourth-order
+/// weights.
+const ERROR: [f64; 7] = [
+    71.0 / 57600.0,
+    0.0,
+    -71.0 / 16695.0,
+    71.0 / 1920.0,
+    -17253.0 / 339200.0,
+    22.0 / 525.0,
+    -1.0 / 40.0,
+];
+/// Dense output (Shampine's 4th-order continuous extension): the weights of
+/// the seven stages in its highest coefficient.
+const DENSE: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
 
 /// Adaptive Dormand–Prince 5(4) Runge–Kutta (DOPRI5): fifth-order steps
 /// with an embedded fourth-order error estimate, first-same-as-last (six
@@ -150,7 +167,6 @@ const D7: f64 = 69997945.0 / 29380423.0;
 pub struct DormandPrince<M: Model> {
     settings: DopriSettings<M::Float>,
     k: [M::State; 7],
-    stage: M::State,
     x_new: M::State,
     err: M::State,
     /// Coefficients of the dense-output polynomial of the last step.
@@ -177,7 +193,6 @@ impl<M: Model> DormandPrince<M> {
         Ok(Self {
             settings,
             k: [z; 7],
-            stage: z,
             x_new: z,
             err: z,
             dense: [z; 5],
@@ -253,7 +268,9 @@ impl<M: Model> DormandPrince<M> {
     }
 
     /// Stages 2–7 from `(t, x)` with step `h`, given `k[0] = f(t, x)`;
-    /// leaves the fifth-order result in `x_new` and the error in `err`.
+    /// leaves the fifth-order result in `x_new` (the stages' states are
+    /// formed there too) and the error in `err`. The seventh stage is at the
+    /// result itself (first same as last).
     fn stages(
         &mut self,
         model: &mut M,
@@ -261,82 +278,19 @@ impl<M: Model> DormandPrince<M> {
         x: &M::State,
         h: M::Float,
     ) -> Result<(), IntegrationError> {
-        let c = |v: f64| M::Float::from_f64(v);
-        let [k1, k2, k3, k4, k5, k6, k7] = &mut self.k;
-        let stage = &mut self.stage;
+        let [first_six @ .., k7] = &mut self.k;
         let evals = &mut self.evals;
-        combine(stage, x, h, &[(c(A21), &*k1)]);
-        eval(model, t + c(C2) * h, stage, k2, evals)?;
-        combine(stage, x, h, &[(c(A31), &*k1), (c(A32), &*k2)]);
-        eval(model, t + c(C3) * h, stage, k3, evals)?;
-        combine(
-            stage,
-            x,
-            h,
-            &[(c(A41), &*k1), (c(A42), &*k2), (c(A43), &*k3)],
-        );
-        eval(model, t + c(C4) * h, stage, k4, evals)?;
-        combine(
-            stage,
-            x,
-            h,
-            &[
-                (c(A51), &*k1),
-                (c(A52), &*k2),
-                (c(A53), &*k3),
-                (c(A54), &*k4),
-            ],
-        );
-        eval(model, t + c(C5) * h, stage, k5, evals)?;
-        combine(
-            stage,
-            x,
-            h,
-            &[
-                (c(A61), &*k1),
-                (c(A62), &*k2),
-                (c(A63), &*k3),
-                (c(A64), &*k4),
-                (c(A65), &*k5),
-            ],
-        );
-        eval(model, t + h, stage, k6, evals)?;
-        combine(
-            &mut self.x_new,
-            x,
-            h,
-            &[
-                (c(A71), &*k1),
-                (c(A73), &*k3),
-                (c(A74), &*k4),
-                (c(A75), &*k5),
-                (c(A76), &*k6),
-            ],
-        );
+        rk_step(model, t, x, h, &DOPRI5, first_six, &mut self.x_new, evals)?;
         eval(model, t + h, &self.x_new, k7, evals)?;
-        let zero = M::State::zeros();
-        combine(
-            &mut self.err,
-            &zero,
-            h,
-            &[
-                (c(E1), &*k1),
-                (c(E3), &*k3),
-                (c(E4), &*k4),
-                (c(E5), &*k5),
-                (c(E6), &*k6),
-                (c(E7), &*k7),
-            ],
-        );
+        combine_row(&mut self.err, &M::State::zeros(), h, &ERROR, &self.k);
         Ok(())
     }
 
     /// Records the accepted step `t → t + h` from `x_old` for dense output.
     fn store_dense(&mut self, x_old: &M::State, t: M::Float, h: M::Float) {
-        let c = |v: f64| M::Float::from_f64(v);
         let one = M::Float::ONE;
         let [r1, r2, r3, r4, r5] = &mut self.dense;
-        let [k1, _, k3, k4, k5, k6, k7] = &self.k;
+        let [k1, .., k7] = &self.k;
         *r1 = *x_old;
         for ((d, a), b) in r2
             .as_mut()
@@ -360,19 +314,7 @@ impl<M: Model> DormandPrince<M> {
         {
             *d = *a - h * *k - *b;
         }
-        combine(
-            r5,
-            &M::State::zeros(),
-            h,
-            &[
-                (c(D1), k1),
-                (c(D3), k3),
-                (c(D4), k4),
-                (c(D5), k5),
-                (c(D6), k6),
-                (c(D7), k7),
-            ],
-        );
+        combine_row(r5, &M::State::zeros(), h, &DENSE, &self.k);
         self.t_old = t;
         self.t_new = t + h;
         self.has_step = true;
@@ -490,7 +432,7 @@ impl<M: Model> Stepper<M> for DormandPrince<M> {
                     h,
                     h_next,
                     rejected,
-                    evaluations: u32::try_from(self.evals - evals_before).unwrap_or(u32::MAX),
+                    evaluations: evaluations_since(evals_before, self.evals),
                 });
             }
             last_trial_t = None;

@@ -1,71 +1,102 @@
 //! Fixed-step explicit Runge–Kutta methods: Euler, Heun and classic RK4.
-//! Each is a [`FixedStep`]: it computes the new state into a workspace, and
-//! one implementation of [`Stepper`] checks the step and the result around
-//! it for all three.
+//! Each is a Butcher [`Tableau`] that one routine ([`rk_step`]) steps with,
+//! and one implementation of [`Stepper`] checks the step and the result
+//! around it for all three.
 
 use core::fmt;
 
-use super::vector::{check_step, combine, eval};
+use super::vector::{check_step, combine_row, eval};
 use super::{StepInfo, StepResult, Stepper};
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 
-/// A fixed-step method that carries nothing from one step to the next.
-trait FixedStep<M: Model> {
-    /// The method's name.
-    const NAME: &'static str;
-    /// Its order of accuracy.
-    const ORDER: u32;
-    /// Derivative evaluations per step.
-    const STAGES: u32;
-
-    /// Computes the state at `t + h` from `x` (returned; `x` unchanged).
-    fn advance(
-        &mut self,
-        model: &mut M,
-        t: M::Float,
-        x: &M::State,
-        h: M::Float,
-    ) -> Result<&M::State, IntegrationError>;
+/// The Butcher tableau of an explicit Runge–Kutta method with `S` stages.
+pub(crate) struct Tableau<const S: usize> {
+    /// Stage times as fractions of the step; `c[0]` is 0 (stage 1 is at `t`).
+    pub c: [f64; S],
+    /// Row `i`: the weights `aᵢⱼ` (j < i) of the earlier stages' derivatives
+    /// in stage `i`'s state (row 0 is empty).
+    pub a: [&'static [f64]; S],
+    /// The weights of the stages' derivatives in the new state.
+    pub b: [f64; S],
 }
 
-/// A [`FixedStep`] as a [`Stepper`]: the step checked, the new state
-/// checked before it replaces `x`.
-fn fixed_step<M: Model, S: FixedStep<M>>(
-    s: &mut S,
+/// Forward Euler.
+const EULER: Tableau<1> = Tableau {
+    c: [0.0],
+    a: [&[]],
+    b: [1.0],
+};
+
+/// Heun's method: an Euler predictor and a trapezoid corrector.
+const HEUN: Tableau<2> = Tableau {
+    c: [0.0, 1.0],
+    a: [&[], &[1.0]],
+    b: [0.5, 0.5],
+};
+
+/// The classic fourth-order Runge–Kutta method.
+pub(crate) const RK4: Tableau<4> = Tableau {
+    c: [0.0, 0.5, 0.5, 1.0],
+    a: [&[], &[0.5], &[0.0, 0.5], &[0.0, 0.0, 1.0]],
+    b: [1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0],
+};
+
+/// One step of `tableau` from `(t, x)` into `out`, given the first stage's
+/// derivative `k[0] = f(t, x)`: for each later stage `i`,
+/// `out = x + h·Σⱼ<ᵢ aᵢⱼ·kⱼ` and `kᵢ = f(t + cᵢ·h, out)`; then
+/// `out = x + h·Σᵢ bᵢ·kᵢ`.
+// The arguments are the disjoint workspace borrows of the steppers.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn rk_step<M: Model, const S: usize>(
     model: &mut M,
     t: M::Float,
-    x: &mut M::State,
+    x: &M::State,
     h: M::Float,
-) -> Result<StepInfo<M::Float>, IntegrationError> {
-    check_step(h)?;
-    let new = *s.advance(model, t, x, h)?;
-    check_finite::<M>(t + h, &new)?;
-    *x = new;
-    Ok(fixed_info(h, S::STAGES))
+    tableau: &Tableau<S>,
+    k: &mut [M::State; S],
+    out: &mut M::State,
+    evals: &mut u64,
+) -> Result<(), IntegrationError> {
+    for i in 1..S {
+        let (earlier, rest) = k.split_at_mut(i);
+        combine_row(out, x, h, tableau.a[i], earlier);
+        let t_stage = t + M::Float::from_f64(tableau.c[i]) * h;
+        eval(model, t_stage, out, &mut rest[0], evals)?;
+    }
+    combine_row(out, x, h, &tableau.b, k);
+    Ok(())
 }
 
-/// Declares a stepper whose fields are state arrays (zeroed by `new`) and
-/// an evaluation counter, with `Clone`, `Default` and `Debug` (deriving
-/// would demand `M: Clone`), and its [`Stepper`] implementation through
-/// [`FixedStep`].
+/// Declares a fixed-step stepper for a [`Tableau`] of `S` stages: its
+/// workspaces (zeroed by `new`) and evaluation counter, `Clone`, `Default`
+/// and `Debug` (deriving would demand `M: Clone`), and its [`Stepper`]
+/// implementation: the step checked, the new state checked before it
+/// replaces `x`.
 macro_rules! fixed_stepper {
-    ($(#[$doc:meta])* $ty:ident { $($field:ident),* }) => {
+    (
+        $(#[$doc:meta])*
+        $ty:ident: $name:literal, order $order:literal, $tableau:ident, $stages:literal stages
+    ) => {
         $(#[$doc])*
         pub struct $ty<M: Model> {
-            $($field: M::State,)*
+            /// The stages' derivatives.
+            k: [M::State; $stages],
+            /// The stages' states, then the new state.
+            out: M::State,
             evals: u64,
         }
 
         impl<M: Model> $ty<M> {
             /// A stepper with zeroed workspaces.
             pub fn new() -> Self {
-                Self { $($field: M::State::zeros(),)* evals: 0 }
+                let z = M::State::zeros();
+                Self { k: [z; $stages], out: z, evals: 0 }
             }
         }
 
         impl<M: Model> Clone for $ty<M> {
             fn clone(&self) -> Self {
-                Self { $($field: self.$field,)* evals: self.evals }
+                Self { ..*self }
             }
         }
         impl<M: Model> Default for $ty<M> {
@@ -83,17 +114,22 @@ macro_rules! fixed_stepper {
 
         impl<M: Model> Stepper<M> for $ty<M> {
             fn step(&mut self, model: &mut M, t: M::Float, x: &mut M::State, h: M::Float) -> StepResult<M> {
-                fixed_step(self, model, t, x, h)
+                check_step(h)?;
+                eval(model, t, x, &mut self.k[0], &mut self.evals)?;
+                rk_step(model, t, x, h, &$tableau, &mut self.k, &mut self.out, &mut self.evals)?;
+                check_finite::<M>(t + h, &self.out)?;
+                *x = self.out;
+                Ok(StepInfo::fixed(h, $stages))
             }
             fn evaluations(&self) -> u64 {
                 self.evals
             }
             fn reset(&mut self) {}
             fn name(&self) -> &'static str {
-                <Self as FixedStep<M>>::NAME
+                $name
             }
             fn order(&self) -> u32 {
-                <Self as FixedStep<M>>::ORDER
+                $order
             }
         }
     };
@@ -106,24 +142,7 @@ fixed_stepper! {
     /// Use it only where the step is tiny anyway (a fast control loop) or to
     /// show what a better method buys; [`Heun`] costs one more evaluation and is
     /// an order more accurate.
-    Euler { k, x_new }
-}
-
-impl<M: Model> FixedStep<M> for Euler<M> {
-    const NAME: &'static str = "Euler";
-    const ORDER: u32 = 1;
-    const STAGES: u32 = 1;
-    fn advance(
-        &mut self,
-        model: &mut M,
-        t: M::Float,
-        x: &M::State,
-        h: M::Float,
-    ) -> Result<&M::State, IntegrationError> {
-        eval(model, t, x, &mut self.k, &mut self.evals)?;
-        combine(&mut self.x_new, x, h, &[(M::Float::ONE, &self.k)]);
-        Ok(&self.x_new)
-    }
+    Euler: "Euler", order 1, EULER, 1 stages
 }
 
 fixed_stepper! {
@@ -133,28 +152,7 @@ fixed_stepper! {
     ///
     /// Use it for cheap fixed-step loops where Euler's error is too large and
     /// RK4's four evaluations are too many.
-    Heun { k1, k2, stage }
-}
-
-impl<M: Model> FixedStep<M> for Heun<M> {
-    const NAME: &'static str = "Heun";
-    const ORDER: u32 = 2;
-    const STAGES: u32 = 2;
-    fn advance(
-        &mut self,
-        model: &mut M,
-        t: M::Float,
-        x: &M::State,
-        h: M::Float,
-    ) -> Result<&M::State, IntegrationError> {
-        let one = M::Float::ONE;
-        let half = M::Float::from_f64(0.5);
-        eval(model, t, x, &mut self.k1, &mut self.evals)?;
-        combine(&mut self.stage, x, h, &[(one, &self.k1)]);
-        eval(model, t + h, &self.stage, &mut self.k2, &mut self.evals)?;
-        combine(&mut self.stage, x, h, &[(half, &self.k1), (half, &self.k2)]);
-        Ok(&self.stage)
-    }
+    Heun: "Heun", order 2, HEUN, 2 stages
 }
 
 fixed_stepper! {
@@ -165,88 +163,5 @@ fixed_stepper! {
     /// order: at `t`, `t + h/2`, `t + h/2`, `t + h` — user functions that keep
     /// state (AUTOSIM's controllers that count calls) may rely on it.
     /// Use it as the default fixed-step method for smooth, non-stiff models.
-    Rk4 { k1, k2, k3, k4, stage }
-}
-
-impl<M: Model> FixedStep<M> for Rk4<M> {
-    const NAME: &'static str = "RK4";
-    const ORDER: u32 = 4;
-    const STAGES: u32 = 4;
-    fn advance(
-        &mut self,
-        model: &mut M,
-        t: M::Float,
-        x: &M::State,
-        h: M::Float,
-    ) -> Result<&M::State, IntegrationError> {
-        rk4_step(
-            model,
-            t,
-            x,
-            h,
-            [&mut self.k1, &mut self.k2, &mut self.k3, &mut self.k4],
-            &mut self.stage,
-            &mut self.evals,
-        )?;
-        Ok(&self.stage)
-    }
-}
-
-/// One classic RK4 step from `(t, x)` into `out`, using `k` as workspace.
-/// Shared with the Adams–Bashforth–Moulton start-up.
-pub(crate) fn rk4_step<M: Model>(
-    model: &mut M,
-    t: M::Float,
-    x: &M::State,
-    h: M::Float,
-    k: [&mut M::State; 4],
-    out: &mut M::State,
-    evals: &mut u64,
-) -> Result<(), IntegrationError> {
-    let [k1, k2, k3, k4] = k;
-    eval(model, t, x, k1, evals)?;
-    rk4_tail(model, t, x, h, k1, [k2, k3, k4], out, evals)
-}
-
-/// RK4 stages 2–4 and the update, given `k1 = f(t, x)`.
-// The arguments are the disjoint workspace borrows of two steppers.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn rk4_tail<M: Model>(
-    model: &mut M,
-    t: M::Float,
-    x: &M::State,
-    h: M::Float,
-    k1: &M::State,
-    k: [&mut M::State; 3],
-    out: &mut M::State,
-    evals: &mut u64,
-) -> Result<(), IntegrationError> {
-    let [k2, k3, k4] = k;
-    let one = M::Float::ONE;
-    let half = M::Float::from_f64(0.5);
-    let sixth = M::Float::from_f64(1.0 / 6.0);
-    let third = M::Float::from_f64(1.0 / 3.0);
-    let t_half = t + half * h;
-    combine(out, x, h, &[(half, k1)]);
-    eval(model, t_half, out, k2, evals)?;
-    combine(out, x, h, &[(half, &*k2)]);
-    eval(model, t_half, out, k3, evals)?;
-    combine(out, x, h, &[(one, &*k3)]);
-    eval(model, t + h, out, k4, evals)?;
-    combine(
-        out,
-        x,
-        h,
-        &[(sixth, k1), (third, &*k2), (third, &*k3), (sixth, &*k4)],
-    );
-    Ok(())
-}
-
-pub(crate) fn fixed_info<F: Float>(h: F, evaluations: u32) -> StepInfo<F> {
-    StepInfo {
-        h,
-        h_next: h,
-        rejected: 0,
-        evaluations,
-    }
+    Rk4: "RK4", order 4, RK4, 4 stages
 }

@@ -54,6 +54,19 @@ pub struct StepInfo<F> {
     pub evaluations: u32,
 }
 
+impl<F: Copy> StepInfo<F> {
+    /// A step of a fixed-step method: `h` taken and suggested next, nothing
+    /// rejected.
+    pub(crate) fn fixed(h: F, evaluations: u32) -> Self {
+        Self {
+            h,
+            h_next: h,
+            rejected: 0,
+            evaluations,
+        }
+    }
+}
+
 /// What [`Stepper::step`] returns for a model `M`.
 pub type StepResult<M> = Result<StepInfo<<M as Model>::Float>, IntegrationError>;
 

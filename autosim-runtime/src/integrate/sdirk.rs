@@ -4,7 +4,7 @@ use core::fmt;
 
 use super::jacobian::{FiniteDifferences, JacobianSource};
 use super::linalg::LuFactors;
-use super::vector::{check_step, eval};
+use super::vector::{check_step, eval, evaluations_since};
 use super::{StepInfo, Stepper};
 use crate::{Float, IntegrationError, Model, check_finite};
 
@@ -228,12 +228,10 @@ where
         // Stiffly accurate: the last stage is the new state.
         check_finite::<M>(t + h, &self.z)?;
         *x = self.z;
-        Ok(StepInfo {
+        Ok(StepInfo::fixed(
             h,
-            h_next: h,
-            rejected: 0,
-            evaluations: u32::try_from(self.evals - evals_before).unwrap_or(u32::MAX),
-        })
+            evaluations_since(evals_before, self.evals),
+        ))
     }
     fn evaluations(&self) -> u64 {
         self.evals

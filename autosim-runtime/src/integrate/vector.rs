@@ -7,15 +7,56 @@ use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 /// `out = x + h · Σ cᵢ·kᵢ`.
 #[inline]
 pub(crate) fn combine<F: Float, S: StateArray<F>>(out: &mut S, x: &S, h: F, terms: &[(F, &S)]) {
+    combine_terms(out, x, h, terms.iter().copied());
+}
+
+/// `out = x + h · Σⱼ wⱼ·kⱼ` for one row `w` of a Butcher tableau (as many
+/// terms as the shorter of `w` and `k`). Zero weights are left out, not
+/// multiplied (`0·∞` would be NaN), so a row with zeros computes what the
+/// list of its non-zero terms computes with [`combine`].
+#[inline]
+pub(crate) fn combine_row<F: Float, S: StateArray<F>>(
+    out: &mut S,
+    x: &S,
+    h: F,
+    weights: &[f64],
+    k: &[S],
+) {
+    let terms = weights
+        .iter()
+        .zip(k)
+        .filter(|(w, _)| **w != 0.0)
+        .map(|(w, kj)| (F::from_f64(*w), kj));
+    combine_terms(out, x, h, terms);
+}
+
+/// `out = x + h · Σ cᵢ·kᵢ` over `terms`, summed in their order.
+#[inline]
+fn combine_terms<'k, F, S>(
+    out: &mut S,
+    x: &S,
+    h: F,
+    terms: impl Iterator<Item = (F, &'k S)> + Clone,
+) where
+    F: Float,
+    S: StateArray<F> + 'k,
+{
     for (i, (o, xi)) in out.as_mut().iter_mut().zip(x.as_ref()).enumerate() {
         let mut sum = F::ZERO;
-        for (c, k) in terms {
+        for (c, k) in terms.clone() {
             if let Some(v) = k.as_ref().get(i) {
-                sum += *c * *v;
+                sum += c * *v;
             }
         }
         *o = *xi + h * sum;
     }
+}
+
+/// The derivative evaluations since `before` (the counter's value when the
+/// step began), saturated to `u32` for [`StepInfo::evaluations`](super::StepInfo).
+#[inline]
+pub(crate) fn evaluations_since(before: u64, now: u64) -> u32 {
+    u32::try_from(now - before).unwrap_or(u32::MAX)
 }
 
 /// Root-mean-square of `errᵢ / (atol + rtol·max(|aᵢ|, |bᵢ|))`: the error

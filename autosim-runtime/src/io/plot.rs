@@ -5,6 +5,7 @@ use std::{format, vec};
 
 use std::path::Path;
 
+use plotters::coord::Shift;
 use plotters::coord::ranged1d::{AsRangedCoord, ValueFormatter};
 use plotters::prelude::*;
 
@@ -54,8 +55,11 @@ pub fn write_svg_plot(
     time: &[f64],
     series: &[Series<'_>],
 ) -> Result<(), OutputError> {
-    let svg = svg_plot(title, time, series)?;
-    let path = path.as_ref();
+    write_svg(path.as_ref(), svg_plot(title, time, series)?)
+}
+
+/// Writes an SVG document to `path`, naming the path if that fails.
+fn write_svg(path: &Path, svg: String) -> Result<(), OutputError> {
     std::fs::write(path, svg).map_err(|source| OutputError::Io {
         path: path.to_path_buf(),
         source,
@@ -177,12 +181,7 @@ pub fn write_xy_svg_plot(
     axes: &Axes<'_>,
     series: &[XySeries<'_>],
 ) -> Result<(), OutputError> {
-    let svg = xy_svg_plot(title, axes, series)?;
-    let path = path.as_ref();
-    std::fs::write(path, svg).map_err(|source| OutputError::Io {
-        path: path.to_path_buf(),
-        source,
-    })
+    write_svg(path.as_ref(), xy_svg_plot(title, axes, series)?)
 }
 
 impl<M: Model> Recording<M> {
@@ -267,13 +266,8 @@ fn draw(
     x_range: Range,
     y_range: Range,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let root = SVGBackend::with_string(svg, SIZE).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 22))
-        .margin(16)
-        .x_label_area_size(48)
-        .y_label_area_size(72)
+    let root = canvas(svg)?;
+    let mut chart = chart_frame(&root, title, 72)
         .build_cartesian_2d(x_range.0..x_range.1, y_range.0..y_range.1)?;
     chart
         .configure_mesh()
@@ -286,16 +280,7 @@ fn draw(
         let style = ShapeStyle::from(color).stroke_width(2);
         // Split the line at non-finite values rather than drawing through them.
         let points = time.iter().copied().zip(s.values.iter().copied());
-        let mut segment: Vec<(f64, f64)> = Vec::new();
-        let mut segments: Vec<Vec<(f64, f64)>> = Vec::new();
-        for (t, v) in points {
-            if t.is_finite() && v.is_finite() {
-                segment.push((t, v));
-            } else if !segment.is_empty() {
-                segments.push(std::mem::take(&mut segment));
-            }
-        }
-        segments.push(segment);
+        let segments = split_line(points, |t, v| t.is_finite() && v.is_finite());
         let mut first = true;
         for seg in segments {
             let drawn = chart.draw_series(LineSeries::new(seg, style))?;
@@ -308,14 +293,74 @@ fn draw(
             }
         }
     }
+    draw_legend(&mut chart, 14, SeriesLabelPosition::UpperLeft)?;
+    root.present()?;
+    Ok(())
+}
+
+/// A white drawing area of [`SIZE`] that draws into `svg`.
+fn canvas(
+    svg: &mut String,
+) -> Result<DrawingArea<SVGBackend<'_>, Shift>, Box<dyn std::error::Error>> {
+    let root = SVGBackend::with_string(svg, SIZE).into_drawing_area();
+    root.fill(&WHITE)?;
+    Ok(root)
+}
+
+/// The frame of a chart on `root`: the title, the margins, and room for the
+/// axis labels (`y_label_width` pixels left of the plot).
+fn chart_frame<'a, 'b>(
+    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    title: &str,
+    y_label_width: u32,
+) -> ChartBuilder<'a, 'static, SVGBackend<'b>> {
+    let mut frame = ChartBuilder::on(root);
+    frame
+        .caption(title, ("sans-serif", 22))
+        .margin(16)
+        .x_label_area_size(48)
+        .y_label_area_size(y_label_width);
+    frame
+}
+
+/// The runs of consecutive points that `keep` accepts, in order: a line
+/// split where it cannot be drawn. The last run is there even when empty
+/// (a series with nothing to draw still gets its legend entry).
+fn split_line(
+    points: impl Iterator<Item = (f64, f64)>,
+    keep: impl Fn(f64, f64) -> bool,
+) -> Vec<Vec<(f64, f64)>> {
+    let mut segment: Vec<(f64, f64)> = Vec::new();
+    let mut segments: Vec<Vec<(f64, f64)>> = Vec::new();
+    for (x, y) in points {
+        if keep(x, y) {
+            segment.push((x, y));
+        } else if !segment.is_empty() {
+            segments.push(std::mem::take(&mut segment));
+        }
+    }
+    segments.push(segment);
+    segments
+}
+
+/// The legend: a framed box of the labelled series at `position`.
+fn draw_legend<'a, DB, CT>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    font_size: u32,
+    position: SeriesLabelPosition,
+) -> Result<(), Box<dyn std::error::Error>>
+where
+    DB: DrawingBackend + 'a,
+    DB::ErrorType: 'static,
+    CT: CoordTranslate,
+{
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.85))
         .border_style(BLACK)
-        .label_font(("sans-serif", 14))
-        .position(SeriesLabelPosition::UpperLeft)
+        .label_font(("sans-serif", font_size))
+        .position(position)
         .draw()?;
-    root.present()?;
     Ok(())
 }
 
@@ -385,14 +430,8 @@ where
     X::CoordDescType: ValueFormatter<f64>,
     Y::CoordDescType: ValueFormatter<f64>,
 {
-    let root = SVGBackend::with_string(svg, SIZE).into_drawing_area();
-    root.fill(&WHITE)?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 22))
-        .margin(16)
-        .x_label_area_size(48)
-        .y_label_area_size(80)
-        .build_cartesian_2d(x_spec, y_spec)?;
+    let root = canvas(svg)?;
+    let mut chart = chart_frame(&root, title, 80).build_cartesian_2d(x_spec, y_spec)?;
     let x_log = axes.x_scale == Scale::Log;
     let y_log = axes.y_scale == Scale::Log;
     let x_fmt = |v: &f64| if x_log { log_label(*v) } else { format!("{v}") };
@@ -412,16 +451,10 @@ where
         let color = Palette99::pick(s.color).to_rgba();
         let style = ShapeStyle::from(color).stroke_width(2);
         // Split the line where a point cannot be drawn.
-        let mut segment: Vec<(f64, f64)> = Vec::new();
-        let mut segments: Vec<Vec<(f64, f64)>> = Vec::new();
-        for (x, y) in s.x.iter().copied().zip(s.y.iter().copied()) {
-            if drawable(x, axes.x_scale) && drawable(y, axes.y_scale) {
-                segment.push((x, y));
-            } else if !segment.is_empty() {
-                segments.push(std::mem::take(&mut segment));
-            }
-        }
-        segments.push(segment);
+        let points = s.x.iter().copied().zip(s.y.iter().copied());
+        let segments = split_line(points, |x, y| {
+            drawable(x, axes.x_scale) && drawable(y, axes.y_scale)
+        });
         let mut first = true;
         for seg in segments.into_iter().filter(|seg| !seg.is_empty()) {
             chart.draw_series(seg.iter().map(|p| Circle::new(*p, 3, style.filled())))?;
@@ -442,18 +475,13 @@ where
             }
         }
     }
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 13))
-        .position(match axes.legend {
-            Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
-            Corner::UpperRight => SeriesLabelPosition::UpperRight,
-            Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
-            Corner::LowerRight => SeriesLabelPosition::LowerRight,
-        })
-        .draw()?;
+    let position = match axes.legend {
+        Corner::UpperLeft => SeriesLabelPosition::UpperLeft,
+        Corner::UpperRight => SeriesLabelPosition::UpperRight,
+        Corner::LowerLeft => SeriesLabelPosition::LowerLeft,
+        Corner::LowerRight => SeriesLabelPosition::LowerRight,
+    };
+    draw_legend(&mut chart, 13, position)?;
     root.present()?;
     Ok(())
 }

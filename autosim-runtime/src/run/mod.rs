@@ -76,6 +76,16 @@ impl<F: Float> RunSettings<F> {
         driver::ceil_count(((self.stop - self.start) / self.output_interval).to_f64())
     }
 
+    /// The end of output interval `k` (1 to [`output_count`](Self::output_count)):
+    /// `start + k·output_interval`, and exactly `stop` for the last.
+    pub(crate) fn output_time(&self, k: u64) -> F {
+        if k == self.output_count() {
+            self.stop
+        } else {
+            self.start + F::from_f64(k as f64) * self.output_interval
+        }
+    }
+
     /// Checks the settings, naming the first wrong one.
     pub fn validate(&self) -> Result<(), IntegrationError> {
         let bad = |reason| Err(IntegrationError::InvalidSettings { reason });
@@ -241,11 +251,7 @@ where
     driver.emit(model, x, observer)?;
     let intervals = settings.output_count();
     for k in 1..=intervals {
-        let t_out = if k == intervals {
-            settings.stop
-        } else {
-            settings.start + M::Float::from_f64(k as f64) * settings.output_interval
-        };
+        let t_out = settings.output_time(k);
         driver.advance(model, stepper, x, t_out, settings.step)?;
         driver.emit(model, x, observer)?;
     }

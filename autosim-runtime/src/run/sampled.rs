@@ -74,11 +74,7 @@ where
     let (mut j, mut k) = (1u64, 1u64);
     while k <= intervals {
         let t_sample = settings.start + M::Float::from_f64(j as f64) * period;
-        let t_out = if k == intervals {
-            settings.stop
-        } else {
-            settings.start + M::Float::from_f64(k as f64) * settings.output_interval
-        };
+        let t_out = settings.output_time(k);
         let target = if t_sample < t_out { t_sample } else { t_out };
         driver.advance(model, stepper, x, target, settings.step)?;
         if t_sample <= t_out {

@@ -1,7 +1,9 @@
 //! Small hand-written models with known solutions, shared by the tests.
 #![allow(dead_code)] // each test binary uses a different subset
 
-use autosim_runtime::{Model, ModelError};
+use std::convert::Infallible;
+
+use autosim_runtime::{Model, ModelError, RunError, RunSettings, RunSummary, Stepper, run};
 
 /// x'' = -ω²x as [x, v]; with x(0) = 1, v(0) = 0: x = cos ωt, v = -ω sin ωt.
 #[derive(Clone, Debug)]
@@ -218,4 +220,50 @@ pub fn max_diff(a: &[f64], b: &[f64]) -> f64 {
         .zip(b)
         .map(|(x, y)| (x - y).abs())
         .fold(0.0, f64::max)
+}
+
+/// What a run with a closure observer (which cannot fail) returns.
+pub type RunResult<M> = Result<RunSummary<<M as Model>::Float>, RunError<Infallible>>;
+
+/// One output of a run: the time, the state and the outputs.
+pub type Output<M> = (
+    <M as Model>::Float,
+    <M as Model>::State,
+    <M as Model>::Outputs,
+);
+
+/// [`run`] with an observer that ignores the outputs.
+pub fn run_unobserved<M: Model, S: Stepper<M> + ?Sized>(
+    model: &mut M,
+    stepper: &mut S,
+    x: &mut M::State,
+    settings: &RunSettings<M::Float>,
+) -> RunResult<M> {
+    run(
+        model,
+        stepper,
+        x,
+        settings,
+        &mut |_, _: &M::State, _: &M::Outputs| {},
+    )
+}
+
+/// [`run`] keeping every output, also those before a failure.
+pub fn run_recorded<M: Model, S: Stepper<M> + ?Sized>(
+    model: &mut M,
+    stepper: &mut S,
+    x: &mut M::State,
+    settings: &RunSettings<M::Float>,
+) -> (RunResult<M>, Vec<Output<M>>) {
+    let mut outputs = Vec::new();
+    let result = run(
+        model,
+        stepper,
+        x,
+        settings,
+        &mut |t, x: &M::State, y: &M::Outputs| {
+            outputs.push((t, *x, *y));
+        },
+    );
+    (result, outputs)
 }

@@ -129,43 +129,24 @@ macro_rules! impl_float {
 impl_float!(f64);
 impl_float!(f32);
 
-/// The math functions of [`Float`] as free functions `imp::f64::sin`, … from
-/// the standard library.
-#[cfg(feature = "std")]
+/// The math functions of [`Float`] as free functions `imp::f64::sin`, … .
+///
+/// The trigonometric functions and their inverses come from `libm` (musl's
+/// algorithms, errors below one unit in the last place) on every target:
+/// measured on x86-64 against glibc (`cargo bench -p autosim-runtime
+/// --bench math`) they are 1.1 to 1.5 times faster (a sine and cosine pair
+/// 7.6 ns against 11.6), and they give the same bits with and without
+/// `std`. `sqrt`, `exp`, `ln`, `powf` and `powi` come from `std` where
+/// there is one (as fast or faster there), from `libm` otherwise.
 mod imp {
-    macro_rules! std_math {
-        ($t:ident) => {
+    macro_rules! math {
+        (
+            $t:ident,
+            trig: $sin:ident, $cos:ident, $sincos:ident, $tan:ident, $asin:ident, $acos:ident, $atan2:ident;
+            libm: $sqrt:ident, $exp:ident, $ln:ident, $pow:ident
+        ) => {
             pub mod $t {
                 forward! {
-                    pub fn sqrt(x: $t) -> $t => $t::sqrt;
-                    pub fn sin(x: $t) -> $t => $t::sin;
-                    pub fn cos(x: $t) -> $t => $t::cos;
-                    pub fn sin_cos(x: $t) -> ($t, $t) => $t::sin_cos;
-                    pub fn tan(x: $t) -> $t => $t::tan;
-                    pub fn asin(x: $t) -> $t => $t::asin;
-                    pub fn acos(x: $t) -> $t => $t::acos;
-                    pub fn atan2(y: $t, x: $t) -> $t => $t::atan2;
-                    pub fn exp(x: $t) -> $t => $t::exp;
-                    pub fn ln(x: $t) -> $t => $t::ln;
-                    pub fn powf(x: $t, e: $t) -> $t => $t::powf;
-                    pub fn powi(x: $t, n: i32) -> $t => $t::powi;
-                }
-            }
-        };
-    }
-    std_math!(f64);
-    std_math!(f32);
-}
-
-/// The math functions of [`Float`] as free functions `imp::f64::sin`, … from
-/// `libm` (no standard library).
-#[cfg(all(not(feature = "std"), feature = "libm"))]
-mod imp {
-    macro_rules! libm_math {
-        ($t:ident, $sqrt:ident, $sin:ident, $cos:ident, $sincos:ident, $tan:ident, $asin:ident, $acos:ident, $atan2:ident, $exp:ident, $ln:ident, $pow:ident) => {
-            pub mod $t {
-                forward! {
-                    pub fn sqrt(x: $t) -> $t => libm::$sqrt;
                     pub fn sin(x: $t) -> $t => libm::$sin;
                     pub fn cos(x: $t) -> $t => libm::$cos;
                     pub fn sin_cos(x: $t) -> ($t, $t) => libm::$sincos;
@@ -173,14 +154,27 @@ mod imp {
                     pub fn asin(x: $t) -> $t => libm::$asin;
                     pub fn acos(x: $t) -> $t => libm::$acos;
                     pub fn atan2(y: $t, x: $t) -> $t => libm::$atan2;
+                }
+                #[cfg(feature = "std")]
+                forward! {
+                    pub fn sqrt(x: $t) -> $t => $t::sqrt;
+                    pub fn exp(x: $t) -> $t => $t::exp;
+                    pub fn ln(x: $t) -> $t => $t::ln;
+                    pub fn powf(x: $t, e: $t) -> $t => $t::powf;
+                    pub fn powi(x: $t, n: i32) -> $t => $t::powi;
+                }
+                #[cfg(not(feature = "std"))]
+                forward! {
+                    pub fn sqrt(x: $t) -> $t => libm::$sqrt;
                     pub fn exp(x: $t) -> $t => libm::$exp;
                     pub fn ln(x: $t) -> $t => libm::$ln;
                     pub fn powf(x: $t, e: $t) -> $t => libm::$pow;
                 }
+                /// Exponentiation by squaring: exact for the small integer
+                /// powers generated code uses.
+                #[cfg(not(feature = "std"))]
                 #[inline(always)]
                 pub fn powi(x: $t, n: i32) -> $t {
-                    // Exponentiation by squaring: exact for the small integer
-                    // powers generated code uses.
                     let mut base = if n < 0 { 1.0 / x } else { x };
                     let mut k = n.unsigned_abs();
                     let mut acc: $t = 1.0;
@@ -196,18 +190,9 @@ mod imp {
             }
         };
     }
-    libm_math!(
-        f64, sqrt, sin, cos, sincos, tan, asin, acos, atan2, exp, log, pow
-    );
-    libm_math!(
-        f32, sqrtf, sinf, cosf, sincosf, tanf, asinf, acosf, atan2f, expf, logf, powf
-    );
+    math!(f64, trig: sin, cos, sincos, tan, asin, acos, atan2; libm: sqrt, exp, log, pow);
+    math!(f32, trig: sinf, cosf, sincosf, tanf, asinf, acosf, atan2f; libm: sqrtf, expf, logf, powf);
 }
-
-#[cfg(all(not(feature = "std"), not(feature = "libm")))]
-compile_error!(
-    "autosim-runtime needs either the `std` or the `libm` feature for its math functions"
-);
 
 /// Math functions called by generated code, generic over [`Float`].
 pub mod math {

@@ -95,14 +95,14 @@
 //!
 //! | feature | default | adds |
 //! | --- | --- | --- |
-//! | `std` | yes | std math; the `io` module with TOML parameter files |
-//! | `libm` | no | math from `libm` for `no_std` targets (use with `default-features = false`) |
+//! | `std` | yes | `exp`, `ln`, `powf` and `sqrt` from the standard library; the `io` module with TOML parameter files |
+//! | `libm` | no | kept for compatibility: the trigonometric functions and their inverses always come from the `libm` crate (the same bits on every target, and faster than glibc's), and without `std` every function does |
 //! | `csv` | yes | `io::CsvWriter`, an observer that writes one flushed CSV row per output |
 //! | `plot` | yes | `io::svg_plot`, `io::Recording::plot_svg` and `io::xy_svg_plot` (SVG line plots, linear or log axes, no system fonts needed) |
 //! | `serde` | no | `Serialize`/`Deserialize` for settings, summaries and step reports |
 //! | `analysis` | no | `analysis`: linear models with names, modes (nalgebra), trim, sweeps, JSON/MATLAB/Python/Markdown export |
 //!
-//! Everything outside `io` works with `default-features = false, features = ["libm"]`.
+//! Everything outside `io` works with `default-features = false`.
 #![no_std]
 #![deny(missing_docs)]
 

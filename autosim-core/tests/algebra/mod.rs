@@ -101,12 +101,11 @@ pub fn positive(a: T, kind: u8) -> T {
     }
 }
 
-/// Replaces symbols by trees.
-pub fn subst_tree(t: &T, map: &FxHashMap<usize, T>) -> T {
-    let s = |a: &T| bx(subst_tree(a, map));
+/// `t` with each child replaced by `f(child)` (leaves as they are).
+pub fn map_children(t: &T, mut f: impl FnMut(&T) -> T) -> T {
+    let mut s = |a: &T| bx(f(a));
     match t {
-        T::Sym(i) => map.get(i).cloned().unwrap_or(T::Sym(*i)),
-        T::Int(_) | T::Rat(..) | T::Flt(_) => t.clone(),
+        T::Sym(_) | T::Int(_) | T::Rat(..) | T::Flt(_) => t.clone(),
         T::Add(a, b) => T::Add(s(a), s(b)),
         T::Sub(a, b) => T::Sub(s(a), s(b)),
         T::Mul(a, b) => T::Mul(s(a), s(b)),
@@ -118,6 +117,14 @@ pub fn subst_tree(t: &T, map: &FxHashMap<usize, T>) -> T {
         T::Exp(a) => T::Exp(s(a)),
         T::Atan2(a, b) => T::Atan2(s(a), s(b)),
         T::Sqrt(a) => T::Sqrt(s(a)),
+    }
+}
+
+/// Replaces symbols by trees.
+pub fn subst_tree(t: &T, map: &FxHashMap<usize, T>) -> T {
+    match t {
+        T::Sym(i) => map.get(i).cloned().unwrap_or(T::Sym(*i)),
+        _ => map_children(t, |a| subst_tree(a, map)),
     }
 }
 

@@ -12,7 +12,7 @@ mod extremes;
 use autosim::runtime::integrate::{DormandPrince, Rk4};
 use autosim::runtime::{Model, RunSettings, run};
 use autosim_test_support::quaternion::{distance as orientation_distance, from_123, rates_123};
-use autosim_test_support::{floats, load, rel_err};
+use autosim_test_support::{load, rel_err, satellite_samples};
 use extremes::run_to;
 
 mod models {
@@ -157,16 +157,13 @@ fn satellite_with_a_quaternion_bus_matches_the_reference_by_converting_states() 
     assert_eq!(names.len(), 21);
     assert_eq!((names[3], names[5], names[20]), ("q4", "q6", "B_e0"));
     let data = load("satellite");
-    let samples = data["samples"].as_array().unwrap();
+    let samples = satellite_samples();
     assert!(!samples.is_empty());
     for s in samples {
-        let q = floats(&s["q"]);
-        let u = floats(&s["u"]);
-        let inputs = &s["inputs"];
-        let input = |name: &str| inputs[name].as_f64().unwrap();
+        let (q, u) = (&s.q, &s.u);
         let mut model = Sat::new(Replay {
-            cmd: [input("clkcmd"), input("camcmd")],
-            thrust: [input("thr1"), input("thr2"), input("thr3")],
+            cmd: s.cmd,
+            thrust: s.thrust,
         });
         // The reference's parameters are the model's defaults.
         let mut values = vec![0.0; <Sat as Model>::PARAMETER_NAMES.len()];
@@ -180,19 +177,16 @@ fn satellite_with_a_quaternion_bus_matches_the_reference_by_converting_states() 
         }
         let e = from_123(q[3], q[4], q[5]);
         let mut x = [0.0; 21];
-        x[..10].copy_from_slice(&q);
+        x[..10].copy_from_slice(q);
         x[3..6].copy_from_slice(&e[1..]);
-        x[10..20].copy_from_slice(&u);
+        x[10..20].copy_from_slice(u);
         x[20] = e[0];
         let mut dx = [0.0; 21];
-        model
-            .derivatives(s["t"].as_f64().unwrap(), &x, &mut dx)
-            .unwrap();
-        let err = rel_err(&dx[10..20], &floats(&s["du"]));
+        model.derivatives(s.t, &x, &mut dx).unwrap();
+        let err = rel_err(&dx[10..20], &s.du);
         assert!(err < 1e-9, "du differs by {err:e}");
-        let dq = floats(&s["dq"]);
         for i in (0..3).chain(6..10) {
-            assert!((dx[i] - dq[i]).abs() < 1e-12, "dq{}", i + 1);
+            assert!((dx[i] - s.dq[i]).abs() < 1e-12, "dq{}", i + 1);
         }
         // de/dt = d/dt from_123(angles), by central differences along the
         // 1-2-3 rates.

@@ -151,30 +151,23 @@ impl satellite_model::satellite::Externs for Recorded {
 #[test]
 fn satellite() {
     use satellite_model::satellite::Satellite;
-    let data = load("satellite");
     let mut model = Satellite::new(Recorded {
         cmd: [0.0; 2],
         thrust: [0.0; 3],
         calls: Vec::new(),
     });
     let mut worst: f64 = 0.0;
-    for s in data["samples"].as_array().unwrap() {
-        let i = &s["inputs"];
-        let f = |k: &str| i[k].as_f64().unwrap();
-        model.externs.cmd = [f("clkcmd"), f("camcmd")];
-        model.externs.thrust = [f("thr1"), f("thr2"), f("thr3")];
+    for s in satellite_samples() {
+        model.externs.cmd = s.cmd;
+        model.externs.thrust = s.thrust;
         model.externs.calls.clear();
-        let mut x = [0.0; 20];
-        x[..10].copy_from_slice(&floats(&s["q"]));
-        x[10..].copy_from_slice(&floats(&s["u"]));
+        let x = s.state();
         let mut dx = x;
-        model
-            .derivatives(s["t"].as_f64().unwrap(), &x, &mut dx)
-            .unwrap();
+        model.derivatives(s.t, &x, &mut dx).unwrap();
         // The thrusters are called once per evaluation, axes 1, 2, 3.
         assert_eq!(model.externs.calls, [1, 2, 3]);
-        let e_dq = rel_err(&dx[..10], &floats(&s["dq"]));
-        let e_du = rel_err(&dx[10..], &floats(&s["du"]));
+        let e_dq = rel_err(&dx[..10], &s.dq);
+        let e_du = rel_err(&dx[10..], &s.du);
         worst = worst.max(e_dq).max(e_du);
         assert!(
             e_dq < 1e-9 && e_du < 1e-9,

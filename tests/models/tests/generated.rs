@@ -211,24 +211,17 @@ impl via_build::satellite::Externs for Recorded {
 
 #[test]
 fn build_satellite() {
-    let data = load("satellite");
     let mut model = via_build::satellite::Satellite::new(Recorded {
         cmd: [0.0; 2],
         thrust: [0.0; 3],
     });
-    for s in data["samples"].as_array().unwrap() {
-        let i = &s["inputs"];
-        let f = |k: &str| i[k].as_f64().unwrap();
-        model.externs.cmd = [f("clkcmd"), f("camcmd")];
-        model.externs.thrust = [f("thr1"), f("thr2"), f("thr3")];
-        let mut x = [0.0; 20];
-        x[..10].copy_from_slice(&floats(&s["q"]));
-        x[10..].copy_from_slice(&floats(&s["u"]));
+    for s in satellite_samples() {
+        model.externs.cmd = s.cmd;
+        model.externs.thrust = s.thrust;
+        let x = s.state();
         let mut dx = x;
-        model
-            .derivatives(s["t"].as_f64().unwrap(), &x, &mut dx)
-            .unwrap();
-        let e = rel_err(&dx[10..], &floats(&s["du"]));
+        model.derivatives(s.t, &x, &mut dx).unwrap();
+        let e = rel_err(&dx[10..], &s.du);
         assert!(e < 1e-9, "satellite via build.rs: du {e:e}");
     }
 }

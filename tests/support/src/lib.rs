@@ -14,7 +14,7 @@ pub mod quaternion;
 pub mod reference;
 mod rng;
 
-pub use reference::{floats, load};
+pub use reference::{SatelliteSample, floats, load, satellite_samples};
 pub use rng::Rng;
 
 /// Normwise relative error of `got` against `want`: the largest absolute

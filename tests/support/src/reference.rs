@@ -24,3 +24,54 @@ pub fn floats(v: &Value) -> Vec<f64> {
         .map(|x| x.as_f64().expect("a number"))
         .collect()
 }
+
+/// One sample of the satellite's reference file (`satellite.json`): the
+/// time and state, the values its user code returned there, and the rates.
+#[derive(Clone, Debug)]
+pub struct SatelliteSample {
+    /// Time [s].
+    pub t: f64,
+    /// Coordinates `q1 … q10`.
+    pub q: Vec<f64>,
+    /// Speeds `u1 … u10`.
+    pub u: Vec<f64>,
+    /// What the subroutine `cmd` returned: `[clkcmd, camcmd]`.
+    pub cmd: [f64; 2],
+    /// What `thrust` returned for axes 1, 2, 3.
+    pub thrust: [f64; 3],
+    /// Expected `dq/dt`.
+    pub dq: Vec<f64>,
+    /// Expected `du/dt`.
+    pub du: Vec<f64>,
+}
+
+impl SatelliteSample {
+    /// The state vector, coordinates then speeds.
+    pub fn state(&self) -> [f64; 20] {
+        let mut x = [0.0; 20];
+        x[..10].copy_from_slice(&self.q);
+        x[10..].copy_from_slice(&self.u);
+        x
+    }
+}
+
+/// Every sample of the satellite's reference file.
+pub fn satellite_samples() -> Vec<SatelliteSample> {
+    let data = load("satellite");
+    let samples = data["samples"].as_array().expect("samples");
+    samples
+        .iter()
+        .map(|s| {
+            let input = |k: &str| s["inputs"][k].as_f64().expect("a recorded input");
+            SatelliteSample {
+                t: s["t"].as_f64().expect("t"),
+                q: floats(&s["q"]),
+                u: floats(&s["u"]),
+                cmd: [input("clkcmd"), input("camcmd")],
+                thrust: [input("thr1"), input("thr2"), input("thr3")],
+                dq: floats(&s["dq"]),
+                du: floats(&s["du"]),
+            }
+        })
+        .collect()
+}

@@ -8,70 +8,96 @@ use crate::diag::{Diagnostic, Span};
 use crate::mech::PointId;
 use crate::syntax::ast;
 
-impl Resolver<'_> {
+/// Where a lazily evaluated item stands, read before acting on it.
+enum Step<T> {
+    Done(Option<T>),
+    Cycle,
+    Start,
+}
+
+/// One kind of lazily evaluated item (`let`s, points): where its list is,
+/// its name, and the message and fix when it is used in its own definition.
+struct LazyKind<'a, I, T> {
+    list: for<'r> fn(&'r mut Resolver<'a>) -> &'r mut Vec<(&'a I, Lazy<T>)>,
+    name: fn(&I) -> &ast::Name,
+    cycle: fn(&str) -> (String, &'static str),
+}
+
+impl<'a> Resolver<'a> {
     /// The value of `let` number `i`, evaluated on first use.
     pub fn let_value(&mut self, i: usize, at: Span) -> Option<Value> {
-        match &self.lets[i].1 {
-            Lazy::Done(v) => v.clone(),
-            Lazy::InProgress => {
-                let name = self.lets[i].0.name.text.clone();
-                self.push(
-                    Diagnostic::error(at, format!("`{name}` is defined in terms of itself"))
-                        .help("a `let` cannot refer to itself, directly or through other `let`s"),
-                );
-                self.lets[i].1 = Lazy::Done(None);
-                None
-            }
-            Lazy::Pending => {
-                let item = self.lets[i].0;
-                if !self.may_wait(&item.name, at) {
-                    self.lets[i].1 = Lazy::Done(None);
-                    return None;
-                }
-                self.lets[i].1 = Lazy::InProgress;
-                self.pending += 1;
-                let v = self.eval(&item.value);
-                self.pending -= 1;
-                let v = v.filter(|v| {
-                    let depth = value_depth(&self.sys.arena, v);
-                    self.shallow_enough(depth, &item.name)
-                });
-                self.lets[i].1 = Lazy::Done(v.clone());
-                v
-            }
-        }
+        let lets = LazyKind {
+            list: |r| &mut r.lets,
+            name: |item: &ast::Let| &item.name,
+            cycle: |name| {
+                (
+                    format!("`{name}` is defined in terms of itself"),
+                    "a `let` cannot refer to itself, directly or through other `let`s",
+                )
+            },
+        };
+        self.lazily(i, at, lets, |r, item| {
+            let v = r.eval(&item.value);
+            v.filter(|v| {
+                let depth = value_depth(&r.sys.arena, v);
+                r.shallow_enough(depth, &item.name)
+            })
+        })
     }
 
     /// The point number `i`, created on first use.
     pub fn point_value(&mut self, i: usize, at: Span) -> Option<PointId> {
-        match &self.points[i].1 {
-            Lazy::Done(p) => *p,
-            Lazy::InProgress => {
-                let name = self.points[i].0.name.text.clone();
-                self.push(
-                    Diagnostic::error(
-                        at,
-                        format!("the coordinates of point `{name}` depend on the point itself"),
-                    )
-                    .help("a point's coordinates cannot refer to that point"),
-                );
-                self.points[i].1 = Lazy::Done(None);
+        let points = LazyKind {
+            list: |r| &mut r.points,
+            name: |item: &ast::Point| &item.name,
+            cycle: |name| {
+                (
+                    format!("the coordinates of point `{name}` depend on the point itself"),
+                    "a point's coordinates cannot refer to that point",
+                )
+            },
+        };
+        self.lazily(i, at, points, Self::make_point)
+    }
+
+    /// Item `i` of `kind`, made by `make` on first use (used at `at`): a
+    /// use inside its own definition is reported, and so is a use through
+    /// too many items waiting on one another.
+    fn lazily<I, T: Clone>(
+        &mut self,
+        i: usize,
+        at: Span,
+        kind: LazyKind<'a, I, T>,
+        make: impl FnOnce(&mut Self, &'a I) -> Option<T>,
+    ) -> Option<T> {
+        let (item, step) = {
+            let (item, state) = &(kind.list)(self)[i];
+            let step = match state {
+                Lazy::Done(v) => Step::Done(v.clone()),
+                Lazy::InProgress => Step::Cycle,
+                Lazy::Pending => Step::Start,
+            };
+            (*item, step)
+        };
+        let name = (kind.name)(item);
+        let value = match step {
+            Step::Done(v) => return v,
+            Step::Cycle => {
+                let (message, help) = (kind.cycle)(&name.text);
+                self.push(Diagnostic::error(at, message).help(help));
                 None
             }
-            Lazy::Pending => {
-                let item = self.points[i].0;
-                if !self.may_wait(&item.name, at) {
-                    self.points[i].1 = Lazy::Done(None);
-                    return None;
-                }
-                self.points[i].1 = Lazy::InProgress;
+            Step::Start if !self.may_wait(name, at) => None,
+            Step::Start => {
+                (kind.list)(self)[i].1 = Lazy::InProgress;
                 self.pending += 1;
-                let p = self.make_point(item);
+                let v = make(self, item);
                 self.pending -= 1;
-                self.points[i].1 = Lazy::Done(p);
-                p
+                v
             }
-        }
+        };
+        (kind.list)(self)[i].1 = Lazy::Done(value.clone());
+        value
     }
 
     /// False (reported at `at`, where `name` is used) when too many `let`s
@@ -115,7 +141,7 @@ impl Resolver<'_> {
         false
     }
 
-    fn make_point(&mut self, item: &ast::Point) -> Option<PointId> {
+    fn make_point(&mut self, item: &'a ast::Point) -> Option<PointId> {
         let body = self.body_by_name(&item.body);
         let coords = self.list3(&item.at, "the coordinates of a point", false);
         let (body, coords) = (body?, coords?);

@@ -15,10 +15,13 @@ enum Step<T> {
     Start,
 }
 
+/// Items of one kind with their state.
+type LazyList<'a, I, T> = Vec<(&'a I, Lazy<T>)>;
+
 /// One kind of lazily evaluated item (`let`s, points): where its list is,
 /// its name, and the message and fix when it is used in its own definition.
 struct LazyKind<'a, I, T> {
-    list: for<'r> fn(&'r mut Resolver<'a>) -> &'r mut Vec<(&'a I, Lazy<T>)>,
+    list: for<'r> fn(&'r mut Resolver<'a>) -> &'r mut LazyList<'a, I, T>,
     name: fn(&I) -> &ast::Name,
     cycle: fn(&str) -> (String, &'static str),
 }

@@ -6,7 +6,8 @@
 use super::ResolvedModel;
 use super::scope::{Lazy, Named, Resolver};
 use crate::diag::Diagnostic;
-use crate::expr::Number;
+use crate::expr::{Number, SymId};
+use crate::mech::ModelError;
 use crate::syntax::ast::{self, Item};
 
 /// Declares the parameters, inputs and user functions.
@@ -56,13 +57,8 @@ fn parameters(r: &mut Resolver<'_>, out: &mut ResolvedModel, ps: &ast::Parameter
             continue;
         }
         let unit = p.unit.as_ref().map(|u| u.text.as_str());
-        match r.sys.add_parameter(&p.name.text, value, unit) {
-            Ok(s) => {
-                r.names
-                    .insert(p.name.text.clone(), (Named::Symbol(s), p.name.span));
-            }
-            Err(e) => r.error(p.name.span, e.to_string()),
-        }
+        let added = r.sys.add_parameter(&p.name.text, value, unit);
+        bind_symbol(r, &p.name, added);
         let docs = if p.docs.is_empty() {
             ps.docs.clone()
         } else {
@@ -79,13 +75,8 @@ fn inputs(r: &mut Resolver<'_>, out: &mut ResolvedModel, is: &ast::Inputs) {
         }
         let default = i.default.as_ref().map_or(0.0, |v| finite_value(r, v));
         let unit = i.unit.as_ref().map(|u| u.text.as_str());
-        match r.sys.add_input(&i.name.text, default, unit) {
-            Ok(s) => {
-                r.names
-                    .insert(i.name.text.clone(), (Named::Symbol(s), i.name.span));
-            }
-            Err(e) => r.error(i.name.span, e.to_string()),
-        }
+        let added = r.sys.add_input(&i.name.text, default, unit);
+        bind_symbol(r, &i.name, added);
         out.item_docs.insert(i.name.text.clone(), is.docs.clone());
     }
 }
@@ -126,12 +117,19 @@ fn state(r: &mut Resolver<'_>, s: &ast::State) {
     }
     let zero = r.sys.arena.zero();
     let unit = s.unit.as_ref().map(|u| u.text.as_str());
-    match r.sys.add_state(&s.name.text, unit, zero) {
-        Ok(sym) => {
+    let added = r.sys.add_state(&s.name.text, unit, zero);
+    bind_symbol(r, &s.name, added);
+}
+
+/// `name` names the symbol the system just added, or the error is
+/// reported at it.
+fn bind_symbol(r: &mut Resolver<'_>, name: &ast::Name, added: Result<SymId, ModelError>) {
+    match added {
+        Ok(s) => {
             r.names
-                .insert(s.name.text.clone(), (Named::Symbol(sym), s.name.span));
+                .insert(name.text.clone(), (Named::Symbol(s), name.span));
         }
-        Err(e) => r.error(s.name.span, e.to_string()),
+        Err(e) => r.error(name.span, e.to_string()),
     }
 }
 

@@ -97,17 +97,9 @@ impl Vector {
 
     /// `s self` for a scalar `s`.
     pub fn scale(&self, arena: &mut Arena, s: ExprId) -> Vector {
-        if arena.is_zero(s) {
-            return Vector::zero();
+        Vector {
+            terms: scale_terms(arena, &self.terms, s),
         }
-        let mut terms = Vec::with_capacity(self.terms.len());
-        for (u, c) in &self.terms {
-            let k = arena.mul(*c, s);
-            if !arena.is_zero(k) {
-                terms.push((*u, k));
-            }
-        }
-        Vector { terms }
     }
 
     /// Applies `f` to every coefficient (dropping zeros).
@@ -204,13 +196,23 @@ impl Dyadic {
 
     /// `s self`.
     pub fn scale(&self, arena: &mut Arena, s: ExprId) -> Dyadic {
-        let mut terms = Vec::with_capacity(self.terms.len());
-        for (k, c) in &self.terms {
-            let x = arena.mul(*c, s);
-            if !arena.is_zero(x) {
-                terms.push((*k, x));
-            }
+        Dyadic {
+            terms: scale_terms(arena, &self.terms, s),
         }
-        Dyadic { terms }
     }
+}
+
+/// Each coefficient of `terms` times `s`, the terms that vanish dropped.
+fn scale_terms<K: Copy>(arena: &mut Arena, terms: &[(K, ExprId)], s: ExprId) -> Vec<(K, ExprId)> {
+    if arena.is_zero(s) {
+        return Vec::new();
+    }
+    let mut scaled = Vec::with_capacity(terms.len());
+    for (k, c) in terms {
+        let x = arena.mul(*c, s);
+        if !arena.is_zero(x) {
+            scaled.push((*k, x));
+        }
+    }
+    scaled
 }

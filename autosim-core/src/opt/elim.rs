@@ -47,13 +47,7 @@ impl Elimination {
                 let terms: Vec<Nid> = (0..s)
                     .filter_map(|k| Some(ir.mul(lower[s][k]?, upper[k][t]?)))
                     .collect();
-                upper[s][t] = match (entry(s, t), terms.is_empty()) {
-                    (None, true) => None,
-                    (b, _) => {
-                        let b = b.unwrap_or_else(|| ir.num(0.0));
-                        Some(ir.sum(vec![b], terms))
-                    }
-                };
+                upper[s][t] = reduced(ir, entry(s, t), terms);
             }
             let pivot = upper[s][s].unwrap_or_else(|| ir.num(0.0));
             if ir.as_num(pivot).is_none() {
@@ -67,14 +61,7 @@ impl Elimination {
                 let terms: Vec<Nid> = (0..s)
                     .filter_map(|k| Some(ir.mul(lower[i][k]?, upper[k][s]?)))
                     .collect();
-                lower[i][s] = match (entry(i, s), terms.is_empty()) {
-                    (None, true) => None,
-                    (b, _) => {
-                        let b = b.unwrap_or_else(|| ir.num(0.0));
-                        let d = ir.sum(vec![b], terms);
-                        Some(ir.mul(d, inv))
-                    }
-                };
+                lower[i][s] = reduced(ir, entry(i, s), terms).map(|d| ir.mul(d, inv));
             }
         }
         Elimination {
@@ -111,4 +98,14 @@ impl Elimination {
         }
         x
     }
+}
+
+/// `b − Σ terms` (`b` absent: zero), or `None` where both are absent
+/// (a structural zero).
+fn reduced(ir: &mut Ir, b: Option<Nid>, terms: Vec<Nid>) -> Option<Nid> {
+    if b.is_none() && terms.is_empty() {
+        return None;
+    }
+    let b = b.unwrap_or_else(|| ir.num(0.0));
+    Some(ir.sum(vec![b], terms))
 }

@@ -127,12 +127,7 @@ pub fn ldlt_solve(ir: &mut Ir, m: &[Vec<Option<Nid>>], f: &[Nid]) -> Solve {
     let mut hints = Vec::new();
     for j in 0..n {
         // d_j = M_jj - Σ L_jk LD_jk
-        let mut neg = Vec::new();
-        for k in 0..j {
-            if let (Some(a), Some(b)) = (l[j][k], ld[j][k]) {
-                neg.push(ir.mul(a, b));
-            }
-        }
+        let neg = products(ir, &l[j][..j], &ld[j][..j]);
         let mjj = entry(j, j).unwrap_or_else(|| ir.num(0.0));
         let d = ir.sum(vec![mjj], neg);
         pivots.push((d, perm[j]));
@@ -145,12 +140,7 @@ pub fn ldlt_solve(ir: &mut Ir, m: &[Vec<Option<Nid>>], f: &[Nid]) -> Solve {
             if !nz[i][j] {
                 continue;
             }
-            let mut neg = Vec::new();
-            for k in 0..j {
-                if let (Some(a), Some(b)) = (l[i][k], ld[j][k]) {
-                    neg.push(ir.mul(a, b));
-                }
-            }
+            let neg = products(ir, &l[i][..j], &ld[j][..j]);
             let mij = entry(i, j).unwrap_or_else(|| ir.num(0.0));
             let ldij = ir.sum(vec![mij], neg);
             let lij = ir.mul(ldij, di);
@@ -167,4 +157,13 @@ pub fn ldlt_solve(ir: &mut Ir, m: &[Vec<Option<Nid>>], f: &[Nid]) -> Solve {
         hints,
         factor: Solver::Ldlt(factor),
     }
+}
+
+/// `a_k b_k` for every `k` where both entries are known (not structurally
+/// zero), in order.
+fn products(ir: &mut Ir, a: &[Option<Nid>], b: &[Option<Nid>]) -> Vec<Nid> {
+    a.iter()
+        .zip(b)
+        .filter_map(|(x, y)| Some(ir.mul((*x)?, (*y)?)))
+        .collect()
 }

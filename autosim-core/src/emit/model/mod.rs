@@ -9,7 +9,7 @@ mod structs;
 
 use super::block::BlockEmitter;
 use super::expr::{Locals, float_type, ident};
-use crate::opt::{BlockKind, Ops, Program};
+use crate::opt::{BlockKind, Ops, Program, Quantity};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 use rustc_hash::FxHashMap;
@@ -409,34 +409,15 @@ fn parameter_access(i: &crate::opt::Interface, locals: &Locals) -> (TokenStream,
         return (quote!(let _ = values;), quote!(let _ = values;));
     }
     let lp = &locals.p;
-    let (get, set): (Vec<_>, Vec<_>) = i
-        .parameters
-        .iter()
-        .enumerate()
-        .map(|(k, p)| {
-            let id = ident(&p.name);
-            let k = Literal::usize_unsuffixed(k);
-            (quote!(#k => #lp.#id,), quote!(#k => #lp.#id = *v,))
-        })
-        .unzip();
+    let (get, set) = by_index(&i.parameters, &quote!(#lp));
     (
         quote! {
             let #lp = &self.parameters;
-            for (k, v) in values.iter_mut().enumerate() {
-                *v = match k {
-                    #(#get)*
-                    _ => *v,
-                };
-            }
+            #get
         },
         quote! {
             let mut #lp = self.parameters;
-            for (k, v) in values.iter().enumerate() {
-                match k {
-                    #(#set)*
-                    _ => {}
-                }
-            }
+            #set
             self.set_parameters(#lp);
         },
     )
@@ -449,38 +430,48 @@ fn input_access(i: &crate::opt::Interface) -> TokenStream {
         return TokenStream::new();
     }
     let ty = float_type(i.float);
-    let (get, set): (Vec<_>, Vec<_>) = i
-        .inputs
-        .iter()
-        .enumerate()
-        .map(|(k, w)| {
-            let id = ident(&w.name);
-            let k = Literal::usize_unsuffixed(k);
-            (
-                quote!(#k => self.inputs.#id,),
-                quote!(#k => self.inputs.#id = *v,),
-            )
-        })
-        .unzip();
+    let (get, set) = by_index(&i.inputs, &quote!(self.inputs));
     quote! {
         fn input_values(&self, values: &mut [#ty]) {
+            #get
+        }
+
+        fn set_input_values(&mut self, values: &[#ty]) {
+            #set
+        }
+    }
+}
+
+/// The loops that copy the fields of `place` (named after `fields`) into
+/// `values` by index, and back: indices past the fields are left alone.
+fn by_index(fields: &[Quantity], place: &TokenStream) -> (TokenStream, TokenStream) {
+    let (get, set): (Vec<_>, Vec<_>) = fields
+        .iter()
+        .enumerate()
+        .map(|(k, f)| {
+            let id = ident(&f.name);
+            let k = Literal::usize_unsuffixed(k);
+            (quote!(#k => #place.#id,), quote!(#k => #place.#id = *v,))
+        })
+        .unzip();
+    (
+        quote! {
             for (k, v) in values.iter_mut().enumerate() {
                 *v = match k {
                     #(#get)*
                     _ => *v,
                 };
             }
-        }
-
-        fn set_input_values(&mut self, values: &[#ty]) {
+        },
+        quote! {
             for (k, v) in values.iter().enumerate() {
                 match k {
                     #(#set)*
                     _ => {}
                 }
             }
-        }
-    }
+        },
+    )
 }
 
 /// `impl Model for <Model>`.

@@ -17,7 +17,7 @@ use super::elim::Elimination;
 use super::ir::{Ir, Leaf, Nid};
 use super::lower::Lowering;
 use super::lowered::{
-    Assembly, Lowered, collect_calls, leaves, lower_all, lower_one, with_accelerations,
+    Assembly, Lowered, binding_rates, collect_calls, leaves, lower_all, lower_extra, lower_one,
 };
 use super::program::ProgramError;
 use super::solve::ldlt_solve;
@@ -194,17 +194,15 @@ pub(super) fn lower(
         .map(|i| ir.leaf(Leaf::Accel(i)))
         .collect();
     let acc = red.accelerations(ir, split, &rate_leaves);
-    let mut with_rates = env.clone();
-    for (k, s) in eqs.speed_rates.iter().enumerate() {
-        with_rates.insert(*s, acc[k]);
-    }
-    let mut lw = Lowering::new(&mut model.system.arena, ir, &with_rates);
-    let state_syms = eqs.states.clone();
-    let extra_in_rates = lower_all(&mut lw, &eqs.state_derivatives, |k| {
-        ItemRef::State(state_syms[k])
-    })?;
-    calls.extend(lw.user_calls());
-    let extra = with_accelerations(ir, &extra_in_rates, &solve.du);
+    let with_rates = binding_rates(&env, eqs, &acc);
+    let (extra, extra_in_rates) = lower_extra(
+        &mut model.system.arena,
+        ir,
+        &with_rates,
+        eqs,
+        &solve.du,
+        &mut calls,
+    )?;
 
     let outputs = outputs(model, eqs, split, ir, &env, &red, &full, &mut calls)?;
     let initial = initial(model, split, ir, &env)?;
@@ -363,10 +361,7 @@ fn outputs(
         .map(|i| ir.leaf(Leaf::Accel(i)))
         .collect();
     let acc = red.accelerations(ir, split, &du_free);
-    let mut with_accel = env.clone();
-    for (k, s) in eqs.speed_rates.iter().enumerate() {
-        with_accel.insert(*s, acc[k]);
-    }
+    let with_accel = binding_rates(env, eqs, &acc);
     let sys = &mut model.system;
     let exprs: Vec<ExprId> = sys.outputs().iter().map(|o| o.expr).collect();
     let mut lw = Lowering::new(&mut sys.arena, ir, &with_accel);

@@ -10,7 +10,7 @@ use super::program::ProgramError;
 use super::solve::Solve;
 use super::split::Split;
 use super::tangent::substitute;
-use crate::expr::{ExprId, SymId};
+use crate::expr::{Arena, ExprId, SymId};
 use crate::mech::{Equations, ItemRef};
 use crate::model::ResolvedModel;
 use rustc_hash::FxHashMap;
@@ -104,6 +104,40 @@ pub(super) struct Assembly {
     /// The factored Jacobian `G_d` of the residuals by the dependent
     /// coordinates.
     pub elim: Elimination,
+}
+
+/// `env` with the symbol of each speed's rate (`du_k/dt`) bound to
+/// `rates[k]`.
+pub(super) fn binding_rates(
+    env: &FxHashMap<SymId, Nid>,
+    eqs: &Equations,
+    rates: &[Nid],
+) -> FxHashMap<SymId, Nid> {
+    let mut bound = env.clone();
+    for (s, r) in eqs.speed_rates.iter().zip(rates) {
+        bound.insert(*s, *r);
+    }
+    bound
+}
+
+/// The added states' derivatives lowered with the rates bound as `env`
+/// says (the form the linearization differentiates), and the same with
+/// the solve's accelerations `du` in place of `Leaf::Accel`.
+pub(super) fn lower_extra(
+    arena: &mut Arena,
+    ir: &mut Ir,
+    env: &FxHashMap<SymId, Nid>,
+    eqs: &Equations,
+    du: &[Nid],
+    calls: &mut Vec<(ExprId, Nid)>,
+) -> Result<(Vec<Nid>, Vec<Nid>), ProgramError> {
+    let mut lw = Lowering::new(arena, ir, env);
+    let in_rates = lower_all(&mut lw, &eqs.state_derivatives, |k| {
+        ItemRef::State(eqs.states[k])
+    })?;
+    calls.extend(lw.user_calls());
+    let extra = with_accelerations(ir, &in_rates, du);
+    Ok((extra, in_rates))
 }
 
 /// `nodes` with `Leaf::Accel(k)` replaced by `du[k]`.

@@ -6,7 +6,7 @@
 use super::articulated::TreeBody;
 use super::ir::{Ir, Leaf, Nid};
 use super::lower::Lowering;
-use super::lowered::{Lowered, collect_calls, lower_all, lower_one, with_accelerations};
+use super::lowered::{Lowered, binding_rates, collect_calls, lower_all, lower_extra, lower_one};
 use super::program::ProgramError;
 use super::solve::{Solver, ldlt_solve, recursive_solve};
 use crate::expr::{ExprId, SymId};
@@ -65,25 +65,21 @@ pub(super) fn lower(
             solve
         }
     };
-    // Extra states read the accelerations as leaves, replaced by the
-    // solve's values (the linearization differentiates the leaf form).
-    let mut with_rates = leaves.clone();
-    for (i, s) in eqs.speed_rates.iter().enumerate() {
-        with_rates.insert(*s, ir.leaf(Leaf::Accel(i)));
-    }
-    let mut lw = Lowering::new(&mut sys.arena, ir, &with_rates);
-    let state_syms = eqs.states.clone();
-    let extra_in_rates = lower_all(&mut lw, &eqs.state_derivatives, |k| {
-        ItemRef::State(state_syms[k])
-    })?;
-    user_calls.extend(lw.user_calls());
-    let extra = with_accelerations(ir, &extra_in_rates, &solve.du);
-
-    // Outputs read du/dt from the derivatives.
-    let mut with_accel = leaves.clone();
-    for (i, s) in eqs.speed_rates.iter().enumerate() {
-        with_accel.insert(*s, ir.leaf(Leaf::Accel(i)));
-    }
+    // Extra states and outputs read the accelerations as leaves; the
+    // extra states' are replaced by the solve's values (the linearization
+    // differentiates the leaf form), the outputs read du/dt from the
+    // derivatives.
+    let rates = eqs.speed_rates.len();
+    let accel: Vec<Nid> = (0..rates).map(|i| ir.leaf(Leaf::Accel(i))).collect();
+    let with_accel = binding_rates(leaves, eqs, &accel);
+    let (extra, extra_in_rates) = lower_extra(
+        &mut sys.arena,
+        ir,
+        &with_accel,
+        eqs,
+        &solve.du,
+        &mut user_calls,
+    )?;
     let output_exprs: Vec<ExprId> = sys.outputs().iter().map(|o| o.expr).collect();
     let mut lw = Lowering::new(&mut sys.arena, ir, &with_accel);
     let outputs = lower_all(&mut lw, &output_exprs, ItemRef::Output)?;

@@ -125,33 +125,18 @@ impl Frames {
         name: &str,
         uv_prefix: &str,
     ) -> FrameId {
-        let id = FrameId(self.frames.len() as u32);
-        let p = self.frames[parent.index()].clone();
+        let p = self.frames[parent.index()].triad;
         let (i, j) = axis.others();
         let (i, j) = (i.index(), j.index());
         let s = arena.sin(angle);
         let c = arena.cos(angle);
         let ms = arena.neg(s);
-        let mut triad = p.triad;
         // b_i = c a_i + s a_j ;  b_j = -s a_i + c a_j
-        for (k, coefs) in [(i, [c, s]), (j, [ms, c])] {
-            let uv = UvId(self.uvs.len() as u32);
-            self.uvs.push(Uv {
-                name: format!("{uv_prefix}{}", k + 1),
-                home: id,
-                axis: k,
-                in_parent: Some(vec![(p.triad[i], coefs[0]), (p.triad[j], coefs[1])]),
-            });
-            triad[k] = uv;
-        }
-        self.frames.push(Frame {
-            name: name.to_string(),
-            parent: Some(parent),
-            depth: p.depth + 1,
-            triad,
-            rotation: Some((axis, angle)),
-        });
-        id
+        let new_axes = vec![
+            (i, vec![(p[i], c), (p[j], s)]),
+            (j, vec![(p[i], ms), (p[j], c)]),
+        ];
+        self.add_child(parent, (name, uv_prefix), Some((axis, angle)), new_axes)
     }
 
     /// Adds a frame oriented by a general direction-cosine matrix relative
@@ -164,29 +149,49 @@ impl Frames {
         name: &str,
         uv_prefix: &str,
     ) -> FrameId {
+        let p = self.frames[parent.index()].triad;
+        let new_axes = c
+            .iter()
+            .enumerate()
+            .map(|(i, row)| {
+                let parts = (0..3)
+                    .filter(|j| !arena.is_zero(row[*j]))
+                    .map(|j| (p[j], row[j]))
+                    .collect();
+                (i, parts)
+            })
+            .collect();
+        self.add_child(parent, (name, uv_prefix), None, new_axes)
+    }
+
+    /// Adds a frame under `parent` named `name`, with a new unit vector
+    /// (`uv_prefix` and its axis number) for each of `new_axes`, given in
+    /// the parent's unit vectors; the other axes are the parent's.
+    fn add_child(
+        &mut self,
+        parent: FrameId,
+        (name, uv_prefix): (&str, &str),
+        rotation: Option<(Axis, ExprId)>,
+        new_axes: Vec<(usize, Vec<(UvId, ExprId)>)>,
+    ) -> FrameId {
         let id = FrameId(self.frames.len() as u32);
-        let p = self.frames[parent.index()].clone();
-        let mut triad = p.triad;
-        for (i, row) in c.iter().enumerate() {
-            let parts: Vec<(UvId, ExprId)> = (0..3)
-                .filter(|j| !arena.is_zero(row[*j]))
-                .map(|j| (p.triad[j], row[j]))
-                .collect();
-            let uv = UvId(self.uvs.len() as u32);
+        let p = &self.frames[parent.index()];
+        let (mut triad, depth) = (p.triad, p.depth + 1);
+        for (axis, parts) in new_axes {
+            triad[axis] = UvId(self.uvs.len() as u32);
             self.uvs.push(Uv {
-                name: format!("{uv_prefix}{}", i + 1),
+                name: format!("{uv_prefix}{}", axis + 1),
                 home: id,
-                axis: i,
+                axis,
                 in_parent: Some(parts),
             });
-            triad[i] = uv;
         }
         self.frames.push(Frame {
             name: name.to_string(),
             parent: Some(parent),
-            depth: p.depth + 1,
+            depth,
             triad,
-            rotation: None,
+            rotation,
         });
         id
     }

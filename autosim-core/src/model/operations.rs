@@ -6,6 +6,7 @@ use super::scope::{Named, Resolver, describe};
 use super::value::{self, Value};
 use crate::diag::{Diagnostic, Span, did_you_mean};
 use crate::expr::{ExprId, Func};
+use crate::mech::{System, Vector};
 use crate::syntax::ast::{self, Expr};
 
 /// An operation's handler: the resolver, the arguments (their count
@@ -312,23 +313,14 @@ fn rot(r: &mut Resolver<'_>, args: &[Expr], _: Span, ctx: &str) -> Option<Value>
 }
 
 fn dxdt(r: &mut Resolver<'_>, args: &[Expr], _: Span, _: &str) -> Option<Value> {
-    let d = match r.eval(&args[0])? {
-        Value::Scalar(s) => r
-            .sys
-            .arena
-            .dxdt(s)
-            .map(Value::Scalar)
-            .map_err(|e| e.to_string()),
-        Value::Vector(v) => r
-            .sys
-            .dxdt_vector(&v)
-            .map(Value::Vector)
-            .map_err(|e| e.to_string()),
-        other => Err(format!(
-            "`dxdt` needs a scalar or a vector, but this is a {}",
-            other.kind()
-        )),
-    };
+    let y = r.eval(&args[0])?;
+    let d = derivative(
+        r,
+        y,
+        "dxdt",
+        |sys, s| sys.arena.dxdt(s).map_err(|e| e.to_string()),
+        |sys, v| sys.dxdt_vector(v).map_err(|e| e.to_string()),
+    );
     r.lift(args[0].span(), d)
 }
 
@@ -343,24 +335,33 @@ fn partial(r: &mut Resolver<'_>, args: &[Expr], _: Span, ctx: &str) -> Option<Va
         );
         return None;
     };
-    let d = match y {
-        Value::Scalar(s) => r
-            .sys
-            .arena
-            .partial(s, sym)
-            .map(Value::Scalar)
-            .map_err(|e| e.to_string()),
-        Value::Vector(v) => r
-            .sys
-            .partial_vector(&v, sym)
-            .map(Value::Vector)
-            .map_err(|e| e.to_string()),
+    let d = derivative(
+        r,
+        y,
+        "partial",
+        |sys, s| sys.arena.partial(s, sym).map_err(|e| e.to_string()),
+        |sys, v| sys.partial_vector(v, sym).map_err(|e| e.to_string()),
+    );
+    r.lift(args[0].span(), d)
+}
+
+/// The derivative `name` of a scalar or of a vector (the other kinds of
+/// value are a mistake).
+fn derivative(
+    r: &mut Resolver<'_>,
+    y: Value,
+    name: &str,
+    scalar: impl FnOnce(&mut System, ExprId) -> Result<ExprId, String>,
+    vector: impl FnOnce(&mut System, &Vector) -> Result<Vector, String>,
+) -> Result<Value, String> {
+    match y {
+        Value::Scalar(s) => scalar(&mut r.sys, s).map(Value::Scalar),
+        Value::Vector(v) => vector(&mut r.sys, &v).map(Value::Vector),
         other => Err(format!(
-            "`partial` needs a scalar or a vector, but this is a {}",
+            "`{name}` needs a scalar or a vector, but this is a {}",
             other.kind()
         )),
-    };
-    r.lift(args[0].span(), d)
+    }
 }
 
 fn nominal(r: &mut Resolver<'_>, args: &[Expr], _: Span, ctx: &str) -> Option<Value> {

@@ -1,7 +1,8 @@
 //! Writes the code generated for every model in a source tree into a
 //! folder, one file per model: each `.sim` file (its Rust and its
 //! Markdown) and each `model!` invocation in a `.rs` file (its expansion,
-//! errors and placeholder included). Run it before and after a refactor
+//! errors and placeholder included; the models of the list macros
+//! `models_from!` and `from_file!` too). Run it before and after a refactor
 //! and compare the folders: a refactor proves itself by byte-identical
 //! output.
 //!
@@ -104,18 +105,46 @@ fn macro_calls(path: &Path, text: &str) -> Vec<String> {
         .collect()
 }
 
+/// The arguments of every `model!` call in `tokens`, and of every model a
+/// list macro declares (`models_from!` of the test support crate, the
+/// tradeoff example's `from_file!`: `"file": Name, option = value; ...`).
+/// Calls inside `macro_rules!` templates (with `$` fragments) are skipped.
 fn find_calls(tokens: TokenStream, calls: &mut Vec<TokenStream>) {
     let tokens: Vec<TokenTree> = tokens.into_iter().collect();
     for (i, t) in tokens.iter().enumerate() {
         if let TokenTree::Group(g) = t {
             find_calls(g.stream(), calls);
         }
-        if let (TokenTree::Ident(id), Some(TokenTree::Punct(p)), Some(TokenTree::Group(g))) =
+        let (TokenTree::Ident(id), Some(TokenTree::Punct(p)), Some(TokenTree::Group(g))) =
             (t, tokens.get(i + 1), tokens.get(i + 2))
-            && id == "model"
-            && p.as_char() == '!'
-        {
+        else {
+            continue;
+        };
+        if p.as_char() != '!' || g.stream().to_string().contains('$') {
+            continue;
+        }
+        if id == "model" {
             calls.push(g.stream());
+        } else if id == "models_from" || id == "from_file" {
+            list_calls(g.stream(), calls);
+        }
+    }
+}
+
+/// `"file": Name, option = value; Name2; ...` as one `model!` argument
+/// list per entry.
+fn list_calls(tokens: TokenStream, calls: &mut Vec<TokenStream>) {
+    let tokens: Vec<TokenTree> = tokens.into_iter().collect();
+    let Some(file) = tokens.first() else { return };
+    let mut entry: Vec<TokenTree> = Vec::new();
+    for t in tokens.iter().skip(2) {
+        if matches!(t, TokenTree::Punct(p) if p.as_char() == ';') {
+            let head: TokenStream = format!("file = {file}, name = ")
+                .parse()
+                .expect("valid tokens");
+            calls.push(head.into_iter().chain(entry.drain(..)).collect());
+        } else {
+            entry.push(t.clone());
         }
     }
 }

@@ -15,7 +15,7 @@ use super::split::Split;
 use super::tree;
 use crate::mech::{Equations, ItemRef};
 use crate::model::{Formulation, ResolvedModel};
-use rustc_hash::FxHashSet;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// What a block computes; each kind is one function of generated code.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -105,6 +105,15 @@ impl Program {
     pub fn block(&self, kind: BlockKind) -> &Block {
         self.try_block(kind)
             .unwrap_or_else(|| unreachable!("the program has no {} block", kind.name()))
+    }
+
+    /// The slot of each hoisted constant in the constants block.
+    pub fn constant_slots(&self) -> FxHashMap<Nid, usize> {
+        self.hoisted
+            .iter()
+            .enumerate()
+            .map(|(k, n)| (*n, k))
+            .collect()
     }
 
     /// The block of a kind, if the program has one.

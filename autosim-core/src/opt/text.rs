@@ -59,12 +59,7 @@ impl Program {
     /// Writes the statements of one block, one per line.
     pub fn write_block(&self, out: &mut impl Write, kind: BlockKind) -> fmt::Result {
         let block = self.block(kind);
-        let slots: FxHashMap<Nid, usize> = self
-            .hoisted
-            .iter()
-            .enumerate()
-            .map(|(k, n)| (*n, k))
-            .collect();
+        let slots = self.constant_slots();
         let p = TextPrinter {
             prog: self,
             names: &block.names,
@@ -90,24 +85,19 @@ impl Program {
                         args.join(", ")
                     )?;
                 }
-                Stmt::Check {
-                    pivot,
-                    guard: Guard::Positive { speed },
-                } => writeln!(
-                    out,
-                    "require {} > 0   (mass matrix pivot of {})",
-                    p.expr(*pivot, 0),
-                    self.states().speeds[*speed].name
-                )?,
-                Stmt::Check {
-                    pivot,
-                    guard: Guard::Regular { constraint },
-                } => writeln!(
-                    out,
-                    "require {} != 0   (pivot of constraint {})",
-                    p.expr(*pivot, 0),
-                    self.interface.constraints[*constraint].name
-                )?,
+                Stmt::Check { pivot, guard } => {
+                    let condition = match guard {
+                        Guard::Positive { speed } => format!(
+                            "> 0   (mass matrix pivot of {})",
+                            self.states().speeds[*speed].name
+                        ),
+                        Guard::Regular { constraint } => format!(
+                            "!= 0   (pivot of constraint {})",
+                            self.interface.constraints[*constraint].name
+                        ),
+                    };
+                    writeln!(out, "require {} {condition}", p.expr(*pivot, 0))?
+                }
                 Stmt::Store { slot, value } => writeln!(
                     out,
                     "{} = {}",

@@ -12,7 +12,6 @@ use super::expr::{Locals, float_type, ident};
 use crate::opt::{BlockKind, Ops, Program, Quantity};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
-use rustc_hash::FxHashMap;
 
 /// How generated code is written.
 #[derive(Clone, Debug)]
@@ -90,12 +89,7 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
             .clone()
             .unwrap_or_else(|| snake_case(&i.name)),
     );
-    let constant_slot: FxHashMap<_, _> = prog
-        .hoisted
-        .iter()
-        .enumerate()
-        .map(|(k, n)| (*n, k))
-        .collect();
+    let constant_slot = prog.constant_slots();
     let locals = Locals::new(prog);
     let be = BlockEmitter {
         prog,

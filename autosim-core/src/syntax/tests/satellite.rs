@@ -214,8 +214,7 @@ pub(crate) fn summary(model: &Model) -> String {
 
 #[test]
 fn satellite_from_file() {
-    let model = parse_file(SATELLITE).unwrap_or_else(|rendered| panic!("{rendered}"));
-    assert_eq!(summary(&model), SUMMARY);
+    assert_eq!(summary_of(SATELLITE), SUMMARY);
 }
 
 #[test]
@@ -245,12 +244,15 @@ fn satellite_spans_are_file_locations() {
     assert!(inertia.span().token_range().is_none());
 }
 
+/// The summary of a model text that parses.
+fn summary_of(text: &str) -> String {
+    summary(&parse_file(text).unwrap_or_else(|r| panic!("{r}")))
+}
+
 #[test]
 fn items_in_any_order_and_stray_semicolons() {
-    let model =
-        parse_file("output y = x; ; body B { }; model M;").unwrap_or_else(|r| panic!("{r}"));
     assert_eq!(
-        summary(&model),
+        summary_of("output y = x; ; body B { }; model M;"),
         "model M docs []\noutput y = x\nbody B { }\n"
     );
 }
@@ -258,9 +260,8 @@ fn items_in_any_order_and_stray_semicolons() {
 #[test]
 fn inner_docs_and_numbers_as_written() {
     let text = "//! Model docs.\nmodel M;\nparameters { a = 1_000, b = -2.50, c = 1e-3, d = 0.1 }";
-    let model = parse_file(text).unwrap_or_else(|r| panic!("{r}"));
     assert_eq!(
-        summary(&model),
+        summary_of(text),
         "model M docs [\" Model docs.\"]\nparameters a = 1000, b = -2.50, c = 1e-3, d = 0.1\n"
     );
 }
@@ -268,9 +269,8 @@ fn inner_docs_and_numbers_as_written() {
 #[test]
 fn units_are_normalized() {
     let text = "model M; input a [ N * m / rad ], b [kg m ^ 2], c [m/s^-2], d [N-m], e [(kg m)/s], f [1/s], g [%];";
-    let model = parse_file(text).unwrap_or_else(|r| panic!("{r}"));
     assert_eq!(
-        summary(&model),
+        summary_of(text),
         "model M docs []\ninput a [N*m/rad], b [kg m^2], c [m/s^-2], d [N-m], e [(kg m)/s], f [1/s], g [%]\n"
     );
 }

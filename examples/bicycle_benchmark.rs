@@ -9,7 +9,10 @@
 
 use autosim::runtime::analysis::{LinearSystem, Sweep, find_crossing};
 use std::error::Error;
-use std::path::PathBuf;
+
+#[path = "common/output_folder.rs"]
+mod output_folder;
+use output_folder::output_folder;
 
 autosim::model!(file = "examples/models/bicycle.sim", linearize = true);
 use bicycle::Bicycle;
@@ -44,12 +47,7 @@ fn times_mass(m: &Matrix2, sys: &LinearSystem, first: usize) -> Matrix2 {
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
-    let folder = PathBuf::from(
-        std::env::args()
-            .nth(1)
-            .unwrap_or_else(|| "target/bicycle".into()),
-    );
-    std::fs::create_dir_all(&folder)?;
+    let folder = output_folder("target/bicycle")?;
     let mut model = Bicycle::new();
     let mut full = [[0.0; 3]; 3];
     model.mass_matrix(0.0, &upright(0.0), &mut full);

@@ -9,7 +9,11 @@
 use autosim::runtime::Model;
 use autosim::runtime::analysis::{LinearSystem, Trim, trim};
 use std::error::Error;
-use std::path::{Path, PathBuf};
+use std::path::Path;
+
+#[path = "common/output_folder.rs"]
+mod output_folder;
+use output_folder::output_folder;
 
 autosim::model!(file = "examples/models/pendulum.sim");
 autosim::model!(file = "examples/models/quarter_car.sim");
@@ -39,12 +43,7 @@ fn export(folder: &Path, name: &str, sys: &LinearSystem) -> Result<(), Box<dyn E
 }
 
 fn main() -> Result<(), Box<dyn Error>> {
-    let folder = PathBuf::from(
-        std::env::args()
-            .nth(1)
-            .unwrap_or_else(|| "target/linear".into()),
-    );
-    std::fs::create_dir_all(&folder)?;
+    let folder = output_folder("target/linear")?;
 
     let mut pendulum = pendulum::Pendulum::new();
     let hanging = LinearSystem::of(&mut pendulum, 0.0, &[0.0, 0.0])?;

@@ -12,15 +12,15 @@ use std::fmt::Write;
 #[allow(unused_macros, dead_code)]
 #[path = "common/figure8.rs"]
 mod figure8;
+#[path = "common/output_folder.rs"]
+mod output_folder;
 #[path = "common/slew_forms.rs"]
 mod slew_forms;
+use output_folder::output_folder;
 use slew_forms::{distance, in_derivatives, sampled};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let folder = std::env::args()
-        .nth(1)
-        .unwrap_or_else(|| "docs/tradeoff".into());
-    std::fs::create_dir_all(&folder)?;
+    let folder = output_folder("docs/tradeoff")?;
     // References: Dormand–Prince at 1e-12 in each form.
     let (ref_in, _) = in_derivatives(DormandPrince::with_tolerances(1e-12, 1e-12)?, 1e-3);
     let (ref_sampled, _) = sampled(DormandPrince::with_tolerances(1e-12, 1e-12)?, 1e-3);
@@ -78,7 +78,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         md,
         "\nIn the derivatives the thrusters' saved state advances at every stage and every rejected trial step, so the answer moves with the integrator and does not converge as the step shrinks; sampled, every integrator converges to the same trajectory (the thrust is a fixed function of time between samples)."
     )?;
-    let path = std::path::Path::new(&folder).join("sampled.md");
+    let path = folder.join("sampled.md");
     std::fs::write(&path, &md)?;
     print!("{md}");
     println!("\nwrote {}", path.display());

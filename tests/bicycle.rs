@@ -4,9 +4,8 @@
 //! constraints, whose linearization reproduces Meijaard et al. (2007) to
 //! 1.5e-14 (see `tests/reference/gen/bicycle.md`).
 
-use autosim::runtime::integrate::DormandPrince;
-use autosim::runtime::{Model, RunSettings, run};
-use autosim_test_support::load;
+use autosim::runtime::Model;
+use autosim_test_support::{kinetic_energy, load, tight_run};
 use serde_json::Value;
 
 autosim::model!(file = "examples/models/bicycle.sim");
@@ -37,12 +36,7 @@ fn perturbed(speed: f64, roll: f64) -> [f64; 11] {
 fn energy(m: &mut Bicycle, x: &[f64; 11], potential: f64) -> f64 {
     let mut mass = [[0.0; 3]; 3];
     m.mass_matrix(0.0, x, &mut mass);
-    let u = &x[8..];
-    let kinetic: f64 = (0..3)
-        .flat_map(|i| (0..3).map(move |j| (i, j)))
-        .map(|(i, j)| 0.5 * u[i] * mass[i][j] * u[j])
-        .sum();
-    kinetic + potential
+    kinetic_energy(&mass, &x[8..]) + potential
 }
 
 #[test]
@@ -69,19 +63,8 @@ fn run_case(case: &Value, stop: f64, tolerance: f64) -> ([f64; 11], f64) {
     let mut m = Bicycle::new();
     let v = number(&case["v"]);
     let mut x = perturbed(v, number(&case["roll0"]));
-    let mut dopri = DormandPrince::<Bicycle>::with_tolerances(1e-12, 1e-12).unwrap();
-    let settings = RunSettings::new(0.0, stop, 1e-3, 0.25).with_max_steps(1_000_000);
-    let mut out: Vec<(f64, [f64; 11], f64)> = Vec::new();
-    run(
-        &mut m,
-        &mut dopri,
-        &mut x,
-        &settings,
-        &mut |t, x: &[f64; 11], y: &[f64; 3]| {
-            out.push((t, *x, y[1]));
-        },
-    )
-    .unwrap();
+    let (_, out) = tight_run(&mut m, &mut x, stop, 0.25);
+    let out: Vec<(f64, [f64; 11], f64)> = out.into_iter().map(|(t, x, y)| (t, x, y[1])).collect();
     let e0 = energy(&mut m, &out[0].1, out[0].2);
     let drift = out
         .iter()

@@ -30,42 +30,42 @@ both!(satellite_small, "examples/models/satellite_small.sim");
 /// both formulations.
 #[derive(Clone, Copy)]
 struct User;
-macro_rules! satellite_user {
-    ($($module:ident),+) => {$(
-        impl $module::matrix::Externs for User {
-            fn thrust(&mut self, _t: f64, axis: f64, error: f64) -> f64 {
-                (axis * error).sin()
-            }
-            fn cmd(&mut self, t: f64) -> [f64; 2] {
-                [t.sin(), t.cos()]
-            }
-        }
-        impl $module::recursive::Externs for User {
-            fn thrust(&mut self, _t: f64, axis: f64, error: f64) -> f64 {
-                (axis * error).sin()
-            }
-            fn cmd(&mut self, t: f64) -> [f64; 2] {
-                [t.sin(), t.cos()]
-            }
-        }
+/// The same user code for every listed `Externs` trait.
+macro_rules! user {
+    ($($externs:path),+ => $body:tt) => {$(
+        impl $externs for User $body
     )+};
 }
-satellite_user!(satellite, satellite_small);
-impl features::matrix::Externs for User {
+user!(
+    satellite::matrix::Externs,
+    satellite::recursive::Externs,
+    satellite_small::matrix::Externs,
+    satellite_small::recursive::Externs => {
+        fn thrust(&mut self, _t: f64, axis: f64, error: f64) -> f64 {
+            (axis * error).sin()
+        }
+        fn cmd(&mut self, t: f64) -> [f64; 2] {
+            [t.sin(), t.cos()]
+        }
+    }
+);
+user!(features::matrix::Externs, features::recursive::Externs => {
     fn friction(&mut self, speed: f64, normal: f64) -> f64 {
         -0.1 * speed * normal.abs()
     }
     fn sensor(&mut self, t: f64, x: f64) -> [f64; 2] {
         [x + 0.01 * t, 0.5 * x]
     }
-}
-impl features::recursive::Externs for User {
-    fn friction(&mut self, speed: f64, normal: f64) -> f64 {
-        -0.1 * speed * normal.abs()
+});
+
+/// A random state, entries uniform in [-2, 2], those in `small` scaled
+/// by 1e-6.
+fn random_state<const N: usize>(rng: &mut Rng, small: &[usize]) -> [f64; N] {
+    let mut x: [f64; N] = std::array::from_fn(|_| rng.uniform(-2.0, 2.0));
+    for k in small {
+        x[*k] *= 1e-6;
     }
-    fn sensor(&mut self, t: f64, x: f64) -> [f64; 2] {
-        [x + 0.01 * t, 0.5 * x]
-    }
+    x
 }
 
 /// Largest difference of the derivatives, relative to their size, at
@@ -80,10 +80,7 @@ where
     let mut rng = Rng::new(0x0bad_cafe_1234_5678);
     let mut worst = 0.0f64;
     for _ in 0..cases {
-        let mut x: [f64; N] = std::array::from_fn(|_| rng.uniform(-2.0, 2.0));
-        for k in small {
-            x[*k] *= 1e-6;
-        }
+        let x: [f64; N] = random_state(&mut rng, small);
         let t = rng.uniform(0.0, 5.0);
         let (mut da, mut db) = ([0.0; N], [0.0; N]);
         let (ra, rb) = (a.derivatives(t, &x, &mut da), b.derivatives(t, &x, &mut db));
@@ -111,10 +108,7 @@ fn compare_at<const N: usize>(
     let mut rng = Rng::new(0x5eed_0f4a_5500);
     let mut worst = 0.0f64;
     for _ in 0..cases {
-        let mut x: [f64; N] = std::array::from_fn(|_| rng.uniform(-2.0, 2.0));
-        for k in small {
-            x[*k] *= 1e-6;
-        }
+        let x: [f64; N] = random_state(&mut rng, small);
         let (va, vb) = (a(&x), b(&x));
         let scale = va.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (ea, eb) in va.iter().zip(&vb) {
@@ -165,10 +159,7 @@ where
     let mut rng = Rng::new(0xf0_5c1e);
     let mut worst = 0.0f64;
     for _ in 0..cases {
-        let mut x: [f64; N] = std::array::from_fn(|_| rng.uniform(-2.0, 2.0));
-        for k in small {
-            x[*k] *= 1e-6;
-        }
+        let x: [f64; N] = random_state(&mut rng, small);
         let (mut f, mut m, mut dx) = ([0.0; S], [[0.0; S]; S], [0.0; N]);
         if model.derivatives(0.0, &x, &mut dx).is_err() {
             continue;

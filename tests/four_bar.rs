@@ -3,9 +3,8 @@
 //! configuration constraints, cross-checked by Newton–Euler with pin
 //! multipliers (see `tests/reference/gen/four_bar.md`).
 
-use autosim::runtime::integrate::DormandPrince;
-use autosim::runtime::{Model, ModelError, RunSettings, run};
-use autosim_test_support::{floats, load};
+use autosim::runtime::{Model, ModelError};
+use autosim_test_support::{floats, load, tight_run};
 use serde_json::Value;
 
 autosim::model!(file = "examples/models/four_bar.sim");
@@ -125,19 +124,7 @@ fn trajectory_matches_the_reference_and_keeps_the_loop_closed() {
     let mut m = model(&data);
     let records = data["trajectory"]["records"].as_array().unwrap();
     let mut x = state(&records[0]);
-    let mut dopri = DormandPrince::<FourBar>::with_tolerances(1e-12, 1e-12).unwrap();
-    let settings = RunSettings::new(0.0, 10.0, 1e-3, 0.1).with_max_steps(1_000_000);
-    let mut out: Vec<(f64, [f64; 4], [f64; 3])> = Vec::new();
-    run(
-        &mut m,
-        &mut dopri,
-        &mut x,
-        &settings,
-        &mut |t, x: &[f64; 4], y: &[f64; 3]| {
-            out.push((t, *x, *y));
-        },
-    )
-    .unwrap();
+    let (_, out) = tight_run(&mut m, &mut x, 10.0, 0.1);
     assert_eq!(out.len(), records.len());
     let e0 = out[0].2[0];
     let (mut worst_q, mut worst_e, mut worst_loop) = (0.0f64, 0.0f64, 0.0f64);

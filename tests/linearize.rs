@@ -140,38 +140,23 @@ fn uniform<const N: usize>(rng: &mut Rng, lo: f64, hi: f64) -> [f64; N] {
     std::array::from_fn(|_| rng.uniform(lo, hi))
 }
 
+/// [`check`] of a chain, at states uniform in [-1.5, 1.5].
+fn check_chain<M, const N: usize>(name: &str, m: M, cases: usize)
+where
+    M: Linearize<Float = f64, State = [f64; N]>,
+{
+    check(name, m, cases, |r| uniform(r, -1.5, 1.5));
+}
+
 #[test]
 fn chains_match_finite_differences() {
-    check("chain-planar-1", chains::planar1::Planar1::new(), 5, |r| {
-        uniform(r, -1.5, 1.5)
-    });
-    check("chain-planar-5", chains::planar5::Planar5::new(), 5, |r| {
-        uniform(r, -1.5, 1.5)
-    });
-    check(
-        "chain-planar-10",
-        chains::planar10::Planar10::new(),
-        3,
-        |r| uniform(r, -1.5, 1.5),
-    );
-    check(
-        "chain-spatial-1",
-        chains::spatial1::Spatial1::new(),
-        5,
-        |r| uniform(r, -1.5, 1.5),
-    );
-    check(
-        "chain-spatial-3",
-        chains::spatial3::Spatial3::new(),
-        5,
-        |r| uniform(r, -1.5, 1.5),
-    );
-    check(
-        "chain-spatial-10",
-        chains::spatial10::Spatial10::new(),
-        3,
-        |r| uniform(r, -1.5, 1.5),
-    );
+    use chains::*;
+    check_chain("chain-planar-1", planar1::Planar1::new(), 5);
+    check_chain("chain-planar-5", planar5::Planar5::new(), 5);
+    check_chain("chain-planar-10", planar10::Planar10::new(), 3);
+    check_chain("chain-spatial-1", spatial1::Spatial1::new(), 5);
+    check_chain("chain-spatial-3", spatial3::Spatial3::new(), 5);
+    check_chain("chain-spatial-10", spatial10::Spatial10::new(), 3);
 }
 
 /// Thrusters on a dead band wide enough not to switch under the

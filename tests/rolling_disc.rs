@@ -6,7 +6,7 @@
 
 use autosim::runtime::integrate::DormandPrince;
 use autosim::runtime::{Model, RunSettings, run};
-use autosim_test_support::{floats, load};
+use autosim_test_support::{floats, load, tight_run};
 use serde_json::Value;
 
 autosim::model!(file = "examples/models/rolling_disc.sim");
@@ -84,19 +84,7 @@ fn energy_is_conserved_and_the_trajectory_matches() {
     let mut m = RollingDisc::new();
     let records = data["trajectory"]["records"].as_array().unwrap();
     let mut x = state(&records[0]);
-    let mut dopri = DormandPrince::<RollingDisc>::with_tolerances(1e-12, 1e-12).unwrap();
-    let settings = RunSettings::new(0.0, 5.0, 1e-3, 0.1).with_max_steps(1_000_000);
-    let mut out: Vec<(f64, [f64; 9], [f64; 4])> = Vec::new();
-    run(
-        &mut m,
-        &mut dopri,
-        &mut x,
-        &settings,
-        &mut |t, x: &[f64; 9], y: &[f64; 4]| {
-            out.push((t, *x, *y));
-        },
-    )
-    .unwrap();
+    let (_, out) = tight_run(&mut m, &mut x, 5.0, 0.1);
     assert_eq!(out.len(), records.len());
     let e0 = out[0].2[0];
     let (mut worst_x, mut worst_e) = (0.0f64, 0.0f64);

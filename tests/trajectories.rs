@@ -7,9 +7,8 @@
 //! generated mass matrix) + gravitational (Σ m_i g z_i of the mass centers,
 //! computed here from the chain's geometry) + Σ ½ k q_i².
 
-use autosim::runtime::integrate::DormandPrince;
-use autosim::runtime::{Model, RunSettings, run};
-use autosim_test_support::{floats, load};
+use autosim::runtime::Model;
+use autosim_test_support::{floats, kinetic_energy, load, tight_run};
 use serde_json::Value;
 
 mod planar {
@@ -85,11 +84,7 @@ macro_rules! trajectory_test {
             let energy = |model: &mut M, x: &[f64; 6], tip_height: f64| {
                 let mut m = [[0.0; 3]; 3];
                 model.mass_matrix(0.0, x, &mut m);
-                let u = &x[3..];
-                let kinetic: f64 = (0..3)
-                    .flat_map(|i| (0..3).map(move |j| (i, j)))
-                    .map(|(i, j)| 0.5 * u[i] * m[i][j] * u[j])
-                    .sum();
+                let kinetic = kinetic_energy(&m, &x[3..]);
                 let z = mass_center_heights(&$axes, &lengths, &x[..3]);
                 // The model's output is the last mass center's height.
                 assert!((z[2] - tip_height).abs() < 1e-12, "tip_height {tip_height} vs {}", z[2]);
@@ -103,13 +98,8 @@ macro_rules! trajectory_test {
             x[..3].copy_from_slice(&floats(&records[0]["q"]));
             x[3..].copy_from_slice(&floats(&records[0]["u"]));
 
-            let mut dopri = DormandPrince::<M>::with_tolerances(1e-12, 1e-12).unwrap();
-            let settings = RunSettings::new(0.0, 5.0, 1e-3, 0.01).with_max_steps(1_000_000);
-            let mut outputs: Vec<(f64, [f64; 6], f64)> = Vec::new();
-            let summary = run(&mut model, &mut dopri, &mut x, &settings, &mut |t, x: &[f64; 6], y: &[f64; 1]| {
-                outputs.push((t, *x, y[0]));
-            })
-            .unwrap();
+            let (summary, outputs) = tight_run(&mut model, &mut x, 5.0, 0.01);
+            let outputs: Vec<(f64, [f64; 6], f64)> = outputs.into_iter().map(|(t, x, y)| (t, x, y[0])).collect();
 
             // States at the reference's records.
             let mut worst_state = 0.0f64;

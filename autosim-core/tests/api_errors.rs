@@ -329,47 +329,26 @@ struct RandomSpec {
 const NAMES: [&str; 6] = ["A", "B", "C", "D", "N", "k"];
 const PARENTS: [&str; 7] = ["N", "A", "B", "C", "D", "Z", "k"];
 
-fn random_spec() -> impl Strategy<Value = RandomSpec> {
-    (
-        0..NAMES.len(),
-        0..PARENTS.len(),
-        prop::collection::vec(
+prop_compose! {
+    fn random_spec()(
+        name in 0..NAMES.len(),
+        parent in 0..PARENTS.len(),
+        translations in prop::collection::vec(
             (0usize..3, prop::option::of(prop::array::uniform3(-1i8..2))),
             0..5,
         ),
-        prop::collection::vec(0usize..3, 0..5),
-        prop::collection::vec(any::<bool>(), 0..8),
-        prop::option::of(0usize..8),
-        0u8..4,
-        0u8..4,
-        prop::bool::weighted(0.15),
-        prop::collection::vec(prop::bool::weighted(0.2), 0..8),
-    )
-        .prop_map(
-            |(
-                name,
-                parent,
-                translations,
-                rotations,
-                small,
-                names,
-                joint_kind,
-                mass_kind,
-                quaternion,
-                locked,
-            )| RandomSpec {
-                name,
-                parent,
-                translations,
-                rotations,
-                small,
-                names,
-                joint_kind,
-                mass_kind,
-                quaternion,
-                locked,
-            },
-        )
+        rotations in prop::collection::vec(0usize..3, 0..5),
+        small in prop::collection::vec(any::<bool>(), 0..8),
+        names in prop::option::of(0usize..8),
+        joint_kind in 0u8..4,
+        mass_kind in 0u8..4,
+        quaternion in prop::bool::weighted(0.15),
+        locked in prop::collection::vec(prop::bool::weighted(0.2), 0..8),
+    ) -> RandomSpec {
+        RandomSpec {
+            name, parent, translations, rotations, small, names, joint_kind, mass_kind, quaternion, locked,
+        }
+    }
 }
 
 fn make_spec(s: &mut System, r: &RandomSpec, serial: usize) -> BodySpec {

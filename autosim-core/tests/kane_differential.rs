@@ -120,6 +120,23 @@ struct Options {
     gravity: bool,
 }
 
+impl Options {
+    /// Every load, damper, extra force and gravity.
+    const ALL: Options = Options {
+        loads: true,
+        damping: true,
+        extra_forces: true,
+        gravity: true,
+    };
+    /// None of them: the bodies and joints alone.
+    const NONE: Options = Options {
+        loads: false,
+        damping: false,
+        extra_forces: false,
+        gravity: false,
+    };
+}
+
 fn p(sys: &mut System, name: &str, v: f64) -> ExprId {
     let s = sys.add_parameter(name, v, None).unwrap();
     sys.arena.sym(s)
@@ -439,24 +456,14 @@ fn compare(sys: &mut System, seed: u64, samples: usize) {
 
 #[test]
 fn rich_model_matches_textbook_kane() {
-    let mut sys = rich_model(&Options {
-        loads: true,
-        damping: true,
-        extra_forces: true,
-        gravity: true,
-    });
+    let mut sys = rich_model(&Options::ALL);
     assert_eq!(sys.coordinates().len(), 14);
     compare(&mut sys, 0x1234_5678_9abc_def1, 8);
 }
 
 #[test]
 fn unloaded_model_matches_textbook_kane() {
-    let mut sys = rich_model(&Options {
-        loads: false,
-        damping: false,
-        extra_forces: false,
-        gravity: false,
-    });
+    let mut sys = rich_model(&Options::NONE);
     compare(&mut sys, 0x0fed_cba9_8765_4321, 8);
 }
 
@@ -471,12 +478,7 @@ fn satellite_matches_textbook_kane() {
 /// u = 0 for any configuration.
 #[test]
 fn derivatives_vanish_at_rest_without_loads() {
-    let mut sys = rich_model(&Options {
-        loads: false,
-        damping: false,
-        extra_forces: false,
-        gravity: false,
-    });
+    let mut sys = rich_model(&Options::NONE);
     let eqs = sys.equations().unwrap();
     let mut rng = Rng::new(42);
     for _ in 0..10 {
@@ -495,10 +497,9 @@ fn derivatives_vanish_at_rest_without_loads() {
 #[test]
 fn undamped_model_conserves_energy() {
     let mut sys = rich_model(&Options {
-        loads: true,
         damping: false,
         extra_forces: false,
-        gravity: true,
+        ..Options::ALL
     });
     let eqs = sys.equations().unwrap();
     let n = eqs.speeds.len();
@@ -595,12 +596,7 @@ fn moving_point_force_matches_textbook_kane() {
 fn textbook_and_engine_sizes() {
     // Not a check: the composite-body form should be much smaller than the
     // textbook form; print both for the record.
-    let mut sys = rich_model(&Options {
-        loads: true,
-        damping: true,
-        extra_forces: true,
-        gravity: true,
-    });
+    let mut sys = rich_model(&Options::ALL);
     let eqs = sys.equations().unwrap();
     let tb = textbook(&mut sys);
     let mut a = flatten(&eqs.mass_matrix);

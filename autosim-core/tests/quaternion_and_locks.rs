@@ -121,17 +121,7 @@ fn locked_boom_is_the_constrained_full_model() {
         sample["q"] = serde_json::json!(q);
         sample["u"] = serde_json::json!(u);
         let bf = bind(&full, &ef, &sample, params);
-        let n = 10;
-        let mut roots = Vec::new();
-        for row in &ef.mass_matrix {
-            roots.extend(row);
-        }
-        roots.extend(&ef.forcing);
-        let v = full
-            .arena
-            .eval_many(&roots, &bf, &mut autosim_core::expr::NoUserFunctions);
-        let m = nalgebra::DMatrix::from_row_slice(n, n, &v[..n * n]);
-        let f = nalgebra::DVector::from_row_slice(&v[n * n..]);
+        let (_, m, f) = evaluated(&full, &ef, &bf);
         let keep: Vec<usize> = (0..8).collect();
         let mr = m.select_rows(&keep).select_columns(&keep);
         let fr = f.select_rows(&keep);

@@ -4,7 +4,8 @@ mod common;
 
 use autosim_runtime::integrate::{DopriSettings, DormandPrince};
 use autosim_runtime::{IntegrationError, Model, RunSettings, Stepper};
-use common::{BlowUp, Oscillator, Polynomial, max_diff, run_unobserved};
+use autosim_test_support::max_diff;
+use common::{BlowUp, Oscillator, Polynomial, run_unobserved};
 
 /// Steps the oscillator to `t_end` with DOPRI5, returning the global error
 /// and the stepper.

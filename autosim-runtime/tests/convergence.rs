@@ -7,7 +7,8 @@ use autosim_runtime::integrate::{
     AbmOrder, AdamsBashforthMoulton, Euler, Heun, Rk4, Sdirk3, SdirkSettings,
 };
 use autosim_runtime::{Model, Stepper};
-use common::{Oscillator, convergence_slope, max_diff};
+use autosim_test_support::max_diff;
+use common::{Oscillator, convergence_slope};
 
 const T_END: f64 = 4.0;
 

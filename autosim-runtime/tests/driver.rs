@@ -8,7 +8,8 @@ use autosim_runtime::integrate::{DopriSettings, DormandPrince, Euler, Heun, Rk4}
 use autosim_runtime::{
     IntegrationError, Model, ModelError, Observer, RunError, RunSettings, Stepper, run,
 };
-use common::{Decay, Oscillator, max_diff, run_recorded, run_unobserved};
+use autosim_test_support::max_diff;
+use common::{Decay, Oscillator, run_recorded, run_unobserved};
 
 /// Records every call of `derivatives`: (t, x).
 #[derive(Default)]
@@ -36,8 +37,6 @@ impl Model for CallLog {
         y[0] = 2.0 * x[0];
         Ok(())
     }
-    fn parameter_values(&self, _v: &mut [f64]) {}
-    fn set_parameter_values(&mut self, _v: &[f64]) {}
     fn initial_state(&self) -> [f64; 1] {
         [0.0]
     }
@@ -288,8 +287,6 @@ fn f32_models_run_too() {
             dx[0] = -x[0];
             Ok(())
         }
-        fn parameter_values(&self, _v: &mut [f32]) {}
-        fn set_parameter_values(&mut self, _v: &[f32]) {}
         fn initial_state(&self) -> [f32; 1] {
             [1.0]
         }

@@ -32,8 +32,6 @@ impl Model for Guarded {
         dx[1] = -1e6 * x[0];
         Ok(())
     }
-    fn parameter_values(&self, _v: &mut [f64]) {}
-    fn set_parameter_values(&mut self, _v: &[f64]) {}
     fn initial_state(&self) -> [f64; 2] {
         [1.0, 0.0]
     }
@@ -124,8 +122,6 @@ impl Model for Fenced {
         }
         Ok(())
     }
-    fn parameter_values(&self, _v: &mut [f64]) {}
-    fn set_parameter_values(&mut self, _v: &[f64]) {}
     fn initial_state(&self) -> [f64; 2] {
         [if self.drift { 0.0 } else { 1.0 }, 0.0]
     }

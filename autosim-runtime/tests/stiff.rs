@@ -5,7 +5,8 @@ mod common;
 
 use autosim_runtime::integrate::{Analytic, Rk4, Sdirk3, SdirkSettings};
 use autosim_runtime::{IntegrationError, Model, ModelError, RunError, RunSettings, Stepper};
-use common::{StiffLinear, VanDerPol, max_diff, run_recorded, run_unobserved};
+use autosim_test_support::max_diff;
+use common::{StiffLinear, VanDerPol, run_recorded, run_unobserved};
 
 /// Runs `stepper` on the stiff linear system over [0, 1] with step `h`.
 fn stiff_run<S: Stepper<StiffLinear>>(
@@ -131,8 +132,6 @@ impl Model for SignSwitch {
         dx[0] = -1000.0 * x[0].signum();
         Ok(())
     }
-    fn parameter_values(&self, _v: &mut [f64]) {}
-    fn set_parameter_values(&mut self, _v: &[f64]) {}
     fn initial_state(&self) -> [f64; 1] {
         [1.0]
     }

@@ -293,17 +293,19 @@ pub(crate) fn sweeps(refs: &References) -> Vec<Row> {
         own_reference,
         measure,
     };
-    let sat = |float| {
+    // Both satellite models are measured against the full model's reference.
+    let on_satellite_reference = |name, own_reference, float| {
         study(
-            "satellite",
+            name,
             float,
             T_SAT,
             sat_steps,
             &refs.sat[..],
-            None,
+            own_reference,
             attitude_error as fn(&[f64], &[f64]) -> f64,
         )
     };
+    let sat = |float| on_satellite_reference("satellite", None, float);
     sweep(&sat("f64"), &|| Sat::new(quiet()), sat_x0, &mut rows);
     sweep(
         &sat("f32"),
@@ -312,17 +314,7 @@ pub(crate) fn sweeps(refs: &References) -> Vec<Row> {
         &mut rows,
     );
     // The small model against the full model's reference: what a user gets.
-    let small = |float| {
-        study(
-            "satellite-small",
-            float,
-            T_SAT,
-            sat_steps,
-            &refs.sat[..],
-            Some(&refs.small[..]),
-            attitude_error as fn(&[f64], &[f64]) -> f64,
-        )
-    };
+    let small = |float| on_satellite_reference("satellite-small", Some(&refs.small[..]), float);
     sweep(&small("f64"), &|| Small::new(quiet()), small_x0, &mut rows);
     sweep(
         &small("f32"),

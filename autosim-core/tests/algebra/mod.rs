@@ -158,56 +158,39 @@ pub fn ctx() -> Ctx {
 }
 
 pub fn build(c: &mut Ctx, t: &T) -> ExprId {
+    use autosim_core::expr::Func;
     match t {
         T::Sym(i) => c.arena.sym(c.syms[*i]),
         T::Int(n) => c.arena.int(*n),
         T::Rat(n, d) => c.arena.rational(*n, *d),
         T::Flt(v) => c.arena.num(Number::float(*v).unwrap()),
-        T::Add(a, b) => {
-            let (a, b) = (build(c, a), build(c, b));
-            c.arena.add(a, b)
-        }
-        T::Sub(a, b) => {
-            let (a, b) = (build(c, a), build(c, b));
-            c.arena.sub(a, b)
-        }
-        T::Mul(a, b) => {
-            let (a, b) = (build(c, a), build(c, b));
-            c.arena.mul(a, b)
-        }
-        T::Div(a, b) => {
-            let (a, b) = (build(c, a), build(c, b));
-            c.arena.div(a, b)
-        }
-        T::Neg(a) => {
-            let a = build(c, a);
-            c.arena.neg(a)
-        }
+        T::Add(a, b) => build_binary(c, a, b, Arena::add),
+        T::Sub(a, b) => build_binary(c, a, b, Arena::sub),
+        T::Mul(a, b) => build_binary(c, a, b, Arena::mul),
+        T::Div(a, b) => build_binary(c, a, b, Arena::div),
+        T::Neg(a) => build_unary(c, a, Arena::neg),
         T::PowI(a, n) => {
             let a = build(c, a);
             c.arena.powi(a, *n)
         }
-        T::Sin(a) => {
-            let a = build(c, a);
-            c.arena.sin(a)
-        }
-        T::Cos(a) => {
-            let a = build(c, a);
-            c.arena.cos(a)
-        }
-        T::Exp(a) => {
-            let a = build(c, a);
-            c.arena.func(autosim_core::expr::Func::Exp, &[a])
-        }
-        T::Atan2(a, b) => {
-            let (a, b) = (build(c, a), build(c, b));
-            c.arena.func(autosim_core::expr::Func::Atan2, &[a, b])
-        }
-        T::Sqrt(a) => {
-            let a = build(c, a);
-            c.arena.sqrt(a)
-        }
+        T::Sin(a) => build_unary(c, a, Arena::sin),
+        T::Cos(a) => build_unary(c, a, Arena::cos),
+        T::Exp(a) => build_unary(c, a, |arena, a| arena.func(Func::Exp, &[a])),
+        T::Atan2(a, b) => build_binary(c, a, b, |arena, a, b| arena.func(Func::Atan2, &[a, b])),
+        T::Sqrt(a) => build_unary(c, a, Arena::sqrt),
     }
+}
+
+/// `op` of the built operand.
+fn build_unary(c: &mut Ctx, a: &T, op: fn(&mut Arena, ExprId) -> ExprId) -> ExprId {
+    let a = build(c, a);
+    op(&mut c.arena, a)
+}
+
+/// `op` of the built operands, built left first.
+fn build_binary(c: &mut Ctx, a: &T, b: &T, op: fn(&mut Arena, ExprId, ExprId) -> ExprId) -> ExprId {
+    let (a, b) = (build(c, a), build(c, b));
+    op(&mut c.arena, a, b)
 }
 
 pub fn eval(c: &Ctx, e: ExprId, vals: &[f64]) -> f64 {

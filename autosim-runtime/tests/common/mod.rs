@@ -214,14 +214,6 @@ pub fn convergence_slope(points: &[(f64, f64)]) -> f64 {
     sxy / sxx
 }
 
-/// Largest absolute difference between two vectors.
-pub fn max_diff(a: &[f64], b: &[f64]) -> f64 {
-    a.iter()
-        .zip(b)
-        .map(|(x, y)| (x - y).abs())
-        .fold(0.0, f64::max)
-}
-
 /// What a run with a closure observer (which cannot fail) returns.
 pub type RunResult<M> = Result<RunSummary<<M as Model>::Float>, RunError<Infallible>>;
 

@@ -54,16 +54,9 @@ fn reference(c: &Compiled, params: &[f64], x: &[f64]) -> Option<Vec<f64>> {
     for (r, &k) in cons.dependent_speeds.iter().enumerate() {
         b.set(eqs.speeds[k], u_d[r]);
     }
-    let mut roots = eqs.kinematics.clone();
-    for row in &eqs.mass_matrix {
-        roots.extend(row);
-    }
-    roots.extend(&eqs.forcing);
-    roots.extend(cons.rows.iter().map(|r| r.bias));
-    let v = eval(&b, &roots);
-    let mass = DMatrix::from_row_slice(n, n, &v[n..n + n * n]);
-    let forcing = DVector::from_row_slice(&v[n + n * n..n + n * n + n]);
-    let bias = DVector::from_row_slice(&v[n + n * n + n..]);
+    let (mut out, mass, forcing) = api::evaluated(sys, eqs, &b);
+    let biases: Vec<ExprId> = cons.rows.iter().map(|r| r.bias).collect();
+    let bias = DVector::from_vec(eval(&b, &biases));
     // u = P u_f, u̇ = P u̇_f + w.
     let mut p = DMatrix::zeros(n, free.len());
     for (i, &k) in free.iter().enumerate() {
@@ -82,7 +75,6 @@ fn reference(c: &Compiled, params: &[f64], x: &[f64]) -> Option<Vec<f64>> {
     let du = reduced
         .lu()
         .solve(&(p.transpose() * (forcing - &mass * w)))?;
-    let mut out = v[..n].to_vec();
     out.extend(du.iter());
     Some(out)
 }

@@ -9,7 +9,6 @@ use autosim_core::pipeline::Compiled;
 use autosim_models_check::{scenes, via_build, via_macro};
 use autosim_test_support::*;
 use common::compile;
-use nalgebra::{DMatrix, DVector};
 
 /// du/dt from the symbolic equations: evaluate M and f, solve with nalgebra.
 fn reference_derivatives(
@@ -38,19 +37,8 @@ fn reference_derivatives(
         b.set(*s, *v);
     }
     b.set(sys.time(), t);
-    let n = eqs.coordinates.len();
-    let mut roots = eqs.kinematics.clone();
-    for row in &eqs.mass_matrix {
-        roots.extend(row);
-    }
-    roots.extend(&eqs.forcing);
-    let v = sys
-        .arena
-        .eval_many(&roots, &b, &mut autosim_core::expr::NoUserFunctions);
-    let m = DMatrix::from_row_slice(n, n, &v[n..n + n * n]);
-    let f = DVector::from_row_slice(&v[n + n * n..]);
+    let (mut out, m, f) = api::evaluated(sys, eqs, &b);
     let du = m.lu().solve(&f).expect("regular mass matrix");
-    let mut out = v[..n].to_vec();
     out.extend(du.iter());
     out
 }

@@ -285,10 +285,13 @@ pub fn bind(sys: &System, eqs: &Equations, sample: &Value, params: &Value) -> Bi
     b
 }
 
-/// Evaluates dq/dt and solves M du/dt = f numerically (Cholesky, or LU
-/// where M is not positive definite).
-pub fn derivatives(sys: &System, eqs: &Equations, b: &Bindings) -> (Vec<f64>, Vec<f64>) {
-    let n = eqs.coordinates.len();
+/// dq/dt, the mass matrix M and the forcing f of `eqs` evaluated at `b`.
+pub fn evaluated(
+    sys: &System,
+    eqs: &Equations,
+    b: &Bindings,
+) -> (Vec<f64>, DMatrix<f64>, DVector<f64>) {
+    let (nq, nu) = (eqs.kinematics.len(), eqs.forcing.len());
     let mut roots = eqs.kinematics.clone();
     for row in &eqs.mass_matrix {
         roots.extend(row);
@@ -297,9 +300,16 @@ pub fn derivatives(sys: &System, eqs: &Equations, b: &Bindings) -> (Vec<f64>, Ve
     let vals = sys
         .arena
         .eval_many(&roots, b, &mut autosim_core::expr::NoUserFunctions);
-    let dq = vals[..n].to_vec();
-    let m = DMatrix::from_row_slice(n, n, &vals[n..n + n * n]);
-    let f = DVector::from_row_slice(&vals[n + n * n..]);
+    let dq = vals[..nq].to_vec();
+    let m = DMatrix::from_row_slice(nu, nu, &vals[nq..nq + nu * nu]);
+    let f = DVector::from_row_slice(&vals[nq + nu * nu..]);
+    (dq, m, f)
+}
+
+/// Evaluates dq/dt and solves M du/dt = f numerically (Cholesky, or LU
+/// where M is not positive definite).
+pub fn derivatives(sys: &System, eqs: &Equations, b: &Bindings) -> (Vec<f64>, Vec<f64>) {
+    let (dq, m, f) = evaluated(sys, eqs, b);
     let du = m
         .clone()
         .cholesky()

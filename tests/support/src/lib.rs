@@ -4,6 +4,9 @@
 //!   (read from the repository, never from outside it);
 //! - [`Rng`]: a small deterministic generator, so failures reproduce;
 //! - [`rel_err`] and [`max_diff`]: the error norms the tests report;
+//!   [`kinetic_energy`]: ½ uᵀ M u;
+//! - [`tight_run`]: a run at tolerance 1e-12 keeping every output, as the
+//!   reference trajectories are compared;
 //! - [`quaternion`]: Euler parameters and 1-2-3 angles, for converting
 //!   states between orientations;
 //! - [`api`]: the reference models built through the core API, and their
@@ -13,9 +16,11 @@ pub mod api;
 pub mod quaternion;
 pub mod reference;
 mod rng;
+mod run;
 
 pub use reference::{SatelliteSample, floats, load, satellite_samples};
 pub use rng::Rng;
+pub use run::{Outputs, tight_run};
 
 /// Normwise relative error of `got` against `want`: the largest absolute
 /// difference over the largest |want|.
@@ -31,6 +36,14 @@ pub fn max_diff(a: &[f64], b: &[f64]) -> f64 {
         .zip(b)
         .map(|(x, y)| (x - y).abs())
         .fold(0.0, f64::max)
+}
+
+/// The kinetic energy ½ uᵀ M u of the speeds `u` with the mass matrix `mass`.
+pub fn kinetic_energy<const N: usize>(mass: &[[f64; N]; N], u: &[f64]) -> f64 {
+    (0..N)
+        .flat_map(|i| (0..N).map(move |j| (i, j)))
+        .map(|(i, j)| 0.5 * u[i] * mass[i][j] * u[j])
+        .sum()
 }
 
 /// The associated types, name and state names of a hand-written model,

@@ -29,7 +29,7 @@ pub fn floats(v: &Value) -> Vec<f64> {
 /// time and state, the values its user code returned there, and the rates.
 #[derive(Clone, Debug)]
 pub struct SatelliteSample {
-    /// Time [s].
+    /// Time, in s.
     pub t: f64,
     /// Coordinates `q1 … q10`.
     pub q: Vec<f64>,

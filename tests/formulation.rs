@@ -180,38 +180,29 @@ macro_rules! check {
         #[test]
         fn $test() {
             use $module::*;
-            let worst = compare(matrix::Matrix::new($($user)?), recursive::Recursive::new($($user)?), 50, &$small);
-            eprintln!("{}: recursive vs mass matrix {worst:e}", stringify!($module));
-            assert!(worst < 1e-12, "{worst:e}");
+            let report = |what: &str, worst: f64, tolerance: f64| {
+                eprintln!("{}: {what} {worst:e}", stringify!($module));
+                assert!(worst < tolerance, "{what}: {worst:e}");
+            };
             let (mut a, mut b) = (matrix::Matrix::new($($user)?), recursive::Recursive::new($($user)?));
-            let worst = compare_at(
-                mass(&mut a, matrix::Matrix::mass_matrix),
-                mass(&mut b, recursive::Recursive::mass_matrix),
-                20,
-                &$small,
-            );
-            eprintln!("{}: mass matrices {worst:e}", stringify!($module));
+            report("recursive vs mass matrix", compare(a.clone(), b.clone(), 50, &$small), 1e-12);
             // With small variables the mass-matrix form truncates `M`
             // term by term and the recursion does not: they differ at
             // second order in the small states (1e-6 here).
             let small: &[usize] = &$small;
             let tolerance = if small.is_empty() { 1e-12 } else { 1e-10 };
-            assert!(worst < tolerance, "{worst:e}");
+            let ma = mass(&mut a, matrix::Matrix::mass_matrix);
+            let mb = mass(&mut b, recursive::Recursive::mass_matrix);
+            report("mass matrices", compare_at(ma, mb, 20, small), tolerance);
             // The recursion sums each subtree's forces for `forcing`, the
             // other form lowers Kane's forcing as derived; each is also
             // `M du/dt` of its own mass matrix and derivatives.
-            let worst = compare_at(
-                vector(&mut a, matrix::Matrix::forcing),
-                vector(&mut b, recursive::Recursive::forcing),
-                20,
-                &$small,
-            );
-            eprintln!("{}: forcing {worst:e}", stringify!($module));
-            assert!(worst < tolerance, "{worst:e}");
-            let worst = forcing_against_mass(&mut a, matrix::Matrix::forcing, matrix::Matrix::mass_matrix, 20, &$small)
-                .max(forcing_against_mass(&mut b, recursive::Recursive::forcing, recursive::Recursive::mass_matrix, 20, &$small));
-            eprintln!("{}: forcing against M du/dt {worst:e}", stringify!($module));
-            assert!(worst < 1e-11, "{worst:e}");
+            let fa = vector(&mut a, matrix::Matrix::forcing);
+            let fb = vector(&mut b, recursive::Recursive::forcing);
+            report("forcing", compare_at(fa, fb, 20, small), tolerance);
+            let worst = forcing_against_mass(&mut a, matrix::Matrix::forcing, matrix::Matrix::mass_matrix, 20, small)
+                .max(forcing_against_mass(&mut b, recursive::Recursive::forcing, recursive::Recursive::mass_matrix, 20, small));
+            report("forcing against M du/dt", worst, 1e-11);
         }
     };
 }

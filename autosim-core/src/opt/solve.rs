@@ -40,16 +40,23 @@ impl Solver {
 }
 
 /// `M du = f` by the articulated-body recursion over `bodies`, `f` the
-/// projections of the bodies' bias forces plus `joint_forcing`.
-pub(super) fn recursive_solve(ir: &mut Ir, bodies: Vec<TreeBody>, joint_forcing: &[Nid]) -> Solve {
+/// projections of the bodies' bias forces plus `joint_forcing`; with `f`
+/// itself, summed by the same recursion.
+pub(super) fn recursive_solve(
+    ir: &mut Ir,
+    bodies: Vec<TreeBody>,
+    joint_forcing: &[Nid],
+) -> (Solve, Vec<Nid>) {
     let a = Articulated::new(ir, bodies, joint_forcing.len());
     let du = a.solve_biased(ir, joint_forcing);
-    Solve {
+    let forcing = a.forcing(ir, joint_forcing);
+    let solve = Solve {
         pivots: a.pivots.clone(),
         du,
         hints: Vec::new(),
         factor: Solver::Articulated(Box::new(a)),
-    }
+    };
+    (solve, forcing)
 }
 
 /// `M = L D Lᵀ` in the IR, speeds eliminated in `perm` order.

@@ -8,7 +8,7 @@ use super::ir::{Ir, Leaf, Nid};
 use super::lower::Lowering;
 use super::lowered::{Lowered, binding_rates, collect_calls, lower_all, lower_extra, lower_one};
 use super::program::ProgramError;
-use super::solve::{Solver, ldlt_solve, recursive_solve};
+use super::solve::{ldlt_solve, recursive_solve};
 use crate::expr::{ExprId, SymId};
 use crate::mech::{BodyKinetics, Equations, ItemRef};
 use crate::model::ResolvedModel;
@@ -45,24 +45,26 @@ pub(super) fn lower(
             }
         }
     }
-    let mut forcing = lower_all(&mut lw, &eqs.forcing, |_| ItemRef::Model)?;
+    // Kane's forcing as derived feeds the mass matrix's solve; the
+    // recursion sums it body by body instead.
+    let kane_forcing = match recursive {
+        false => Some(lower_all(&mut lw, &eqs.forcing, |_| ItemRef::Model)?),
+        true => None,
+    };
     let mut sub_args = Vec::with_capacity(subs.len());
     for (k, s) in subs.iter().enumerate() {
         sub_args.push(lower_all(&mut lw, &s.args, |_| ItemRef::Subroutine(k))?);
     }
     user_calls.extend(lw.user_calls());
 
-    let solve = match recursive {
-        false => ldlt_solve(ir, &mass, &forcing),
-        true => {
+    let (solve, forcing) = match kane_forcing {
+        Some(forcing) => (ldlt_solve(ir, &mass, &forcing), forcing),
+        None => {
             let mut lw = Lowering::new(&mut sys.arena, ir, leaves);
             let bodies = tree_bodies(&mut lw, &eqs.tree.bodies)?;
             let joint_forcing = lower_all(&mut lw, &eqs.tree.joint_forcing, |_| ItemRef::Model)?;
-            let solve = recursive_solve(ir, bodies, &joint_forcing);
-            if let Solver::Articulated(a) = &solve.factor {
-                forcing = a.forcing(ir, &joint_forcing);
-            }
-            solve
+            user_calls.extend(lw.user_calls());
+            recursive_solve(ir, bodies, &joint_forcing)
         }
     };
     // Extra states and outputs read the accelerations as leaves; the

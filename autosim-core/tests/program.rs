@@ -4,7 +4,7 @@
 //! from the emitter's snapshots in `emit.rs`).
 
 use autosim_core::diag::SourceFile;
-use autosim_core::opt::{BlockKind, Program, Stmt};
+use autosim_core::opt::{BlockKind, Interpreter, Program, Stmt, UserCalls};
 use autosim_core::pipeline::compile_source;
 use std::path::{Path, PathBuf};
 
@@ -99,4 +99,107 @@ fn verifier_catches_a_missing_and_a_doubled_store() {
 #[test]
 fn text_form_of_a_small_program() {
     insta::assert_snapshot!("chain_planar_2_program", chain_planar_2().to_string());
+}
+
+/// A spatial chain of `n` equal links hinged about axes 1, 2, 3, 1, ...,
+/// with its accelerations solved by `formulation`.
+fn spatial_chain(n: usize, formulation: &str) -> Program {
+    let mut text = format!(
+        "model Chain;\nsettings {{ formulation: {formulation} }}\nparameters {{ m = 1.2 [kg], L = 0.4 [m], k = 2 [N m/rad] }}\n"
+    );
+    for i in 1..=n {
+        let (parent, joint) = match i {
+            1 => ("N".to_string(), String::new()),
+            _ => (format!("B{}", i - 1), ", joint: [0, 0, -L]".to_string()),
+        };
+        let axis = (i - 1) % 3 + 1;
+        text += &format!(
+            "body B{i} {{ parent: {parent}{joint}, rotate: {axis}, mass: m, cm: [0, 0, -L/2], inertia: [[0.02, 0.0005, 0], [0.0005, 0.03, 0], [0, 0, 0.004]], q: [q{i}], u: [u{i}] }}\nmoment spring{i} {{ on: B{i}, reaction: {parent}, about: {parent}.{axis}, magnitude: -k*q{i} }}\n"
+        );
+    }
+    text += "gravity = -9.81*n3;\n";
+    let src = SourceFile::new("chain.sim", text);
+    compile_source(&src)
+        .unwrap_or_else(|d| panic!("{}", d.render(&src)))
+        .program
+}
+
+/// A state of `n_states` values from a simple generator (angles and
+/// rates of order one).
+fn state(n_states: usize, seed: u64) -> Vec<f64> {
+    let mut s = seed;
+    (0..n_states)
+        .map(|_| {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        })
+        .collect()
+}
+
+/// In a model too big for one `let` per value, `derivatives` and
+/// `forcing` read what both compute from one common block: the program
+/// verifies, each call's cost counts the common block, and the values
+/// equal the other formulation's (whose common block holds different
+/// values) at random states.
+#[test]
+fn big_models_compute_the_shared_terms_once() {
+    let n = 40;
+    let recursive = spatial_chain(n, "recursive");
+    let matrix = spatial_chain(n, "mass_matrix");
+    for p in [&recursive, &matrix] {
+        p.verify().expect("the program verifies");
+        let common = p.block(BlockKind::Common);
+        assert_eq!(
+            common
+                .stmts
+                .iter()
+                .filter(|s| matches!(s, Stmt::Store { .. }))
+                .count(),
+            p.common.len()
+        );
+        for kind in [BlockKind::Derivatives, BlockKind::Forcing] {
+            let b = p.block(kind);
+            assert!(
+                !b.common.is_empty(),
+                "{} reads the common block",
+                kind.name()
+            );
+            assert!(
+                b.ops.total() >= common.ops.total(),
+                "{} counts the common block",
+                kind.name()
+            );
+        }
+    }
+    let params: Vec<f64> = recursive
+        .interface
+        .parameters
+        .iter()
+        .map(|q| q.default)
+        .collect();
+    let (rec, mat) = (
+        Interpreter::new(&recursive, &params),
+        Interpreter::new(&matrix, &params),
+    );
+    let mut function = |_: usize, _: &[f64]| f64::NAN;
+    let mut subroutine = |_: usize, _: &[f64]| Vec::new();
+    let mut user = UserCalls {
+        function: &mut function,
+        subroutine: &mut subroutine,
+    };
+    for seed in 1..=5 {
+        let x = state(2 * n, seed);
+        let dr = rec.derivatives(0.0, &x, &[], &mut user).expect("regular");
+        let dm = mat.derivatives(0.0, &x, &[], &mut user).expect("regular");
+        let (_, fr) = rec.mass_matrix_and_forcing(0.0, &x, &[], &mut user);
+        let (_, fm) = mat.mass_matrix_and_forcing(0.0, &x, &[], &mut user);
+        for (a, b) in dr.iter().zip(&dm).chain(fr.iter().zip(&fm)) {
+            assert!(
+                (a - b).abs() <= 1e-9 * (1.0 + b.abs()),
+                "{a} against {b} (seed {seed})"
+            );
+        }
+    }
 }

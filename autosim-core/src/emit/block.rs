@@ -4,7 +4,7 @@
 use super::expr::{ExprPrinter, Locals, ident};
 use crate::limits::MAX_LETS_IN_FUNCTION;
 use crate::model::FloatType;
-use crate::opt::{Block, Guard, Leaf, Nid, Program, Stmt};
+use crate::opt::{Block, BlockKind, Guard, Leaf, Nid, Program, Stmt};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 use rustc_hash::FxHashMap;
@@ -67,6 +67,8 @@ pub struct BlockEmitter<'a> {
     pub float: FloatType,
     /// Slot of each hoisted constant.
     pub constant_slot: &'a FxHashMap<Nid, usize>,
+    /// Slot of each value of the common block.
+    pub common_slot: &'a FxHashMap<Nid, usize>,
     /// Path of the runtime's math module.
     pub math: TokenStream,
     /// Path of the runtime crate.
@@ -79,7 +81,12 @@ impl BlockEmitter<'_> {
     /// The statements of `block` (with `hoisted`: constants read from `c`).
     pub fn emit(&self, block: &Block, hoisted: bool, target: Target<'_>) -> TokenStream {
         let array = array_slots(block);
+        let none = FxHashMap::default();
         let printer = ExprPrinter {
+            common_slot: match block.common.is_empty() {
+                true => &none,
+                false => self.common_slot,
+            },
             prog: self.prog,
             names: &block.names,
             hoisted,
@@ -90,6 +97,7 @@ impl BlockEmitter<'_> {
             array: &array,
         };
         let mut out = self.reads(block, hoisted, &target);
+        out.extend(self.shared_terms_call(block));
         if !array.is_empty() {
             let (z, len) = (&self.locals.z, Literal::usize_unsuffixed(array.len()));
             out.extend(quote!(let mut #z = [0.0; #len];));
@@ -191,6 +199,37 @@ impl BlockEmitter<'_> {
             }
         }
         out
+    }
+
+    /// `let mut s = [0.0; K]; self.shared_terms(t, x, &mut s);` in a block
+    /// that reads the common block's values.
+    fn shared_terms_call(&self, block: &Block) -> TokenStream {
+        if block.common.is_empty() {
+            return TokenStream::new();
+        }
+        let s = &self.locals.s;
+        let len = Literal::usize_unsuffixed(self.prog.common.len());
+        let (t, x) = self.shared_reads();
+        let lx = &self.locals.x;
+        let args = [t.then(|| quote!(t)), x.then(|| quote!(#lx))]
+            .into_iter()
+            .flatten();
+        quote! {
+            let mut #s = [0.0; #len];
+            self.shared_terms(#(#args,)* &mut #s);
+        }
+    }
+
+    /// Whether the common block reads the time and the state (the
+    /// arguments `shared_terms` takes).
+    pub fn shared_reads(&self) -> (bool, bool) {
+        match self.prog.try_block(BlockKind::Common) {
+            Some(b) => (
+                b.leaves.contains(&Leaf::Time),
+                b.leaves.iter().any(|l| matches!(l, Leaf::State(_))),
+            ),
+            None => (false, false),
+        }
     }
 
     /// `let [a, _, b] = self.externs.sub(args);`

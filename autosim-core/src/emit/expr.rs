@@ -164,6 +164,8 @@ pub struct Locals {
     pub lin: Ident,
     /// The intermediates of a block too big for `let`s.
     pub z: Ident,
+    /// The values of the common block.
+    pub s: Ident,
 }
 
 impl Locals {
@@ -202,6 +204,7 @@ impl Locals {
             step: pick("step"),
             lin: pick("lin"),
             z: pick("z"),
+            s: pick("s"),
         }
     }
 }
@@ -227,6 +230,8 @@ pub struct ExprPrinter<'a> {
     pub float: FloatType,
     /// Slot of each hoisted constant.
     pub constant_slot: &'a FxHashMap<Nid, usize>,
+    /// Slot of each value read from the common block (`s[k]`).
+    pub common_slot: &'a FxHashMap<Nid, usize>,
     /// How to call the runtime's math functions (`math`).
     pub math: TokenStream,
     /// The generated code's own locals.
@@ -268,7 +273,9 @@ impl ExprPrinter<'_> {
     }
 
     fn is_name(&self, n: Nid) -> bool {
-        self.names.contains_key(&n) || (self.hoisted && self.constant_slot.contains_key(&n))
+        self.names.contains_key(&n)
+            || self.common_slot.contains_key(&n)
+            || (self.hoisted && self.constant_slot.contains_key(&n))
     }
 
     fn wrap(&self, n: Nid, min: Prec) -> TokenStream {
@@ -285,6 +292,10 @@ impl ExprPrinter<'_> {
         if let Some(name) = self.names.get(&n) {
             let id = ident(name);
             return quote!(#id);
+        }
+        if let Some(k) = self.common_slot.get(&n) {
+            let (s, k) = (&self.locals.s, Literal::usize_unsuffixed(*k));
+            return quote!(#s[#k]);
         }
         if self.hoisted
             && let Some(k) = self.constant_slot.get(&n)

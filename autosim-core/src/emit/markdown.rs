@@ -220,7 +220,16 @@ fn write_equations(s: &mut String, prog: &Program) -> std::fmt::Result {
     )?;
     writeln!(s, "### Constants\n\n```text")?;
     prog.write_block(s, BlockKind::Constants)?;
-    writeln!(s, "```\n\n### Derivatives\n\n```text")?;
+    writeln!(s, "```")?;
+    if prog.try_block(BlockKind::Common).is_some() {
+        writeln!(
+            s,
+            "\n### Shared by derivatives and forcing\n\nComputed once for either call, read as `sK`.\n\n```text"
+        )?;
+        prog.write_block(s, BlockKind::Common)?;
+        writeln!(s, "```")?;
+    }
+    writeln!(s, "\n### Derivatives\n\n```text")?;
     prog.write_block(s, BlockKind::Derivatives)?;
     writeln!(s, "```")?;
     if !prog.interface.outputs.is_empty() {

@@ -200,8 +200,14 @@ impl<'a> Interpreter<'a> {
                 env.leaves.insert(leaf(i), *v);
             }
         }
+        let block = self.prog.block(kind);
+        if !block.common.is_empty() {
+            let shared = self.run(BlockKind::Common, at, user)?;
+            env.values
+                .extend(self.prog.common.iter().copied().zip(shared));
+        }
         let mut out = vec![0.0; self.prog.slots(kind)];
-        for st in &self.prog.block(kind).stmts {
+        for st in &block.stmts {
             match st {
                 Stmt::Let(n) => {
                     let v = self.eval(*n, &mut env, user.function);

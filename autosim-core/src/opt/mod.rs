@@ -5,6 +5,7 @@
 
 mod articulated;
 mod axis_rotation;
+mod common;
 mod constrained;
 mod elim;
 mod interface;

@@ -3,6 +3,7 @@
 //! unrolled solve of the mass matrix; outputs; the mass matrix and forcing
 //! alone; the initial state), plus the interface generated code exposes.
 
+use super::common;
 use super::constrained;
 use super::interface::{Interface, StateLayout};
 use super::ir::{Ir, Leaf, Nid};
@@ -41,6 +42,9 @@ pub enum BlockKind {
     /// The linear model (when asked for): `A` row-major over the linear
     /// states, then `B`, `C`, `D`.
     Linearize,
+    /// What `derivatives` and `forcing` share, computed once for either
+    /// (big models only, `common.rs`): slot `k` is `common[k]`.
+    Common,
 }
 
 impl BlockKind {
@@ -55,6 +59,7 @@ impl BlockKind {
             BlockKind::Initial => "initial",
             BlockKind::Assembly => "assembly",
             BlockKind::Linearize => "linearize",
+            BlockKind::Common => "common",
         }
     }
 
@@ -75,6 +80,9 @@ pub struct Program {
     /// The constant nodes the other blocks read (sorted; slot `k` of the
     /// constants block computes `hoisted[k]`).
     pub hoisted: Vec<Nid>,
+    /// The nodes the common block computes for the blocks that read them
+    /// (slot `k` computes `common[k]`; empty without a common block).
+    pub common: Vec<Nid>,
     /// Arguments of each user subroutine (declaration order).
     pub sub_args: Vec<Vec<Nid>>,
     /// `true` if the outputs need du/dt (generated code computes the
@@ -109,11 +117,12 @@ impl Program {
 
     /// The slot of each hoisted constant in the constants block.
     pub fn constant_slots(&self) -> FxHashMap<Nid, usize> {
-        self.hoisted
-            .iter()
-            .enumerate()
-            .map(|(k, n)| (*n, k))
-            .collect()
+        slots(&self.hoisted)
+    }
+
+    /// The slot of each value of the common block.
+    pub fn common_slots(&self) -> FxHashMap<Nid, usize> {
+        slots(&self.common)
     }
 
     /// The block of a kind, if the program has one.
@@ -138,6 +147,7 @@ impl Program {
             BlockKind::Derivatives | BlockKind::Initial => self.states().len(),
             BlockKind::Outputs => self.interface.outputs.len(),
             BlockKind::Constants => self.hoisted.len(),
+            BlockKind::Common => self.common.len(),
             BlockKind::MassMatrix => match self.mass_layout {
                 MassLayout::Entries => n * n,
                 MassLayout::Products => n,
@@ -151,6 +161,11 @@ impl Program {
             }
         }
     }
+}
+
+/// Slot `k` of `values` is `values[k]`.
+fn slots(values: &[Nid]) -> FxHashMap<Nid, usize> {
+    values.iter().enumerate().map(|(k, n)| (*n, k)).collect()
 }
 
 /// Why a program could not be built.
@@ -309,12 +324,14 @@ fn schedule_blocks(
 ) -> Program {
     let n = interface.states.n_speeds();
     let nq = interface.states.coordinates.len();
+    let no_common = FxHashSet::default();
     let options = |hoist: bool, reserved| Options {
         hoist_constants: hoist,
         hints: &names.hints,
         call_order: &lowered.call_order,
         sub_args: &lowered.sub_args,
         reserved,
+        common: &no_common,
     };
     let all = options(true, &names.reserved);
 
@@ -328,7 +345,7 @@ fn schedule_blocks(
     }
     tasks.extend(stores(&lowered.solve.du, nq));
     tasks.extend(stores(&lowered.extra, nq + n));
-    let derivatives = schedule(&ir, &tasks, &all);
+    let mut derivatives = schedule(&ir, &tasks, &all);
     let linearize = linear.map(|l| {
         let mut tasks: Vec<Task> = tasks
             .iter()
@@ -356,7 +373,13 @@ fn schedule_blocks(
     // constraints are singular their values are not finite.
     let mass_matrix = schedule(&ir, &mm_tasks, &all);
     let f_tasks: Vec<Task> = stores(&lowered.forcing, 0).collect();
-    let forcing = schedule(&ir, &f_tasks, &all);
+    let mut forcing = schedule(&ir, &f_tasks, &all);
+    let shared = common::share(
+        &ir,
+        (&mut derivatives, &tasks),
+        (&mut forcing, &f_tasks),
+        &all,
+    );
     let assembly = lowered.assembly.as_ref().map(|a| {
         let mut tasks: Vec<Task> = regular(&a.checks).collect();
         tasks.extend(stores(&a.step, 0));
@@ -364,8 +387,10 @@ fn schedule_blocks(
         schedule(&ir, &tasks, &all)
     });
 
+    let (common, common_values) = shared.unzip();
     let mut hoisted: Vec<Nid> = [&derivatives, &outputs, &mass_matrix, &forcing]
         .into_iter()
+        .chain(common.as_ref())
         .chain(assembly.as_ref())
         .chain(linearize.as_ref())
         .flat_map(|b| b.hoisted.iter().copied())
@@ -387,10 +412,12 @@ fn schedule_blocks(
     ];
     blocks.extend(assembly.map(|a| (BlockKind::Assembly, a)));
     blocks.extend(linearize.map(|l| (BlockKind::Linearize, l)));
+    blocks.extend(common.map(|c| (BlockKind::Common, c)));
     Program {
         ir,
         blocks,
         hoisted,
+        common: common_values.unwrap_or_default(),
         sub_args: lowered.sub_args,
         outputs_need_derivatives,
         interface,

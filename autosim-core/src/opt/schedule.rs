@@ -103,6 +103,19 @@ impl Ops {
     }
 }
 
+impl std::ops::Add for Ops {
+    type Output = Ops;
+    fn add(self, o: Ops) -> Ops {
+        Ops {
+            adds: self.adds + o.adds,
+            muls: self.muls + o.muls,
+            divs: self.divs + o.divs,
+            funcs: self.funcs + o.funcs,
+            user_calls: self.user_calls + o.user_calls,
+        }
+    }
+}
+
 impl fmt::Display for Ops {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
@@ -126,6 +139,9 @@ pub struct Block {
     pub names: FxHashMap<Nid, String>,
     /// Constant nodes read from the precomputed constants.
     pub hoisted: BTreeSet<Nid>,
+    /// Nodes read from the common block (computed once for the blocks
+    /// that share them: `common.rs`).
+    pub common: BTreeSet<Nid>,
     /// Leaves the block reads.
     pub leaves: BTreeSet<Leaf>,
     /// Cost of one execution.
@@ -133,6 +149,7 @@ pub struct Block {
 }
 
 /// How to schedule a block.
+#[derive(Clone, Copy)]
 pub struct Options<'a> {
     /// Read non-trivial constants from the constants block instead of
     /// computing them.
@@ -145,6 +162,8 @@ pub struct Options<'a> {
     pub sub_args: &'a [Vec<Nid>],
     /// Names that generated names must avoid.
     pub reserved: &'a FxHashSet<String>,
+    /// Nodes the common block computes: read, not computed, here.
+    pub common: &'a FxHashSet<Nid>,
 }
 
 struct Sched<'a> {
@@ -169,6 +188,7 @@ impl Sched<'_> {
     fn opaque(&self, n: Nid) -> bool {
         match self.ir.op(n) {
             Op::Num(_) | Op::Leaf(_) => true,
+            _ if self.opts.common.contains(&n) => true,
             _ => self.opts.hoist_constants && self.ir.is_constant(n),
         }
     }
@@ -263,7 +283,9 @@ impl Sched<'_> {
                     }
                 }
                 if self.opaque(n) {
-                    if !matches!(self.ir.op(n), Op::Num(_) | Op::Leaf(_)) {
+                    if self.opts.common.contains(&n) {
+                        self.block.common.insert(n);
+                    } else if !matches!(self.ir.op(n), Op::Num(_) | Op::Leaf(_)) {
                         self.block.hoisted.insert(n);
                     }
                     continue;

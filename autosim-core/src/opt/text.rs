@@ -1,6 +1,6 @@
 //! The program's text form (like cranelift's): each block's statements as
-//! `name = expression` lines, constants as `pK`, intermediates as `zK`,
-//! time derivatives as `x'`. The Markdown documentation prints the same
+//! `name = expression` lines, constants as `pK`, values of the common
+//! block as `sK`, intermediates as `zK`, time derivatives as `x'`. The Markdown documentation prints the same
 //! text, and snapshot tests of it show optimizer changes apart from
 //! emitter changes.
 
@@ -21,6 +21,7 @@ impl Program {
             BlockKind::Initial => format!("{}(0)", self.states().state(k).name),
             BlockKind::Outputs => self.interface.outputs[k].name.clone(),
             BlockKind::Constants => format!("p{}", k + 1),
+            BlockKind::Common => format!("s{}", k + 1),
             BlockKind::MassMatrix => match self.mass_layout {
                 MassLayout::Entries => format!("M[{},{}]", k / n + 1, k % n + 1),
                 MassLayout::Products => format!("(M du/dt)[{}]", k + 1),
@@ -60,11 +61,16 @@ impl Program {
     pub fn write_block(&self, out: &mut impl Write, kind: BlockKind) -> fmt::Result {
         let block = self.block(kind);
         let slots = self.constant_slots();
+        let common_slots = match kind {
+            BlockKind::Common => FxHashMap::default(),
+            _ => self.common_slots(),
+        };
         let p = TextPrinter {
             prog: self,
             names: &block.names,
             hoisted: kind.reads_constants(),
             slots: &slots,
+            common_slots: &common_slots,
         };
         for st in &block.stmts {
             match st {
@@ -138,6 +144,8 @@ struct TextPrinter<'a> {
     names: &'a FxHashMap<Nid, String>,
     hoisted: bool,
     slots: &'a FxHashMap<Nid, usize>,
+    /// Values read from the common block (`sK`).
+    common_slots: &'a FxHashMap<Nid, usize>,
 }
 
 impl TextPrinter<'_> {
@@ -153,6 +161,9 @@ impl TextPrinter<'_> {
             && let Some(k) = self.slots.get(&n)
         {
             return format!("p{}", k + 1);
+        }
+        if let Some(k) = self.common_slots.get(&n) {
+            return format!("s{}", k + 1);
         }
         let (text, prec) = self.def_prec(n);
         if prec < min {

@@ -10,7 +10,8 @@
 //! 4. Every value is defined before it is read: a named node by an
 //!    earlier `let` of its block, a hoisted constant by the constants
 //!    block (whose slots cover every constant the other blocks read), a
-//!    subroutine's output by an earlier call of it.
+//!    shared value by the common block (likewise), a subroutine's output
+//!    by an earlier call of it.
 //! 5. A block reads only what its function has: the constants block and
 //!    the initial state read parameters only; only the outputs and the
 //!    products `M du/dt` (`MassLayout::Products`) read the accelerations.
@@ -48,6 +49,16 @@ impl Program {
         }
         if let Some(n) = self.hoisted.iter().find(|n| !self.ir.is_constant(**n)) {
             return Err(format!("hoisted node {} is not constant", n.0));
+        }
+        let common: rustc_hash::FxHashSet<Nid> = self.common.iter().copied().collect();
+        for (kind, block) in &self.blocks {
+            if let Some(n) = block.common.iter().find(|n| !common.contains(n)) {
+                let what = kind.name();
+                return Err(format!(
+                    "block {what} reads node {} the common block lacks",
+                    n.0
+                ));
+            }
         }
         for (kind, block) in &self.blocks {
             BlockCheck::new(self, *kind, block)
@@ -148,7 +159,7 @@ impl<'a> BlockCheck<'a> {
                 )),
             };
         }
-        if self.is_hoisted(n) {
+        if self.is_hoisted(n) || self.block.common.contains(&n) {
             return Ok(());
         }
         self.compute(n)

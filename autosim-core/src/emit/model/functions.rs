@@ -24,18 +24,23 @@ fn reads_state(b: &Block) -> bool {
 }
 
 /// `t`/`_` and `x`/`_` for the function of a block (the outputs take both
-/// when they compute the derivatives first).
+/// when they compute the derivatives first; a block reading the common
+/// block passes on what that reads).
 pub(super) fn args(prog: &Program, kind: BlockKind, locals: &Locals) -> Args {
     let b = prog.block(kind);
+    let shared = match (b.common.is_empty(), prog.try_block(BlockKind::Common)) {
+        (false, Some(c)) => c,
+        _ => b,
+    };
     let need = kind == BlockKind::Outputs && prog.outputs_need_derivatives;
     let lx = &locals.x;
     Args {
-        t: if uses_time(b) || need {
+        t: if uses_time(b) || uses_time(shared) || need {
             quote!(t)
         } else {
             quote!(_)
         },
-        x: if reads_state(b) || need {
+        x: if reads_state(b) || reads_state(shared) || need {
             quote!(#lx)
         } else {
             quote!(_)
@@ -56,6 +61,7 @@ pub(super) fn body(be: &BlockEmitter<'_>, kind: BlockKind) -> TokenStream {
             MassLayout::Products => be.emit(block, true, Target::Array(&l.f)),
         },
         BlockKind::Forcing => be.emit(block, true, Target::Array(&l.f)),
+        BlockKind::Common => be.emit(block, true, Target::Array(&l.s)),
         BlockKind::Outputs => {
             let body = be.emit(block, true, Target::Array(&l.y));
             if !prog.outputs_need_derivatives {
@@ -119,6 +125,28 @@ pub(super) fn mass_matrix(be: &BlockEmitter<'_>, t: TokenStream, x: TokenStream)
         /// in the speed slots of `dx` (the others are not read), in O(n)
         /// operations.
         fn inertia_forces(&mut self, #t: #ty, #x: &[#ty; #n_states], #ldx: &[#ty; #n_states], #lf: &mut [#ty; #n_lit]) {
+            #body
+        }
+    }
+}
+
+/// `shared_terms`, the function of the common block (none without one).
+pub(super) fn shared_terms(be: &BlockEmitter<'_>) -> TokenStream {
+    if be.prog.try_block(BlockKind::Common).is_none() {
+        return TokenStream::new();
+    }
+    let ty = crate::emit::expr::float_type(be.float);
+    let (lx, ls) = (&be.locals.x, &be.locals.s);
+    let n_states = Literal::usize_unsuffixed(be.prog.states().len());
+    let len = Literal::usize_unsuffixed(be.prog.common.len());
+    let (t, x) = be.shared_reads();
+    let t = t.then(|| quote!(t: #ty,));
+    let x = x.then(|| quote!(#lx: &[#ty; #n_states],));
+    let body = body(be, BlockKind::Common);
+    quote! {
+        /// What `derivatives` and `forcing` both compute, computed once
+        /// for either: they read slot `k` as `s[k]`.
+        fn shared_terms(&self, #t #x #ls: &mut [#ty; #len]) {
             #body
         }
     }
@@ -217,6 +245,6 @@ pub(super) fn ops_constant(kind: BlockKind) -> Option<(&'static str, &'static st
         BlockKind::Forcing => ("FORCING_OPS", "one `forcing` call"),
         BlockKind::Assembly => ("ASSEMBLY_OPS", "one `assembly_step` call"),
         BlockKind::Linearize => ("LINEARIZE_OPS", "one `linearize` call"),
-        BlockKind::Initial => return None,
+        BlockKind::Initial | BlockKind::Common => return None,
     })
 }

@@ -90,11 +90,13 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
             .unwrap_or_else(|| snake_case(&i.name)),
     );
     let constant_slot = prog.constant_slots();
+    let common_slot = prog.common_slots();
     let locals = Locals::new(prog);
     let be = BlockEmitter {
         prog,
         float: i.float,
         constant_slot: &constant_slot,
+        common_slot: &common_slot,
         math: quote!(math),
         rt: rt.clone(),
         locals: &locals,
@@ -334,6 +336,7 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
     let functions::Args { t: ft, x: fx } = functions::args(prog, BlockKind::Forcing, be.locals);
     let mass_matrix = functions::mass_matrix(be, mt, mx);
     let fo = functions::body(be, BlockKind::Forcing);
+    let shared = functions::shared_terms(be);
     let lf = &be.locals.f;
     let f_arg = if n == 0 { quote!(_) } else { quote!(#lf) };
     let model_trait = model_trait_impl(be);
@@ -362,6 +365,8 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
             pub fn forcing(&mut self, #ft: #ty, #fx: &[#ty; #n_states], #f_arg: &mut [#ty; #n_lit]) {
                 #fo
             }
+
+            #shared
 
             #assembly
 

@@ -14,6 +14,7 @@
 //! only pure values move across them. Values are unchanged, so results
 //! are bit for bit the same; only the order of the `let`s differs.
 
+use super::cost::latency;
 use super::ir::{Ir, Leaf, Nid, Op};
 use super::schedule::Stmt;
 use crate::expr::Func;
@@ -31,17 +32,6 @@ pub const MIN_STATEMENTS: usize = 200;
 /// the chains of `bench/peers` (x86-64 with AVX-512, 32 vector registers):
 /// 24 and 64 both beat no limit; 24 spills least.
 pub const MAX_LIVE: usize = 24;
-
-/// Rough latencies in cycles, enough to rank chains.
-fn latency(op: &Op) -> u32 {
-    match op {
-        Op::Num(_) | Op::Leaf(_) => 0,
-        Op::Neg(_) => 1,
-        Op::Sum { .. } | Op::Mul(..) | Op::Powi(..) => 3,
-        Op::Div(..) | Op::Sqrt(_) => 13,
-        Op::Powf(..) | Op::Call(..) => 40,
-    }
-}
 
 /// Reorders `stmts` (a topological order) as described in the module
 /// documentation. `sub_args`: each subroutine's arguments; `bound(n)`: `n` is computed by a statement of the block

@@ -7,6 +7,7 @@ mod articulated;
 mod axis_rotation;
 mod common;
 mod constrained;
+mod cost;
 mod elim;
 mod interface;
 mod interleave;

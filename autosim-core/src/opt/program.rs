@@ -5,6 +5,7 @@
 
 use super::common;
 use super::constrained;
+use super::cost;
 use super::interface::{Interface, StateLayout};
 use super::ir::{Ir, Leaf, Nid};
 use super::linearize::{Linear, Linearizable};
@@ -217,7 +218,7 @@ pub fn build(model: &mut ResolvedModel, eqs: &Equations) -> Result<Program, Prog
         Formulation::Auto => {
             let matrix = build_route(model, eqs, &split, Route::MassMatrix)?;
             let recursive = build_route(model, eqs, &split, Route::Recursive)?;
-            let cost = |p: &Program| p.block(BlockKind::Derivatives).ops.total();
+            let cost = |p: &Program| cost::estimated_cycles(&p.ir, p.block(BlockKind::Derivatives));
             Ok(match cost(&recursive) < cost(&matrix) {
                 true => recursive,
                 false => matrix,

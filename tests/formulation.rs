@@ -22,6 +22,7 @@ both!(planar10, "examples/models/chain_planar_10.sim");
 both!(spatial1, "examples/models/chain_spatial_1.sim");
 both!(spatial5, "examples/models/chain_spatial_5.sim");
 both!(spatial10, "examples/models/chain_spatial_10.sim");
+both!(spatial20, "examples/models/chain_spatial_20.sim");
 both!(features, "examples/models/features.sim");
 both!(satellite, "examples/models/satellite.sim");
 both!(satellite_small, "examples/models/satellite_small.sim");
@@ -211,6 +212,8 @@ check!(planar_10, planar10, [],);
 check!(spatial_1, spatial1, [],);
 check!(spatial_5, spatial5, [],);
 check!(spatial_10, spatial10, [],);
+// Both forms share work between `derivatives` and `forcing` here.
+check!(spatial_20, spatial20, [],);
 // The bead's slide `s` and its speed are small.
 check!(every_feature, features, [2, 10], User);
 check!(the_satellite, satellite, [], User);

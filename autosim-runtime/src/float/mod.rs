@@ -2,6 +2,8 @@
 
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
+mod straight_sin_cos;
+
 /// A float type a model can compute in: `f32` or `f64`.
 pub trait Float:
     Copy
@@ -43,6 +45,11 @@ pub trait Float:
     fn cos(self) -> Self;
     /// Sine and cosine together (cheaper than both separately).
     fn sin_cos(self) -> (Self, Self);
+    /// Sine and cosine together without branches on the angle (a fixed
+    /// sequence of operations inlined where it is called; within one unit
+    /// in the last place of [`Float::sin_cos`] up to 10 rad, two up to
+    /// 1e6): for big functions, where a mispredicted branch costs most.
+    fn sin_cos_inline(self) -> (Self, Self);
     /// Tangent.
     fn tan(self) -> Self;
     /// Arc sine.
@@ -111,6 +118,7 @@ macro_rules! impl_float {
                 fn sin(self) -> Self => imp::$t::sin;
                 fn cos(self) -> Self => imp::$t::cos;
                 fn sin_cos(self) -> (Self, Self) => imp::$t::sin_cos;
+                fn sin_cos_inline(self) -> (Self, Self) => imp::$t::sin_cos_inline;
                 fn tan(self) -> Self => imp::$t::tan;
                 fn asin(self) -> Self => imp::$t::asin;
                 fn acos(self) -> Self => imp::$t::acos;
@@ -154,6 +162,14 @@ mod imp {
                     pub fn asin(x: $t) -> $t => libm::$asin;
                     pub fn acos(x: $t) -> $t => libm::$acos;
                     pub fn atan2(y: $t, x: $t) -> $t => libm::$atan2;
+                }
+                /// Sine and cosine without branches on the angle, computed
+                /// in `f64`.
+                #[inline(always)]
+                pub fn sin_cos_inline(x: $t) -> ($t, $t) {
+                    use crate::float::Float;
+                    let (s, c) = crate::float::straight_sin_cos::sin_cos(f64::from(x));
+                    (<$t>::from_f64(s), <$t>::from_f64(c))
                 }
                 #[cfg(feature = "std")]
                 forward! {
@@ -211,6 +227,12 @@ pub mod math {
     #[inline(always)]
     pub fn sin_cos<F: Float>(x: F) -> (F, F) {
         x.sin_cos()
+    }
+    /// Sine and cosine of the same angle without branches on it (big
+    /// generated functions call this: [`Float::sin_cos_inline`]).
+    #[inline(always)]
+    pub fn sin_cos_inline<F: Float>(x: F) -> (F, F) {
+        x.sin_cos_inline()
     }
     /// Tangent.
     #[inline(always)]

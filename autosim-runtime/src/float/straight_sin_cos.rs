@@ -1,0 +1,104 @@
+//! Sine and cosine of one angle in a fixed sequence of operations, for the
+//! big generated functions (`Float::sin_cos_inline`).
+//!
+//! libm's `sincos` branches on the argument: on its size (up to π/4 it
+//! skips the reduction) and on the quadrant (which of sine and cosine to
+//! negate and swap). At random angles those branches are mispredicted
+//! often, and in a function of thousands of straight-line operations a
+//! mispredicted branch discards everything the processor had in flight.
+//! Here the argument is reduced by the nearest multiple of π/2, the
+//! polynomials of both are evaluated, and the quadrant swaps and negates
+//! them with selects and sign bits: no branch depends on the angle
+//! between 1e-9 and 1e6 in size (libm's `sincos` takes the rest, which
+//! keeps `sin(-0) = -0`, NaN and infinities, and exact reductions of huge
+//! arguments). Measured on the chains of `bench/peers`: chain-spatial-50
+//! 2 773 → 2 468 ns, chain-planar-50 1 590 → 1 330 ns; in small functions,
+//! whose time is their critical path, libm's shorter fast path wins
+//! (chain-planar-5 87.5 ns with libm against 99.8), so generated code
+//! calls this only from big blocks.
+//!
+//! Accuracy: the reduction subtracts `k π/2` in three parts, the first two
+//! exact for `|k| < 2^20`; the polynomials are the Taylor series to the
+//! 17th and 18th powers (remainders under 1e-19 on `|r| ≤ π/4`), evaluated
+//! by Estrin's scheme for a short dependency chain. Against libm's and
+//! the platform's values: within one unit in the last place up to 10 rad,
+//! two up to 1e6 rad (`tests/straight_sin_cos.rs`).
+
+/// `1.5 · 2^52`: adding and subtracting it rounds to an integer.
+const ROUNDING: f64 = 6_755_399_441_055_744.0;
+/// π/2 in three parts: the first 33 bits, the next 33, the rest.
+const PI_2_HI: f64 = 1.570_796_326_734_125_6;
+const PI_2_MID: f64 = 6.077_100_506_303_966e-11;
+const PI_2_LO: f64 = 2.022_266_248_795_950_6e-21;
+/// `(-1)^k / (2k + 3)!` for `k = 0..8`: `sin r = r + r z Σ S[k] z^k`.
+const S: [f64; 8] = [
+    -1.0 / 6.0,
+    1.0 / 120.0,
+    -1.0 / 5_040.0,
+    1.0 / 362_880.0,
+    -1.0 / 39_916_800.0,
+    1.0 / 6_227_020_800.0,
+    -1.0 / 1_307_674_368_000.0,
+    1.0 / 355_687_428_096_000.0,
+];
+/// `(-1)^k / (2k + 4)!` for `k = 0..8`: `cos r = 1 - z/2 + z² Σ C[k] z^k`.
+const C: [f64; 8] = [
+    1.0 / 24.0,
+    -1.0 / 720.0,
+    1.0 / 40_320.0,
+    -1.0 / 3_628_800.0,
+    1.0 / 479_001_600.0,
+    -1.0 / 87_178_291_200.0,
+    1.0 / 20_922_789_888_000.0,
+    -1.0 / 6_402_373_705_728_000.0,
+];
+
+/// Sine and cosine of `x` (see the module documentation).
+#[inline(always)]
+pub fn sin_cos(x: f64) -> (f64, f64) {
+    let size = x.abs();
+    if !(1.0e-9..=1.0e6).contains(&size) {
+        return elsewhere(x);
+    }
+    let k = (x * core::f64::consts::FRAC_2_PI + ROUNDING) - ROUNDING;
+    let r = ((x - k * PI_2_HI) - k * PI_2_MID) - k * PI_2_LO;
+    let (s, c) = near_zero(r);
+    let quadrant = k as i64;
+    let (sin, cos) = if quadrant & 1 == 0 { (s, c) } else { (c, s) };
+    (
+        negate_if(sin, quadrant & 2 != 0),
+        negate_if(cos, (quadrant + 1) & 2 != 0),
+    )
+}
+
+/// Sine and cosine of `|r| ≤ π/4`.
+#[inline(always)]
+fn near_zero(r: f64) -> (f64, f64) {
+    let z = r * r;
+    let z2 = z * z;
+    let z4 = z2 * z2;
+    let estrin = |p: &[f64; 8]| {
+        (p[0] + p[1] * z)
+            + z2 * (p[2] + p[3] * z)
+            + z4 * ((p[4] + p[5] * z) + z2 * (p[6] + p[7] * z))
+    };
+    let sin = r + (r * z) * estrin(&S);
+    // 1 - z/2 rounded, then what that rounding lost, as in fdlibm.
+    let half = 0.5 * z;
+    let w = 1.0 - half;
+    let cos = w + (((1.0 - w) - half) + z2 * estrin(&C));
+    (sin, cos)
+}
+
+/// `-x` if `negate`, by the sign bit.
+#[inline(always)]
+fn negate_if(x: f64, negate: bool) -> f64 {
+    f64::from_bits(x.to_bits() ^ (u64::from(negate) << 63))
+}
+
+/// Tiny, huge and non-finite arguments.
+#[cold]
+#[inline(never)]
+fn elsewhere(x: f64) -> (f64, f64) {
+    libm::sincos(x)
+}

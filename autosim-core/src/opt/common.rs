@@ -71,7 +71,7 @@ pub fn share(
     };
     for (block, tasks) in [(first, first_tasks), (second, second_tasks)] {
         *block = schedule(ir, tasks, &reading);
-        block.ops = block.ops + common.ops;
+        block.ops += common.ops;
     }
     Some((common, values))
 }

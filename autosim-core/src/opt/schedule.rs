@@ -103,16 +103,13 @@ impl Ops {
     }
 }
 
-impl std::ops::Add for Ops {
-    type Output = Ops;
-    fn add(self, o: Ops) -> Ops {
-        Ops {
-            adds: self.adds + o.adds,
-            muls: self.muls + o.muls,
-            divs: self.divs + o.divs,
-            funcs: self.funcs + o.funcs,
-            user_calls: self.user_calls + o.user_calls,
-        }
+impl std::ops::AddAssign for Ops {
+    fn add_assign(&mut self, o: Ops) {
+        self.adds += o.adds;
+        self.muls += o.muls;
+        self.divs += o.divs;
+        self.funcs += o.funcs;
+        self.user_calls += o.user_calls;
     }
 }
 

@@ -117,22 +117,12 @@ impl<M: Model> AdamsBashforthMoulton<M> {
     }
 }
 
-impl<M: Model> Clone for AdamsBashforthMoulton<M> {
-    fn clone(&self) -> Self {
-        Self { ..*self }
-    }
-}
-
-impl<M: Model> fmt::Debug for AdamsBashforthMoulton<M> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("AdamsBashforthMoulton")
-            .field("order", &self.order)
-            .field("history", &self.count)
-            .field("evaluations", &self.evals)
-            .field("startup_steps", &self.startup_steps)
-            .finish_non_exhaustive()
-    }
-}
+clone_and_debug!(AdamsBashforthMoulton {
+    "order": order,
+    "history": count,
+    "evaluations": evals,
+    "startup_steps": startup_steps,
+});
 
 impl<M: Model> Stepper<M> for AdamsBashforthMoulton<M> {
     fn step(&mut self, model: &mut M, t: M::Float, x: &mut M::State, h: M::Float) -> StepResult<M> {

@@ -321,22 +321,12 @@ impl<M: Model> DormandPrince<M> {
     }
 }
 
-impl<M: Model> Clone for DormandPrince<M> {
-    fn clone(&self) -> Self {
-        Self { ..*self }
-    }
-}
-
-impl<M: Model> fmt::Debug for DormandPrince<M> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.debug_struct("DormandPrince")
-            .field("settings", &self.settings)
-            .field("evaluations", &self.evals)
-            .field("accepted", &self.accepted)
-            .field("rejected", &self.rejected)
-            .finish_non_exhaustive()
-    }
-}
+clone_and_debug!(DormandPrince {
+    "settings": settings,
+    "evaluations": evals,
+    "accepted": accepted,
+    "rejected": rejected,
+});
 
 impl<M: Model> Stepper<M> for DormandPrince<M> {
     fn step(&mut self, model: &mut M, t: M::Float, x: &mut M::State, h: M::Float) -> StepResult<M> {

@@ -94,21 +94,10 @@ macro_rules! fixed_stepper {
             }
         }
 
-        impl<M: Model> Clone for $ty<M> {
-            fn clone(&self) -> Self {
-                Self { ..*self }
-            }
-        }
+        clone_and_debug!($ty { "evaluations": evals });
         impl<M: Model> Default for $ty<M> {
             fn default() -> Self {
                 Self::new()
-            }
-        }
-        impl<M: Model> fmt::Debug for $ty<M> {
-            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-                f.debug_struct(stringify!($ty))
-                    .field("evaluations", &self.evals)
-                    .finish_non_exhaustive()
             }
         }
 

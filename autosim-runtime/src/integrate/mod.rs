@@ -19,6 +19,26 @@
 //! usual way to call one; call [`Stepper::step`] yourself when you own the
 //! loop (a controller on a microcontroller, a co-simulation).
 
+/// `Clone` (a copy of every field) and `Debug` (the fields named) for a
+/// stepper generic over the model alone, whose derives would require the
+/// model itself to be `Clone` and `Debug`.
+macro_rules! clone_and_debug {
+    ($ty:ident { $($label:literal: $field:ident),+ $(,)? }) => {
+        impl<M: Model> Clone for $ty<M> {
+            fn clone(&self) -> Self {
+                Self { ..*self }
+            }
+        }
+        impl<M: Model> fmt::Debug for $ty<M> {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.debug_struct(stringify!($ty))
+                    $(.field($label, &self.$field))+
+                    .finish_non_exhaustive()
+            }
+        }
+    };
+}
+
 mod abm;
 mod dopri;
 mod explicit;

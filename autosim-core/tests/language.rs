@@ -2,7 +2,7 @@
 //! reference data; the optimized program matches the unoptimized equations.
 
 use autosim_core::diag::SourceFile;
-use autosim_core::opt::{Interpreter, UserCalls};
+use autosim_core::opt::{At, Interpreter, UserCalls};
 use autosim_core::pipeline::{Compiled, compile_source};
 use autosim_test_support::*;
 use std::path::PathBuf;
@@ -62,9 +62,12 @@ fn satellite_program_matches_reference() {
             function: &mut function,
             subroutine: &mut subroutine,
         };
-        let dx = it
-            .derivatives(s["t"].as_f64().unwrap(), &x, &[], &mut user)
-            .unwrap();
+        let at = At {
+            t: s["t"].as_f64().unwrap(),
+            x: &x,
+            inputs: &[],
+        };
+        let dx = it.derivatives(at, &mut user).unwrap();
         let e_dq = rel_err(&dx[..n], &floats(&s["dq"]));
         let e_du = rel_err(&dx[n..], &floats(&s["du"]));
         worst = worst.max(e_dq).max(e_du);

@@ -4,7 +4,7 @@
 //! from the emitter's snapshots in `emit.rs`).
 
 use autosim_core::diag::SourceFile;
-use autosim_core::opt::{BlockKind, Interpreter, Program, Stmt, UserCalls};
+use autosim_core::opt::{At, BlockKind, Interpreter, Program, Stmt, UserCalls};
 use autosim_core::pipeline::compile_source;
 use std::path::{Path, PathBuf};
 
@@ -191,10 +191,15 @@ fn big_models_compute_the_shared_terms_once() {
     };
     for seed in 1..=5 {
         let x = state(2 * n, seed);
-        let dr = rec.derivatives(0.0, &x, &[], &mut user).expect("regular");
-        let dm = mat.derivatives(0.0, &x, &[], &mut user).expect("regular");
-        let (_, fr) = rec.mass_matrix_and_forcing(0.0, &x, &[], &mut user);
-        let (_, fm) = mat.mass_matrix_and_forcing(0.0, &x, &[], &mut user);
+        let at = At {
+            t: 0.0,
+            x: &x,
+            inputs: &[],
+        };
+        let dr = rec.derivatives(at, &mut user).expect("regular");
+        let dm = mat.derivatives(at, &mut user).expect("regular");
+        let (_, fr) = rec.mass_matrix_and_forcing(at, &mut user);
+        let (_, fm) = mat.mass_matrix_and_forcing(at, &mut user);
         for (a, b) in dr.iter().zip(&dm).chain(fr.iter().zip(&fm)) {
             assert!(
                 (a - b).abs() <= 1e-9 * (1.0 + b.abs()),

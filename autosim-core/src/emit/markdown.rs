@@ -4,7 +4,7 @@
 //! equations as computed (the program's text form).
 
 use crate::mech::ConstraintKind;
-use crate::opt::{BlockKind, Interpreter, Program, UserCalls};
+use crate::opt::{At, BlockKind, Interpreter, Program, UserCalls};
 use std::fmt::Write;
 
 /// The Markdown document of a compiled model read from `source`.
@@ -157,7 +157,12 @@ fn write_linear(s: &mut String, prog: &Program) -> std::fmt::Result {
         function: &mut function,
         subroutine: &mut subroutine,
     };
-    let Ok(values) = it.block_at(BlockKind::Linearize, 0.0, &x, &inputs, &mut user) else {
+    let at = At {
+        t: 0.0,
+        x: &x,
+        inputs: &inputs,
+    };
+    let Ok(values) = it.block_at(BlockKind::Linearize, at, &mut user) else {
         return Ok(());
     };
     let nl = states.len();

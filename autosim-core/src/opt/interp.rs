@@ -25,13 +25,15 @@ pub struct UserCalls<'u> {
     pub subroutine: &'u mut dyn FnMut(usize, &[f64]) -> Vec<f64>,
 }
 
-/// The values a block reads besides the parameters.
-#[derive(Clone, Copy, Default)]
-struct At<'x> {
-    t: f64,
-    x: &'x [f64],
-    inputs: &'x [f64],
-    accel: &'x [f64],
+/// Where a block is evaluated: the time, the state and the inputs.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct At<'x> {
+    /// The time.
+    pub t: f64,
+    /// The state.
+    pub x: &'x [f64],
+    /// The inputs (declaration order).
+    pub inputs: &'x [f64],
 }
 
 /// Runs a program's blocks with given parameter values.
@@ -65,79 +67,55 @@ impl<'a> Interpreter<'a> {
         self.run_alone(BlockKind::Initial)
     }
 
-    /// dx/dt at `(t, x)` with `inputs`.
+    /// dx/dt at `at`.
     pub fn derivatives(
         &self,
-        t: f64,
-        x: &[f64],
-        inputs: &[f64],
+        at: At<'_>,
         user: &mut UserCalls<'_>,
     ) -> Result<Vec<f64>, SolveError> {
-        self.block_at(BlockKind::Derivatives, t, x, inputs, user)
+        self.block_at(BlockKind::Derivatives, at, user)
     }
 
-    /// The slots of a block that reads the state at `(t, x)` with `inputs`
-    /// and not the accelerations (derivatives, forcing, assembly,
-    /// linearize, the entries of the mass matrix); empty if the program
-    /// has no such block.
+    /// The slots of a block that reads the state and not the
+    /// accelerations (derivatives, forcing, assembly, linearize, the
+    /// entries of the mass matrix) at `at`; empty if the program has no
+    /// such block.
     pub fn block_at(
         &self,
         kind: BlockKind,
-        t: f64,
-        x: &[f64],
-        inputs: &[f64],
+        at: At<'_>,
         user: &mut UserCalls<'_>,
     ) -> Result<Vec<f64>, SolveError> {
-        if self.prog.try_block(kind).is_none() {
-            return Ok(Vec::new());
+        match self.prog.try_block(kind) {
+            Some(_) => self.run(kind, at, &[], user),
+            None => Ok(Vec::new()),
         }
-        let at = At {
-            t,
-            x,
-            inputs,
-            accel: &[],
-        };
-        self.run(kind, at, user)
     }
 
     /// The outputs (computing the derivatives first if they need them).
-    pub fn outputs(
-        &self,
-        t: f64,
-        x: &[f64],
-        inputs: &[f64],
-        user: &mut UserCalls<'_>,
-    ) -> Result<Vec<f64>, SolveError> {
+    pub fn outputs(&self, at: At<'_>, user: &mut UserCalls<'_>) -> Result<Vec<f64>, SolveError> {
         let accel = match self.prog.outputs_need_derivatives {
             true => {
                 let first = self.prog.states().speed_slot(0);
                 let rates = first..first + self.prog.n();
-                self.derivatives(t, x, inputs, user)?[rates].to_vec()
+                self.derivatives(at, user)?[rates].to_vec()
             }
             false => Vec::new(),
         };
-        let at = At {
-            t,
-            x,
-            inputs,
-            accel: &accel,
-        };
-        self.run(BlockKind::Outputs, at, user)
+        self.run(BlockKind::Outputs, at, &accel, user)
     }
 
     /// The mass matrix (row-major) and the forcing vector.
     pub fn mass_matrix_and_forcing(
         &self,
-        t: f64,
-        x: &[f64],
-        inputs: &[f64],
+        at: At<'_>,
         user: &mut UserCalls<'_>,
     ) -> (Vec<f64>, Vec<f64>) {
         let m = match self.prog.mass_layout {
-            MassLayout::Entries => self.block_at(BlockKind::MassMatrix, t, x, inputs, user),
-            MassLayout::Products => self.mass_by_columns(t, x, inputs, user),
+            MassLayout::Entries => self.block_at(BlockKind::MassMatrix, at, user),
+            MassLayout::Products => self.mass_by_columns(at, user),
         };
-        let f = self.block_at(BlockKind::Forcing, t, x, inputs, user);
+        let f = self.block_at(BlockKind::Forcing, at, user);
         (m.unwrap_or_default(), f.unwrap_or_default())
     }
 
@@ -145,22 +123,14 @@ impl<'a> Interpreter<'a> {
     /// (`M` is symmetric), as generated code computes it.
     fn mass_by_columns(
         &self,
-        t: f64,
-        x: &[f64],
-        inputs: &[f64],
+        at: At<'_>,
         user: &mut UserCalls<'_>,
     ) -> Result<Vec<f64>, SolveError> {
         let n = self.prog.n();
         let mut m = Vec::with_capacity(n * n);
         for j in 0..n {
             let unit: Vec<f64> = (0..n).map(|k| if k == j { 1.0 } else { 0.0 }).collect();
-            let at = At {
-                t,
-                x,
-                inputs,
-                accel: &unit,
-            };
-            m.extend(self.run(BlockKind::MassMatrix, at, user)?);
+            m.extend(self.run(BlockKind::MassMatrix, at, &unit, user)?);
         }
         Ok(m)
     }
@@ -173,13 +143,17 @@ impl<'a> Interpreter<'a> {
             function: &mut function,
             subroutine: &mut subroutine,
         };
-        self.run(kind, At::default(), &mut user).unwrap_or_default()
+        self.run(kind, At::default(), &[], &mut user)
+            .unwrap_or_default()
     }
 
+    /// Runs the statements of a block at `at` with accelerations `accel`
+    /// (read by the outputs and the products `M du/dt`).
     fn run(
         &self,
         kind: BlockKind,
         at: At<'_>,
+        accel: &[f64],
         user: &mut UserCalls<'_>,
     ) -> Result<Vec<f64>, SolveError> {
         let mut env = Env {
@@ -193,7 +167,7 @@ impl<'a> Interpreter<'a> {
             (&self.params[..], Leaf::Param as fn(usize) -> Leaf),
             (at.x, Leaf::State),
             (at.inputs, Leaf::Input),
-            (at.accel, Leaf::Accel),
+            (accel, Leaf::Accel),
         ];
         for (vals, leaf) in values {
             for (i, v) in vals.iter().enumerate() {
@@ -202,7 +176,7 @@ impl<'a> Interpreter<'a> {
         }
         let block = self.prog.block(kind);
         if !block.common.is_empty() {
-            let shared = self.run(BlockKind::Common, at, user)?;
+            let shared = self.run(BlockKind::Common, at, accel, user)?;
             env.values
                 .extend(self.prog.common.iter().copied().zip(shared));
         }

@@ -29,7 +29,7 @@ mod verify;
 pub use interface::{
     Closure, ConstraintInfo, Interface, MotionInfo, Quantity, StateLayout, StateVar, UserCode,
 };
-pub use interp::{Interpreter, SolveError, UserCalls};
+pub use interp::{At, Interpreter, SolveError, UserCalls};
 pub use ir::{Ir, Leaf, Nid, Op};
 pub use lower::{Lowering, UnboundSymbol};
 pub use program::{BlockKind, MassLayout, Program, ProgramError, build};

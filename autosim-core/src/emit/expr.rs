@@ -2,7 +2,7 @@
 //! in the model's float type, operators with the parentheses the IR's order
 //! of evaluation needs, and calls of the runtime's math functions.
 
-use crate::expr::Func;
+use crate::expr::{Func, Prec};
 use crate::model::FloatType;
 use crate::opt::{Ir, Leaf, Nid, Op, Program};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
@@ -207,15 +207,6 @@ impl Locals {
             s: pick("s"),
         }
     }
-}
-
-/// How precedence levels nest when printing.
-#[derive(Clone, Copy, PartialEq, PartialOrd)]
-enum Prec {
-    Sum = 1,
-    Prod = 2,
-    Unary = 3,
-    Atom = 4,
 }
 
 /// Prints IR nodes of one block.

@@ -17,6 +17,7 @@ pub use arena::{
 pub use count::OpCount;
 pub use eval::{Bindings, NoUserFunctions, UserFunctions};
 pub use number::Number;
+pub(crate) use text::Prec;
 
 #[cfg(test)]
 mod tests;

@@ -10,9 +10,10 @@ use super::arena::{Arena, ExprId, Func, Node, SymbolKind};
 use super::number::Number;
 use std::fmt::Write;
 
-/// Binding strength of the printed form of a node.
+/// Binding strength of the printed form of a node (the symbolic text form
+/// and the generated Rust share it).
 #[derive(Clone, Copy, PartialEq, PartialOrd)]
-enum Prec {
+pub(crate) enum Prec {
     Sum = 1,
     Prod = 2,
     Unary = 3,

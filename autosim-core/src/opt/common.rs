@@ -15,21 +15,21 @@
 //! critical path is 0.8 of its operations) waits for the shared part
 //! instead: 1 086 → 1 250 ns, so it keeps one function.
 
-/// Blocks with more bound values than this share for speed when they are
-/// throughput-bound (chain-spatial-10, 713 values, is 4 % slower shared;
-/// chain-spatial-20, 1 694, is 8 % faster).
-pub const MIN_VALUES_TO_SHARE: usize = 1000;
-
 use super::cost::critical_path;
 use super::ir::{Ir, Nid, Op};
 use super::schedule::{Block, Options, Task, schedule};
 use crate::limits::MAX_LETS_IN_FUNCTION;
 use rustc_hash::FxHashSet;
 
+/// Blocks with more bound values than this share for speed when they are
+/// throughput-bound (chain-spatial-10, 713 values, is 4 % slower shared;
+/// chain-spatial-20, 1 694, is 8 % faster).
+pub const MIN_VALUES_TO_SHARE: usize = 1000;
+
 /// The common block of `first` and `second` (scheduled from `tasks`
 /// with `opts`), or `None` when they do not gain from one: `first` small
-/// or latency-bound (module docs), either block calling user code (whose calls must
-/// stay where the model puts them), or nothing shared.
+/// or latency-bound (module docs), either block calling user code (whose
+/// calls must stay where the model puts them), or nothing shared.
 ///
 /// On `Some((common, values))` both blocks are rescheduled to read the
 /// shared values (slot `k` of the common block computes `values[k]`),
@@ -41,10 +41,9 @@ pub fn share(
     opts: &Options<'_>,
 ) -> Option<(Block, Vec<Nid>)> {
     let calls_user_code = |b: &Block| b.ops.user_calls > 0;
-    let values = first.names.len();
+    let bound = first.names.len();
     let throughput_bound = || 2 * critical_path(ir, first) as usize <= first.ops.total();
-    let worth =
-        values > MAX_LETS_IN_FUNCTION || (values > MIN_VALUES_TO_SHARE && throughput_bound());
+    let worth = bound > MAX_LETS_IN_FUNCTION || (bound > MIN_VALUES_TO_SHARE && throughput_bound());
     if !worth || calls_user_code(first) || calls_user_code(second) {
         return None;
     }

@@ -15,9 +15,9 @@ pub enum Target<'a> {
     Array(&'a proc_macro2::Ident),
     /// `<array>[slot / n][slot % n] = value;`
     Matrix(&'a proc_macro2::Ident, usize),
-    /// Collected into a struct literal `Constants { p1: ..., }` (the
-    /// statements end with that expression).
-    ConstantFields,
+    /// `<array>[slot] = value;` in `Constants::new`, which has no `self`
+    /// (the parameters are its argument).
+    Constants(&'a proc_macro2::Ident),
     /// Consecutive row-major matrices `(path, rows, columns)`:
     /// `<path>[i][j] = value;` (literal zeros are skipped: the matrices
     /// start at zero).
@@ -112,7 +112,6 @@ impl BlockEmitter<'_> {
             let (z, len) = (&self.locals.z, Literal::usize_unsuffixed(array.len()));
             out.extend(quote!(let mut #z = [0.0; #len];));
         }
-        let mut fields = Vec::new();
         for st in &block.stmts {
             match st {
                 Stmt::Let(n) => {
@@ -153,7 +152,7 @@ impl BlockEmitter<'_> {
                 Stmt::Store { slot, value } => {
                     let e = printer.expr(*value);
                     match target {
-                        Target::Array(a) => {
+                        Target::Array(a) | Target::Constants(a) => {
                             let k = Literal::usize_unsuffixed(*slot);
                             out.extend(quote!(#a[#k] = #e;));
                         }
@@ -161,10 +160,6 @@ impl BlockEmitter<'_> {
                             let i = Literal::usize_unsuffixed(slot / n);
                             let j = Literal::usize_unsuffixed(slot % n);
                             out.extend(quote!(#a[#i][#j] = #e;));
-                        }
-                        Target::ConstantFields => {
-                            let f = ident(&format!("p{}", slot + 1));
-                            fields.push(quote!(#f: #e));
                         }
                         Target::Matrices(list) => {
                             if self.prog.ir.as_num(*value) != Some(0.0) {
@@ -175,16 +170,13 @@ impl BlockEmitter<'_> {
                 }
             }
         }
-        if let Target::ConstantFields = target {
-            out.extend(quote!(Constants { #(#fields),* }));
-        }
         out
     }
 
     /// Bindings of the values the block reads: parameters, constants,
     /// states, inputs and accelerations.
     fn reads(&self, block: &Block, hoisted: bool, target: &Target<'_>) -> TokenStream {
-        let in_constants = matches!(target, Target::ConstantFields);
+        let in_constants = matches!(target, Target::Constants(_));
         let Locals { x, dx, p, c, .. } = self.locals;
         let mut out = TokenStream::new();
         if !in_constants && block.leaves.iter().any(|l| matches!(l, Leaf::Param(_))) {

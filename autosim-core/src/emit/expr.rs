@@ -291,9 +291,8 @@ impl ExprPrinter<'_> {
         if self.hoisted
             && let Some(k) = self.constant_slot.get(&n)
         {
-            let id = ident(&format!("p{}", k + 1));
-            let c = &self.locals.c;
-            return quote!(#c.#id);
+            let (c, k) = (&self.locals.c, Literal::usize_unsuffixed(*k));
+            return quote!(#c.p[#k]);
         }
         self.definition(n)
     }

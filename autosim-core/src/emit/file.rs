@@ -1,5 +1,6 @@
-//! Generated code as a formatted file: prettyplease output with an
-//! `@generated` header carrying a hash of the model source.
+//! Generated code as a formatted file: prettyplease output, short literal
+//! arrays packed as rustfmt packs them, with an `@generated` header carrying
+//! a hash of the model source.
 
 use proc_macro2::TokenStream;
 
@@ -7,7 +8,7 @@ use proc_macro2::TokenStream;
 /// file (never expected) are returned unformatted rather than lost.
 pub fn format_tokens(tokens: &TokenStream) -> String {
     match syn::parse2::<syn::File>(tokens.clone()) {
-        Ok(file) => prettyplease::unparse(&file),
+        Ok(file) => super::pack::pack_short_arrays(&prettyplease::unparse(&file)),
         Err(_) => tokens.to_string(),
     }
 }

@@ -6,6 +6,7 @@ mod expr;
 mod file;
 mod markdown;
 mod model;
+mod pack;
 mod placeholder;
 
 pub use file::{format_tokens, header, source_hash};

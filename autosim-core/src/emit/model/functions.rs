@@ -218,9 +218,16 @@ fn initial_state(be: &BlockEmitter<'_>, block: &Block, n_states: Literal) -> Tok
 }
 
 /// The body of `Constants::new` (which names its argument `_parameters`
-/// when no constant reads a parameter).
+/// when no constant reads a parameter): the constants computed into an
+/// array `c`, then `Constants { p: c }`.
 fn constants_new(be: &BlockEmitter<'_>, block: &Block) -> TokenStream {
-    let body = be.emit(block, false, Target::ConstantFields);
+    if be.prog.hoisted.is_empty() {
+        return quote!(Constants { p: [] });
+    }
+    let lc = &be.locals.c;
+    let n = Literal::usize_unsuffixed(be.prog.hoisted.len());
+    let body = be.emit(block, false, Target::Constants(lc));
+    let body = quote!(let mut #lc = [0.0; #n]; #body Constants { p: #lc });
     if reads_parameters(block) {
         let lp = &be.locals.p;
         quote!(let #lp = parameters; #body)

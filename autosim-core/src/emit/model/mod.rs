@@ -9,7 +9,7 @@ mod structs;
 
 use super::block::BlockEmitter;
 use super::expr::{Locals, float_type, ident};
-use crate::opt::{BlockKind, Ops, Program, Quantity};
+use crate::opt::{BlockKind, Ops, Program, Quantity, StateVar};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
@@ -154,12 +154,7 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
 /// `Constants`: the values computed once per parameter set.
 fn constants_struct(be: &BlockEmitter<'_>) -> TokenStream {
     let ty = float_type(be.float);
-    let fields: Vec<_> = (0..be.prog.hoisted.len())
-        .map(|k| {
-            let id = format_ident!("p{}", k + 1);
-            quote!(#id: #ty)
-        })
-        .collect();
+    let n = Literal::usize_unsuffixed(be.prog.hoisted.len());
     let body = functions::body(be, BlockKind::Constants);
     let param = if functions::reads_parameters(be.prog.block(BlockKind::Constants)) {
         quote!(parameters)
@@ -170,7 +165,7 @@ fn constants_struct(be: &BlockEmitter<'_>) -> TokenStream {
         /// Values computed once per parameter set.
         #[derive(Clone, Copy, Debug, PartialEq)]
         struct Constants {
-            #(#fields,)*
+            p: [#ty; #n],
         }
 
         impl Constants {
@@ -229,10 +224,52 @@ fn model_docs(prog: &Program) -> TokenStream {
     lines.push(String::new());
     lines.push("| state | unit |".to_string());
     lines.push("| --- | --- |".to_string());
-    for s in prog.states().states() {
-        lines.push(format!("| `{}` | {} |", s.name, s.unit));
-    }
+    let states: Vec<&StateVar> = prog.states().states().collect();
+    lines.extend(state_rows(&states));
     docs(&lines)
+}
+
+/// The rows of the state table, in state order. A run of at least
+/// [`MIN_STATES_IN_RANGE`] states named `<stem><k>`, `<stem><k+1>`, ...
+/// with one unit is one row (`` `q1` … `q50` ``).
+fn state_rows(states: &[&StateVar]) -> Vec<String> {
+    let mut rows = Vec::new();
+    let mut first = 0;
+    while first < states.len() {
+        let mut last = first;
+        while last + 1 < states.len() && numbered_successor(states[last], states[last + 1]) {
+            last += 1;
+        }
+        let (a, b) = (states[first], states[last]);
+        if last + 1 - first >= MIN_STATES_IN_RANGE {
+            rows.push(format!("| `{}` … `{}` | {} |", a.name, b.name, a.unit));
+        } else {
+            for s in &states[first..=last] {
+                rows.push(format!("| `{}` | {} |", s.name, s.unit));
+            }
+        }
+        first = last + 1;
+    }
+    rows
+}
+
+/// Runs shorter than this are listed state by state.
+const MIN_STATES_IN_RANGE: usize = 4;
+
+/// Whether `b` is `a`'s stem with the next number, in the same unit.
+fn numbered_successor(a: &StateVar, b: &StateVar) -> bool {
+    fn split(name: &str) -> Option<(&str, u64)> {
+        let stem = name.trim_end_matches(|c: char| c.is_ascii_digit());
+        let digits = &name[stem.len()..];
+        if digits.starts_with('0') {
+            return None;
+        }
+        Some((stem, digits.parse().ok()?))
+    }
+    match (split(&a.name), split(&b.name)) {
+        (Some((sa, ka)), Some((sb, kb))) => sa == sb && kb == ka + 1 && a.unit == b.unit,
+        _ => false,
+    }
 }
 
 /// The model struct, its constructors and `Default`.

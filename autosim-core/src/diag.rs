@@ -544,26 +544,27 @@ mod tests {
         )
     }
 
-    #[test]
-    fn renders_caret_under_span_with_help() {
+    /// `body C { rotat: 3 }` and its one error, with a help.
+    fn misspelled_option() -> (SourceFile, Diagnostics) {
         let file = SourceFile::new("sat.sim", "model S;\nbody C { rotat: 3 }\n");
         let mut diags = Diagnostics::new();
         diags.push(
             Diagnostic::error(at(2, 10, 5), "unknown body option `rotat`")
                 .help("did you mean `rotate`?"),
         );
+        (file, diags)
+    }
+
+    #[test]
+    fn renders_caret_under_span_with_help() {
+        let (file, diags) = misspelled_option();
         let expect = "sat.sim:2:10: error: unknown body option `rotat`\n  |\n2 | body C { rotat: 3 }\n  |          ^^^^^\n  = help: did you mean `rotate`?\n";
         assert_eq!(diags.render(&file), expect);
     }
 
     #[test]
     fn renders_for_the_compiler_without_a_second_error_prefix() {
-        let file = SourceFile::new("sat.sim", "model S;\nbody C { rotat: 3 }\n");
-        let mut diags = Diagnostics::new();
-        diags.push(
-            Diagnostic::error(at(2, 10, 5), "unknown body option `rotat`")
-                .help("did you mean `rotate`?"),
-        );
+        let (file, mut diags) = misspelled_option();
         diags.error(Span::unknown(), "nowhere");
         let messages: Vec<String> = diags
             .to_syn_error_in(&file, proc_macro2::Span::call_site())

@@ -23,6 +23,29 @@ fn add(sys: &mut System, kr: &mut [ExprId], r: usize, x: ExprId) {
     kr[r] = sys.arena.add(kr[r], x);
 }
 
+/// Adds a load's generalized forces to `kr`: `partial(at, r)·vector`, less
+/// `partial(reaction, r)·vector` where it has a reaction (`partial` is the
+/// partial velocity of a point or angular velocity of a body).
+fn add_load<T: Copy>(
+    sys: &mut System,
+    kr: &mut [ExprId],
+    vector: &Vector,
+    (at, reaction): (T, Option<T>),
+    partial: impl Fn(&mut System, T, usize) -> Vector,
+) {
+    for r in 0..kr.len() {
+        let pa = partial(sys, at, r);
+        let x = sys.frames.dot_vec(&mut sys.arena, &pa, vector);
+        add(sys, kr, r, x);
+        if let Some(reaction) = reaction {
+            let pr = partial(sys, reaction, r);
+            let y = sys.frames.dot_vec(&mut sys.arena, &pr, vector);
+            let y = sys.arena.neg(y);
+            add(sys, kr, r, y);
+        }
+    }
+}
+
 struct Textbook {
     mass: Vec<Vec<ExprId>>,
     forcing: Vec<ExprId>,
@@ -73,30 +96,12 @@ fn textbook(sys: &mut System) -> Textbook {
         }
     }
     for f in sys.forces().to_vec() {
-        for r in 0..n {
-            let vp = sys.partial_velocity(f.at, r).unwrap();
-            let x = sys.frames.dot_vec(&mut sys.arena, &vp, &f.vector);
-            add(sys, &mut kr, r, x);
-            if let Some(q) = f.reaction {
-                let vq = sys.partial_velocity(q, r).unwrap();
-                let y = sys.frames.dot_vec(&mut sys.arena, &vq, &f.vector);
-                let y = sys.arena.neg(y);
-                add(sys, &mut kr, r, y);
-            }
-        }
+        let partial = |s: &mut System, p: PointId, r| s.partial_velocity(p, r).unwrap();
+        add_load(sys, &mut kr, &f.vector, (f.at, f.reaction), partial);
     }
     for m in sys.moments().to_vec() {
-        for r in 0..n {
-            let wa = sys.partial_angular_velocity(m.at, r).unwrap();
-            let x = sys.frames.dot_vec(&mut sys.arena, &wa, &m.vector);
-            add(sys, &mut kr, r, x);
-            if let Some(b) = m.reaction {
-                let wb = sys.partial_angular_velocity(b, r).unwrap();
-                let y = sys.frames.dot_vec(&mut sys.arena, &wb, &m.vector);
-                let y = sys.arena.neg(y);
-                add(sys, &mut kr, r, y);
-            }
-        }
+        let partial = |s: &mut System, b: BodyId, r| s.partial_angular_velocity(b, r).unwrap();
+        add_load(sys, &mut kr, &m.vector, (m.at, m.reaction), partial);
     }
     let du: Vec<SymId> = sys.coordinates().iter().map(|c| c.du).collect();
     let mut mass = vec![vec![zero; n]; n];

@@ -390,37 +390,27 @@ impl Parser<'_> {
     }
 
     fn expr(&mut self) -> Result<ExprId, String> {
-        let mut acc = self.term()?;
-        loop {
-            if self.peek_op('+') {
-                self.pos += 1;
-                let t = self.term()?;
-                acc = self.arena.add(acc, t);
-            } else if self.peek_op('-') {
-                self.pos += 1;
-                let t = self.term()?;
-                acc = self.arena.sub(acc, t);
-            } else {
-                return Ok(acc);
-            }
-        }
+        self.left_assoc(Self::term, [('+', Arena::add), ('-', Arena::sub)])
     }
 
     fn term(&mut self) -> Result<ExprId, String> {
-        let mut acc = self.unary()?;
-        loop {
-            if self.peek_op('*') {
-                self.pos += 1;
-                let t = self.unary()?;
-                acc = self.arena.mul(acc, t);
-            } else if self.peek_op('/') {
-                self.pos += 1;
-                let t = self.unary()?;
-                acc = self.arena.div(acc, t);
-            } else {
-                return Ok(acc);
-            }
+        self.left_assoc(Self::unary, [('*', Arena::mul), ('/', Arena::div)])
+    }
+
+    /// Operands read by `operand`, joined left to right by either of two
+    /// operators of one precedence level.
+    fn left_assoc(
+        &mut self,
+        operand: fn(&mut Self) -> Result<ExprId, String>,
+        operators: [(char, fn(&mut Arena, ExprId, ExprId) -> ExprId); 2],
+    ) -> Result<ExprId, String> {
+        let mut acc = operand(self)?;
+        while let Some(&(_, join)) = operators.iter().find(|(op, _)| self.peek_op(*op)) {
+            self.pos += 1;
+            let rhs = operand(self)?;
+            acc = join(self.arena, acc, rhs);
         }
+        Ok(acc)
     }
 
     fn unary(&mut self) -> Result<ExprId, String> {

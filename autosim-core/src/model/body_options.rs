@@ -25,21 +25,24 @@ impl Resolver<'_> {
         let mut out = Vec::new();
         let mut ok = true;
         for it in items(v) {
-            match self.integer(it, what) {
-                Some(a) => match Axis::number(a) {
-                    Some(axis) => out.push(axis),
-                    None => {
-                        self.push(
-                            Diagnostic::error(it.span(), format!("axis {a} is out of range"))
-                                .help("axes are 1, 2 or 3"),
-                        );
-                        ok = false;
-                    }
-                },
+            match self.axis(it, what, "axes are 1, 2 or 3") {
+                Some(axis) => out.push(axis),
                 None => ok = false,
             }
         }
         ok.then_some(out)
+    }
+
+    /// An axis number, 1, 2 or 3 (`help` says what the others mean).
+    fn axis(&mut self, it: &Expr, what: &str, help: &str) -> Option<Axis> {
+        let a = self.integer(it, what)?;
+        let axis = Axis::number(a);
+        if axis.is_none() {
+            self.push(
+                Diagnostic::error(it.span(), format!("axis {a} is out of range")).help(help),
+            );
+        }
+        axis
     }
 
     /// Translations: axis numbers of the parent or constant directions
@@ -54,17 +57,9 @@ impl Resolver<'_> {
                     None => ok = false,
                 },
                 other => {
-                    match self.integer(other, "a translation axis") {
-                        Some(a) => match Axis::number(a) {
-                            Some(axis) => out.push(Direction::Axis(axis)),
-                            None => {
-                                self.push(
-                                Diagnostic::error(other.span(), format!("axis {a} is out of range"))
-                                    .help("translate along axis 1, 2 or 3, or a direction `[x, y, z]`"),
-                            );
-                                ok = false;
-                            }
-                        },
+                    let help = "translate along axis 1, 2 or 3, or a direction `[x, y, z]`";
+                    match self.axis(other, "a translation axis", help) {
+                        Some(axis) => out.push(Direction::Axis(axis)),
                         None => ok = false,
                     }
                 }

@@ -234,11 +234,8 @@ fn dot(r: &mut Resolver<'_>, args: &[Expr], span: Span, _: &str) -> Option<Value
 
 fn cross(r: &mut Resolver<'_>, args: &[Expr], _: Span, ctx: &str) -> Option<Value> {
     let (a, b) = r.two_vectors(args, ctx)?;
-    Some(Value::Vector(r.sys.frames.cross_vec(
-        &mut r.sys.arena,
-        &a,
-        &b,
-    )))
+    let v = r.sys.frames.cross_vec(&mut r.sys.arena, &a, &b);
+    Some(Value::Vector(v))
 }
 
 fn mag(r: &mut Resolver<'_>, args: &[Expr], _: Span, ctx: &str) -> Option<Value> {
@@ -271,11 +268,8 @@ fn angle(r: &mut Resolver<'_>, args: &[Expr], _: Span, ctx: &str) -> Option<Valu
 
 fn dot_plane(r: &mut Resolver<'_>, args: &[Expr], _: Span, ctx: &str) -> Option<Value> {
     let (a, b) = r.two_vectors(args, ctx)?;
-    Some(Value::Vector(r.sys.frames.dot_plane(
-        &mut r.sys.arena,
-        &a,
-        &b,
-    )))
+    let v = r.sys.frames.dot_plane(&mut r.sys.arena, &a, &b);
+    Some(Value::Vector(v))
 }
 
 /// The points of `pos` and `vel`: one, or two (from the second).

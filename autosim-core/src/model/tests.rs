@@ -14,6 +14,13 @@ fn resolved(text: &str) -> String {
     }
 }
 
+/// Checks that `text` gives exactly one error, and that it contains `message`.
+fn check_one_error(text: &str, message: &str) {
+    let got = resolved(text);
+    assert_eq!(got.matches("error").count(), 1, "{got}");
+    assert!(got.contains(message), "{got}");
+}
+
 /// Compares the rendered diagnostics (a leading newline in `expect` is ignored).
 fn check(text: &str, expect: &str) {
     let got = resolved(text);
@@ -46,11 +53,9 @@ fn lets_used_before_a_long_chain_of_definitions_are_refused_once() {
         text.push_str(&format!("let a{i} = a{} + q(B);\n", i + 1));
     }
     text.push_str("let a1000 = 1;\noutput o = a0;\n");
-    let got = resolved(&text);
-    assert_eq!(got.matches("error").count(), 1, "{got}");
-    assert!(
-        got.contains("error: `a200` is used through more than 200 `let`s or points that are defined after their first use"),
-        "{got}"
+    check_one_error(
+        &text,
+        "error: `a200` is used through more than 200 `let`s or points that are defined after their first use",
     );
     // In source order, a long chain is fine.
     let mut text = HEADER.to_string();
@@ -175,11 +180,9 @@ fn long_chains_of_lets_and_points_are_refused_not_a_stack_overflow() {
         text.push_str(&format!("let r{i} = sin(r{});\n", i - 1));
     }
     text.push_str("output y = r2000;\n");
-    let got = resolved(&text);
-    assert_eq!(got.matches("error").count(), 1, "{got}");
-    assert!(
-        got.contains("error: `r500` nests operations more than 500 deep, through the `let`s and points it uses"),
-        "{got}"
+    check_one_error(
+        &text,
+        "error: `r500` nests operations more than 500 deep, through the `let`s and points it uses",
     );
     // The same through points.
     let mut text = HEADER.to_string();
@@ -191,9 +194,7 @@ fn long_chains_of_lets_and_points_are_refused_not_a_stack_overflow() {
         ));
     }
     text.push_str("output y = mag(pos(P1000));\n");
-    let got = resolved(&text);
-    assert_eq!(got.matches("error").count(), 1, "{got}");
-    assert!(got.contains("nests operations more than 500 deep"), "{got}");
+    check_one_error(&text, "nests operations more than 500 deep");
     // Shorter chains are fine.
     let mut text = HEADER.to_string();
     text.push_str("let r0 = q(B);\n");

@@ -242,33 +242,24 @@ pub(crate) fn parameter(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResu
     }
     input.parse::<Token![=]>()?;
     let value = value(input, cx, &format!("parameter `{}`", name.text))?;
-    if [
+    let arithmetic = [
         input.peek(Token![+]),
         input.peek(Token![*]),
         input.peek(Token![/]),
         input.peek(Token![^]),
     ]
     .contains(&true)
-        || (input.peek(Token![-]) && !input.peek(Token![->]))
-    {
-        return cx.fail(
-            expected(
-                cx,
-                input,
-                &format!("a unit, `,` or the end after the value of `{}`", name.text),
-            )
-            .help("a parameter's value is a single number; define derived quantities with `let`"),
-        );
-    }
-    if peek_group(input, Delimiter::Parenthesis) {
-        return cx.fail(
-            expected(
-                cx,
-                input,
-                &format!("a unit, `,` or the end after the value of `{}`", name.text),
-            )
-            .help("units are written in brackets: `[m]`"),
-        );
+        || (input.peek(Token![-]) && !input.peek(Token![->]));
+    let help = if arithmetic {
+        Some("a parameter's value is a single number; define derived quantities with `let`")
+    } else if peek_group(input, Delimiter::Parenthesis) {
+        Some("units are written in brackets: `[m]`")
+    } else {
+        None
+    };
+    if let Some(help) = help {
+        let after = format!("a unit, `,` or the end after the value of `{}`", name.text);
+        return cx.fail(expected(cx, input, &after).help(help));
     }
     let unit = unit(input, cx)?;
     Ok(Parameter {

@@ -20,8 +20,7 @@
 # compile cost (generated lines, rustc time) for n = 10, 20, 50, and writes
 # bench/peers/results.md and results.jsonl.
 set -euo pipefail
-HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-REPO="$(cd "$HERE/../.." && pwd)"
+source "$(dirname "${BASH_SOURCE[0]}")/../common.sh"   # HERE, REPO, NICE, PY
 AROOT="${ANCHORS_ROOT:-/tmp/anchors}"
 CROOT="${CASADI_ROOT:-/tmp/casadi}"
 ROUNDS="${ROUNDS:-5}"
@@ -53,7 +52,7 @@ for exe in "$AROOT"/work/*_bench; do [ -x "$exe" ] && SYM+=("$exe"); done
 sym_round() {  # sym_round EXE
   local base kind params
   base="$(basename "$1" _bench)"; kind="${base%_*}"
-  params="$(python3 -c 'import json,sys; print(" ".join(repr(v) for v in json.load(open(sys.argv[1]))["param_values"]))' "$AROOT/work/$base.json")"
+  params="$($PY -c 'import json,sys; print(" ".join(repr(v) for v in json.load(open(sys.argv[1]))["param_values"]))' "$AROOT/work/$base.json")"
   # shellcheck disable=SC2086
   "${PINCPU[@]}" "$1" bench $params 2>/dev/null \
     | sed "s/^{/{\"tool\": \"sympy\", \"kind\": \"$kind\", /"
@@ -98,4 +97,4 @@ TOML
 done
 
 echo "== 5. tables"
-python3 "$HERE/report.py" "$OUT" "$HERE/results.md" "$HERE/results.jsonl"
+$PY "$HERE/report.py" "$OUT" "$HERE/results.md" "$HERE/results.jsonl"

@@ -22,14 +22,11 @@
 # repetition is the outer loop over all cases in one process; autosim: REPS separate perf runs)
 # and the median of the medians is reported (a typical run, not the best one).
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/../common.sh"   # HERE, REPO, NICE, PY
 
-HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-REPO="$(cd "$HERE/../.." && pwd)"
 REF_DIR="${REF_DIR:-$REPO/tests/reference}"
 REPS="${REPS:-5}"
 PIN_BUILDS="${PIN_BUILDS:-native portable lib}"
-NICE="nice -n 10"
-PY="${PYTHON:-python3}"
 export BENCH_LOAD_START="$(cat /proc/loadavg)"
 
 # --- 1. dependencies ----------------------------------------------------------------------
@@ -107,24 +104,16 @@ done
 cpuinfo() { grep -m1 "^$1" /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//'; }
 CPU="$(cpuinfo 'model name'), family $(cpuinfo 'cpu family') model $(cpuinfo 'model') stepping $(cpuinfo 'stepping'), $(cpuinfo 'cpu MHz') MHz, cache $(cpuinfo 'cache size')"
 FLAGS_AVX="$(grep -m1 '^flags' /proc/cpuinfo | tr ' ' '\n' | grep -E '^(avx2|avx512f|fma)$' | paste -sd, -)"
-export BENCH_NPROC="$(nproc)"
 export BENCH_CPU="$CPU (cpu flags incl. $FLAGS_AVX)"
 export BENCH_GXX="$(g++ --version | head -1)"
-export BENCH_RUSTC="$(cd "$REPO" && rustc --version)"
 export BENCH_CARGO="$(cd "$REPO" && cargo --version)"
 export BENCH_PIN="$($PY -c 'import pinocchio; print(pinocchio.__version__)' 2>/dev/null || echo '?')"
 export BENCH_EIGEN="$($PY -m pip show cmeel-eigen 2>/dev/null | awk '/^Version/{print $2}')"
-export BENCH_LOAD="$(cat /proc/loadavg)"
-export BENCH_DATE="$(date -u '+%Y-%m-%d %H:%M UTC')"
 export BENCH_REPS="$REPS"
 export BENCH_BUILDS="$PIN_BUILDS"
 export BENCH_TARGET="${CARGO_TARGET_DIR:-default}"
 export BENCH_PREFIX="$PREFIX"
-# Read-only git queries (no index refresh): which autosim was measured.
-HEAD_SHA="$(git -C "$REPO" rev-parse --short HEAD 2>/dev/null || echo '?')"
-DIRTY="$(git -C "$REPO" --no-optional-locks status --porcelain --untracked-files=no 2>/dev/null | wc -l)"
-export BENCH_GIT="commit $HEAD_SHA, $DIRTY tracked files with uncommitted changes in the working tree"
-$PY - "$HERE" <<'EOF'
+run_report <<'EOF'   # common.sh: adds BENCH_NPROC, _RUSTC, _LOAD, _DATE, _GIT; sys.argv[1] = HERE
 import json, os, statistics, sys
 here = sys.argv[1]
 env = os.environ

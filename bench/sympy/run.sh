@@ -10,14 +10,11 @@
 # per n (fresh interpreter); the autosim phases example runs PHASE_REPS times (default 7) per
 # model and the fastest run is reported.
 set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/../common.sh"   # HERE, REPO, NICE, PY
 
-HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-REPO="$(cd "$HERE/../.." && pwd)"
 SYMPY_N="${SYMPY_N:-1 2 3 5}"
 AUTOSIM_N="${AUTOSIM_N:-1 2 3 5 7 10 20}"
 PHASE_REPS="${PHASE_REPS:-7}"
-NICE="nice -n 10"
-PY="${PYTHON:-python3}"
 
 $PY -c "import sympy, numpy" 2>/dev/null || $PY -m pip install sympy numpy >&2
 
@@ -42,18 +39,10 @@ for n in $AUTOSIM_N; do
 done
 
 # --- results.md ---------------------------------------------------------------------------
-export BENCH_NPROC="$(nproc)"
 export BENCH_CPU="$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')"
-export BENCH_RUSTC="$(cd "$REPO" && rustc --version)"
-export BENCH_LOAD="$(cat /proc/loadavg)"
-export BENCH_DATE="$(date -u '+%Y-%m-%d %H:%M UTC')"
 export BENCH_REPS="$PHASE_REPS"
-# Read-only git queries (no index refresh): which autosim was measured.
-HEAD_SHA="$(git -C "$REPO" rev-parse --short HEAD 2>/dev/null || echo '?')"
-DIRTY="$(git -C "$REPO" --no-optional-locks status --porcelain --untracked-files=no 2>/dev/null | wc -l)"
-export BENCH_GIT="commit $HEAD_SHA, $DIRTY tracked files with uncommitted changes in the working tree"
 export BENCH_SYMPY_N="$SYMPY_N"
-$PY - "$HERE" <<'EOF'
+run_report <<'EOF'   # common.sh: adds BENCH_NPROC, _RUSTC, _LOAD, _DATE, _GIT; sys.argv[1] = HERE
 import json, os, re, sys
 here = sys.argv[1]
 env = os.environ

@@ -153,6 +153,21 @@ fn coordinate_error(x: &[f64], r: &[f64]) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// One study of a model generated in `f64` and again in `f32` (`study`
+/// takes the float's name), from the same initial state.
+fn sweep_in_both_floats<'a, M64, M32, const N: usize>(
+    study: &dyn Fn(&'static str) -> Study<'a>,
+    (f64_model, f32_model): (impl Fn() -> M64, impl Fn() -> M32),
+    x0: [f64; N],
+    rows: &mut Vec<Row>,
+) where
+    M64: Model<Float = f64, State = [f64; N]>,
+    M32: Model<Float = f32, State = [f32; N]>,
+{
+    sweep(&study("f64"), &f64_model, x0, rows);
+    sweep(&study("f32"), &f32_model, to_f32(x0), rows);
+}
+
 fn to_f32<const N: usize>(x: [f64; N]) -> [f32; N] {
     x.map(|v| v as f32)
 }
@@ -306,22 +321,12 @@ pub(crate) fn sweeps(refs: &References) -> Vec<Row> {
         )
     };
     let sat = |float| on_satellite_reference("satellite", None, float);
-    sweep(&sat("f64"), &|| Sat::new(quiet()), sat_x0, &mut rows);
-    sweep(
-        &sat("f32"),
-        &|| SatF32::new(quiet()),
-        to_f32(sat_x0),
-        &mut rows,
-    );
+    let models = (|| Sat::new(quiet()), || SatF32::new(quiet()));
+    sweep_in_both_floats(&sat, models, sat_x0, &mut rows);
     // The small model against the full model's reference: what a user gets.
     let small = |float| on_satellite_reference("satellite-small", Some(&refs.small[..]), float);
-    sweep(&small("f64"), &|| Small::new(quiet()), small_x0, &mut rows);
-    sweep(
-        &small("f32"),
-        &|| SmallF32::new(quiet()),
-        to_f32(small_x0),
-        &mut rows,
-    );
+    let models = (|| Small::new(quiet()), || SmallF32::new(quiet()));
+    sweep_in_both_floats(&small, models, small_x0, &mut rows);
     let thrust = study(
         "satellite-thrusters",
         "f64",
@@ -332,37 +337,23 @@ pub(crate) fn sweeps(refs: &References) -> Vec<Row> {
         attitude_error,
     );
     sweep(&thrust, &|| Sat::new(Figure8::new()), sat_x0, &mut rows);
-    let chain = |float| {
-        study(
-            "chain-spatial-5",
-            float,
-            T_CHAIN,
-            chain_steps,
-            &refs.chain[..],
-            None,
-            coordinate_error as fn(&[f64], &[f64]) -> f64,
-        )
+    // The chains are measured on their coordinates, each against its own
+    // reference.
+    let on_coordinates = |(name, t_end, steps, reference), float| {
+        let measure = coordinate_error as fn(&[f64], &[f64]) -> f64;
+        study(name, float, t_end, steps, reference, None, measure)
     };
-    sweep(&chain("f64"), &Chain5::new, chain5_x0(), &mut rows);
-    sweep(
-        &chain("f32"),
-        &Chain5F32::new,
-        to_f32(chain5_x0()),
-        &mut rows,
+    let chain = ("chain-spatial-5", T_CHAIN, chain_steps, &refs.chain[..]);
+    let (models, x0) = ((Chain5::new, Chain5F32::new), chain5_x0());
+    sweep_in_both_floats(&|f| on_coordinates(chain, f), models, x0, &mut rows);
+    let stiff = (
+        "chain-spatial-3-stiff",
+        T_STIFF,
+        stiff_steps,
+        &refs.stiff[..],
     );
-    let stiff = |float| {
-        study(
-            "chain-spatial-3-stiff",
-            float,
-            T_STIFF,
-            stiff_steps,
-            &refs.stiff[..],
-            None,
-            coordinate_error as fn(&[f64], &[f64]) -> f64,
-        )
-    };
-    sweep(&stiff("f64"), &Stiff::new, stiff_x0(), &mut rows);
-    sweep(&stiff("f32"), &StiffF32::new, to_f32(stiff_x0()), &mut rows);
+    let (models, x0) = ((Stiff::new, StiffF32::new), stiff_x0());
+    sweep_in_both_floats(&|f| on_coordinates(stiff, f), models, x0, &mut rows);
     rows
 }
 

@@ -126,19 +126,11 @@ impl Arena {
                             .filter(|(i, _)| *i != k)
                             .map(|(_, f)| *f)
                             .collect();
-                        let mut first = true;
-                        if t != "1" {
-                            out.push_str(&t);
-                            first = false;
-                        }
-                        for f in &rest {
-                            if !first {
-                                out.push('*');
-                            }
-                            self.write_expr(out, *f, Prec::Pow);
-                            first = false;
-                        }
+                        let first = t == "1";
                         if !first {
+                            out.push_str(&t);
+                        }
+                        if !self.write_factors(out, first, &rest) {
                             out.push('*');
                         }
                         out.push('(');
@@ -158,14 +150,7 @@ impl Arena {
             Node::Pow(b, x) => match self.as_number(*x) {
                 Some(n) if n.is_negative() => {
                     out.push_str("1/");
-                    let m = n.neg();
-                    if m.is_one() {
-                        self.write_expr(out, *b, Prec::Atom);
-                    } else {
-                        out.push('(');
-                        self.write_pow(out, *b, m);
-                        out.push(')');
-                    }
+                    self.write_divisor(out, *b, n.neg());
                 }
                 Some(n) => self.write_pow(out, *b, n),
                 None => {
@@ -254,13 +239,7 @@ impl Arena {
             let _ = write!(out, "{cn}");
             first = false;
         }
-        for f in &num {
-            if !first {
-                out.push('*');
-            }
-            self.write_expr(out, *f, Prec::Pow);
-            first = false;
-        }
+        self.write_factors(out, first, &num);
         if cd != 1 {
             let _ = write!(out, "/{cd}");
         }
@@ -268,15 +247,33 @@ impl Arena {
             out.push('/');
             if let Node::Pow(b, x) = self.node(*f) {
                 let n = self.as_number(*x).unwrap_or(Number::MINUS_ONE).neg();
-                if n.is_one() {
-                    self.write_expr(out, *b, Prec::Atom);
-                } else {
-                    out.push('(');
-                    self.write_pow(out, *b, n);
-                    out.push(')');
-                }
+                self.write_divisor(out, *b, n);
             }
         }
+    }
+
+    /// Writes the divisor `b^n` after a `/`: `b`, or `(b^n)`.
+    fn write_divisor(&self, out: &mut String, b: ExprId, n: Number) {
+        if n.is_one() {
+            self.write_expr(out, b, Prec::Atom);
+        } else {
+            out.push('(');
+            self.write_pow(out, b, n);
+            out.push(')');
+        }
+    }
+
+    /// Writes `factors` joined by `*` (preceded by one unless `first`:
+    /// nothing written yet); whether nothing has been written still.
+    fn write_factors(&self, out: &mut String, mut first: bool, factors: &[ExprId]) -> bool {
+        for f in factors {
+            if !first {
+                out.push('*');
+            }
+            self.write_expr(out, *f, Prec::Pow);
+            first = false;
+        }
+        first
     }
 
     fn split_sign_ref(&self, e: ExprId) -> (bool, ExprId) {

@@ -183,19 +183,13 @@ impl<'a> Resolver<'a> {
             let v = &opt.value;
             let good = match opt.key {
                 BodyKey::Parent | BodyKey::Small | BodyKey::Lock | BodyKey::Reference => true,
-                BodyKey::Joint => self
-                    .list3(v, "the joint point", true)
-                    .map(|c| spec.joint_point = Some(c))
-                    .is_some(),
-                BodyKey::Cm => self
-                    .list3(v, "the mass center", true)
-                    .map(|c| spec.cm = Some(c))
-                    .is_some(),
-                BodyKey::Mass => self
-                    .constant(v, "the mass")
-                    .map(|m| spec.mass = Some(m))
-                    .is_some(),
-                BodyKey::Inertia => self.inertia(v).map(|m| spec.inertia = Some(m)).is_some(),
+                BodyKey::Joint => store(
+                    &mut spec.joint_point,
+                    self.list3(v, "the joint point", true),
+                ),
+                BodyKey::Cm => store(&mut spec.cm, self.list3(v, "the mass center", true)),
+                BodyKey::Mass => store(&mut spec.mass, self.constant(v, "the mass")),
+                BodyKey::Inertia => store(&mut spec.inertia, self.inertia(v)),
                 BodyKey::Rotate => self
                     .rotation(b, v)
                     .map(|r| spec.joint.rotation = r)
@@ -204,22 +198,19 @@ impl<'a> Resolver<'a> {
                     .translations(v)
                     .map(|t| spec.joint.translations = t)
                     .is_some(),
-                BodyKey::Q => self
-                    .names_list(v, "coordinate names")
-                    .map(|n| spec.coordinate_names = Some(n))
-                    .is_some(),
-                BodyKey::U => self
-                    .names_list(v, "speed names")
-                    .map(|n| spec.speed_names = Some(n))
-                    .is_some(),
-                BodyKey::Initial => self
-                    .constants_list(v, "initial coordinates")
-                    .map(|n| spec.initial_coordinates = Some(n))
-                    .is_some(),
-                BodyKey::InitialSpeeds => self
-                    .constants_list(v, "initial speeds")
-                    .map(|n| spec.initial_speeds = Some(n))
-                    .is_some(),
+                BodyKey::Q => store(
+                    &mut spec.coordinate_names,
+                    self.names_list(v, "coordinate names"),
+                ),
+                BodyKey::U => store(&mut spec.speed_names, self.names_list(v, "speed names")),
+                BodyKey::Initial => store(
+                    &mut spec.initial_coordinates,
+                    self.constants_list(v, "initial coordinates"),
+                ),
+                BodyKey::InitialSpeeds => store(
+                    &mut spec.initial_speeds,
+                    self.constants_list(v, "initial speeds"),
+                ),
             };
             ok &= good;
         }
@@ -360,4 +351,13 @@ fn field_span(b: &ast::Body, e: &ModelError) -> Span {
             .map_or(opt.value.span(), |it| it.span()),
         _ => opt.value.span(),
     }
+}
+
+/// Puts `value` in `slot` if there is one; whether there was.
+fn store<T>(slot: &mut Option<T>, value: Option<T>) -> bool {
+    let given = value.is_some();
+    if given {
+        *slot = value;
+    }
+    given
 }

@@ -38,9 +38,7 @@ impl Resolver<'_> {
         let a = self.integer(it, what)?;
         let axis = Axis::number(a);
         if axis.is_none() {
-            self.push(
-                Diagnostic::error(it.span(), format!("axis {a} is out of range")).help(help),
-            );
+            self.push(Diagnostic::error(it.span(), format!("axis {a} is out of range")).help(help));
         }
         axis
     }

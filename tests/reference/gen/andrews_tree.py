@@ -161,6 +161,18 @@ print("|g(q0)| tree:", float(max(abs(x) for x in g.subs(qs))))
 
 report = {}
 
+
+def compare_published(acc):
+    """Print beta'' and Theta'' of the accelerations acc (at t = 0) beside the
+    published values; return their relative errors."""
+    errs = []
+    for k, pub in ((0, BETA_DD_PUB), (1, THETA_DD_PUB)):
+        err = abs(acc[k] - pub) / abs(pub)
+        errs.append(err)
+        print(f"  {names[k]}'' = {acc[k]!r}  published {pub!r}  rel err {err:.2e}")
+    return errs
+
+
 # ---- route A: KanesMethod with configuration and velocity constraints -------
 tA = time.time()
 u_ind = [w[0]]
@@ -176,11 +188,7 @@ MM0 = np.array(MM.subs(sub0).evalf(30), dtype=float)
 FF0 = np.array(FF.subs(sub0).evalf(30), dtype=float).ravel()
 acc = np.linalg.solve(MM0, FF0)
 print(f"route A (KanesMethod with constraints), {time.time()-tA:.1f} s:")
-eA = []
-for k, pub in ((0, BETA_DD_PUB), (1, THETA_DD_PUB)):
-    err = abs(acc[k] - pub) / abs(pub)
-    eA.append(err)
-    print(f"  {names[k]}'' = {acc[k]!r}  published {pub!r}  rel err {err:.2e}")
+eA = compare_published(acc)
 print("  other accelerations:", acc[2:])
 report["kane_constrained"] = {"acc0": acc.tolist(), "rel_err": eA}
 
@@ -211,11 +219,7 @@ def acc_tree(qv, uv):
 
 accB, lamB = acc_tree(np.array(Q0), np.zeros(7))
 print(f"route B (tree + Lagrange multipliers), {time.time()-tB:.1f} s:")
-eB = []
-for k, pub in ((0, BETA_DD_PUB), (1, THETA_DD_PUB)):
-    err = abs(accB[k] - pub) / abs(pub)
-    eB.append(err)
-    print(f"  {names[k]}'' = {accB[k]!r}  published {pub!r}  rel err {err:.2e}")
+eB = compare_published(accB)
 print("  multipliers (forces at E2 from the closures, sign of the tree's G):", lamB)
 report["tree_multipliers"] = {"acc0": accB.tolist(), "rel_err": eB, "lambda0": lamB.tolist()}
 

@@ -14,21 +14,17 @@ Formulation 2 (cross-check, numpy only): Newton-Euler for three free planar
 bodies (mass-centre position + absolute angle each, 9 coordinates) joined by
 four pins (8 constraint equations), solved as a Lagrange-multiplier KKT system.
 
-Writes fourbar.json next to this file.
+Writes ../four-bar.json (tests/reference/); shared pieces are in common.py.
 """
-import json
-import os
-import platform
-import sys
 import time
 
 import numpy as np
-import scipy
 import sympy as sp
 import sympy.physics.mechanics as me
-from scipy.integrate import solve_ivp
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+from common import header, integrate_checked, lambdifier, sample, \
+    trajectory_head, trajectory_records, write_reference
+
 T0 = time.time()
 
 # ---------------------------------------------------------------------------
@@ -131,16 +127,7 @@ derivation_s = time.time() - t_der
 
 qs = [q1, q2, q3]
 us = [u1, u2, u3]
-qsym = sp.symbols("Q1:4")
-usym = sp.symbols("U1:4")
-psym = [L0, L1, L2, L3, m1, m2, m3, k, q10, g]
-rep = dict(zip(qs, qsym)) | dict(zip(us, usym))
-
-
-def lam(expr):
-    return sp.lambdify((qsym, usym, psym), me.msubs(expr, rep), modules="numpy",
-                       cse=True)
-
+lam = lambdifier(qs, us, [L0, L1, L2, L3, m1, m2, m3, k, q10, g], first_index=1)
 
 t_lam = time.time()
 M_f = lam(Mk)
@@ -329,12 +316,7 @@ for i in range(n_check):
     E_, ke, vg, vs = energy(q, u)
     max_ediff = max(max_ediff, abs(E_ - dae_energy(q, u)))
     if i < 8:
-        samples.append({"t": 0.0, "q": q.tolist(), "u": u.tolist(), "inputs": {},
-                        "dq": u.tolist(),
-                        "du": ud_k.tolist(), "energy": E_, "kinetic_energy": ke,
-                        "gravity_potential": vg, "spring_potential": vs,
-                        "configuration_residual": float(rc),
-                        "velocity_residual": float(rv)})
+        samples.append(sample(q, u, u, ud_k, (E_, ke, vg, vs), rc, rv))
 print(f"cross-check over {n_check} states: max|du_kane - du_dae| = {max_abs_diff:.3e}"
       f" (rel {max_rel_diff:.3e}), energy diff {max_ediff:.3e}, "
       f"config res {max_con:.2e}, vel res {max_vcon:.2e}")
@@ -355,44 +337,12 @@ def rhs(_t, y, which="kane"):
     return [u[0], ud[0]]
 
 
-def integrate(which, tol, t_end=10.0, dt=0.1):
-    y = np.array([0.5, 0.0])
-    ts = np.round(np.arange(0, t_end + dt / 2, dt), 10)
-    out = [y.copy()]
-    nfev = 0
-    for a, b in zip(ts[:-1], ts[1:]):
-        s = solve_ivp(rhs, (a, b), y, method="DOP853", rtol=tol, atol=tol,
-                      args=(which,))
-        assert s.success
-        nfev += s.nfev
-        y = s.y[:, -1]
-        out.append(y.copy())
-    return ts, np.array(out), nfev
-
-
-t_int = time.time()
-ts, Y, nfev = integrate("kane", 1e-13)
-_, Y_dae, _ = integrate("dae", 1e-13)
-_, Y_loose, _ = integrate("kane", 1e-12)
-_, Y_tight, _ = integrate("kane", 2.5e-14)
-int_s = time.time() - t_int
-records = []
-E0 = None
-max_drift = 0.0
-traj_con = 0.0
-traj_vcon = 0.0
-for tt, y in zip(ts, Y):
-    q, u = full_state(y)
-    E_ = energy(q, u)[0]
-    E0 = E_ if E0 is None else E0
-    max_drift = max(max_drift, abs(E_ - E0))
-    traj_con = max(traj_con, np.max(np.abs(con_f(q, u, PV))))
-    traj_vcon = max(traj_vcon, np.max(np.abs(vcon_f(q, u, PV))))
-    records.append({"t": float(tt), "q": q.tolist(), "u": u.tolist(), "energy": E_})
+# from q1 = 0.5, u1 = 0: 10 s, recorded every 0.1 s
+ts, Y, nfev, traj_dae_diff, traj_err_est, traj_err_tight = integrate_checked(
+    rhs, [0.5, 0.0], 10.0, 0.1, cross="dae")
+records, E0, max_drift, traj_con, traj_vcon = trajectory_records(
+    ts, Y, full_state, energy, con_f, vcon_f, PV)
 kin_scale = max(energy(*full_state(y))[1] for y in Y)
-traj_dae_diff = float(np.max(np.abs(Y - Y_dae)))
-traj_err_est = float(np.max(np.abs(Y - Y_loose)))
-traj_err_tight = float(np.max(np.abs(Y - Y_tight)))
 q1s = Y[:, 0]
 print(f"trajectory: nfev {nfev}, E0 {E0:.15g}, max |E-E0| {max_drift:.3e} "
       f"(rel to |E0| {max_drift/abs(E0):.3e}, rel to max KE {max_drift/kin_scale:.3e}),"
@@ -400,14 +350,12 @@ print(f"trajectory: nfev {nfev}, E0 {E0:.15g}, max |E-E0| {max_drift:.3e} "
       f" tol 2.5e-14 vs 1e-13 {traj_err_tight:.3e},"
       f" q1 range [{q1s.min():.4f}, {q1s.max():.4f}]")
 
-out = {
-    "model": "fourbar",
-    "generator": "sympy.physics.mechanics KanesMethod with configuration and "
-                 "velocity constraints; du/dt (all speeds) = M^-1 f, M = "
-                 "[dynamic eq; acceleration constraints]",
-    "versions": {"python": platform.python_version(), "sympy": sp.__version__,
-                 "numpy": np.__version__, "scipy": scipy.__version__},
-    "spec": "refgen/fourbar.md",
+out = header(
+    model="fourbar",
+    generator="sympy.physics.mechanics KanesMethod with configuration and "
+              "velocity constraints; du/dt (all speeds) = M^-1 f, M = "
+              "[dynamic eq; acceleration constraints]",
+    spec="refgen/fourbar.md") | {
     "coordinates": ["q1", "q2", "q3"],
     "speeds": ["u1", "u2", "u3"],
     "independent_coordinates": ["q1"],
@@ -444,14 +392,12 @@ out = {
         "max_configuration_residual": float(max_con),
         "max_velocity_residual": float(max_vcon)},
     "samples": samples,
-    "trajectory": {
-        "integrator": "scipy solve_ivp DOP853, rtol = atol = 1e-13, reduced ODE "
-                      "in (q1, u1); restarted every 0.1 s so each record is a "
-                      "step end (no dense-output interpolation); q2, q3, u2, u3 "
-                      "reconstructed on the branch",
-        "q0": records[0]["q"], "u0": records[0]["u"], "t_end": 10.0, "dt": 0.1,
-        "nfev": int(nfev),
-        "energy_max_abs_drift": float(max_drift),
+    "trajectory": trajectory_head(
+        integrator="scipy solve_ivp DOP853, rtol = atol = 1e-13, reduced ODE "
+                   "in (q1, u1); restarted every 0.1 s so each record is a "
+                   "step end (no dense-output interpolation); q2, q3, u2, u3 "
+                   "reconstructed on the branch",
+        records=records, t_end=10.0, dt=0.1, nfev=nfev, drift=max_drift) | {
         "energy_max_rel_drift_vs_E0": float(max_drift / abs(E0)),
         "energy_max_drift_vs_max_kinetic": float(max_drift / kin_scale),
         "max_configuration_residual": float(traj_con),
@@ -462,6 +408,4 @@ out = {
         "records": records},
     "runtime_s": round(time.time() - T0, 1),
 }
-with open(os.path.join(HERE, "..", "four-bar.json"), "w") as fh:
-    json.dump(out, fh, indent=1)
-print(f"wrote fourbar.json in {time.time() - T0:.1f} s")
+write_reference(out, "four-bar.json", T0)

@@ -18,20 +18,17 @@ Formulation 2 (cross-check, numpy only): Newton-Euler of the disc with the
 contact force as unknown (9x9 linear system: m a = F - m g n3,
 I alpha + w x I w = rho x F, a + alpha x rho + w x d(rho)/dt = 0).
 
-Writes rolling_disc.json next to this file.
+Writes ../rolling-disc.json (tests/reference/); shared pieces are in common.py.
 """
-import json
-import os
-import platform
 import time
 
 import numpy as np
-import scipy
 import sympy as sp
 import sympy.physics.mechanics as me
-from scipy.integrate import solve_ivp
 
-HERE = os.path.dirname(os.path.abspath(__file__))
+from common import header, integrate, integrate_checked, lambdifier, sample, \
+    trajectory_head, trajectory_records, write_reference
+
 T0 = time.time()
 
 
@@ -112,16 +109,7 @@ chk = (config_con[0].diff(t) - vel_con[2]).subs(kdd)
 assert sp.simplify(chk) == 0
 
 stage("holonomic/velocity consistency checked")
-qsym = sp.symbols("Q0:6")
-usym = sp.symbols("U0:6")
-psym = [m, r, g]
-rep = dict(zip(qs, qsym)) | dict(zip(us, usym))
-
-
-def lam(expr):
-    return sp.lambdify((qsym, usym, psym), me.msubs(expr, rep), modules="numpy",
-                       cse=True)
-
+lam = lambdifier(qs, us, [m, r, g], first_index=0)
 
 t_lam = time.time()
 M_f = lam(Mk)
@@ -295,11 +283,7 @@ for i in range(n_check):
     mx["energy_abs"] = max(mx["energy_abs"], abs(E_ - ne_energy(q, u)))
     assert np.all(np.isfinite(du)) and np.all(np.isfinite(dq))
     if i < 8:
-        samples.append({"t": 0.0, "q": q.tolist(), "u": u.tolist(), "inputs": {},
-                        "dq": dq.tolist(),
-                        "du": du.tolist(), "energy": E_, "kinetic_energy": ke,
-                        "gravity_potential": vg, "configuration_residual": rc,
-                        "velocity_residual": rv})
+        samples.append(sample(q, u, dq, du, (E_, ke, vg), rc, rv))
 mx = {k_: float(v) for k_, v in mx.items()}
 print("cross-check over", n_check, "states:", mx)
 
@@ -322,44 +306,13 @@ def rhs(_t, yv, which="kane"):
     return np.concatenate([dq[[0, 1, 3, 4, 5]], du[3:]])
 
 
-def integrate(y0, t_end, dt, which="kane", tol=1e-13):
-    ts = np.round(np.arange(0, t_end + dt / 2, dt), 10)
-    yv = np.array(y0, float)
-    out = [yv.copy()]
-    nfev = 0
-    for a, b in zip(ts[:-1], ts[1:]):
-        s = solve_ivp(rhs, (a, b), yv, method="DOP853", rtol=tol, atol=tol,
-                      args=(which,))
-        assert s.success, s.message
-        nfev += s.nfev
-        yv = s.y[:, -1]
-        out.append(yv.copy())
-    return ts, np.array(out), nfev
-
-
 # main trajectory ------------------------------------------------------------
 Y0 = [0.0, 0.0, 0.0, 0.3, 0.0, 0.0, 8.0, 0.5]
 t_int = time.time()
-ts, Y, nfev = integrate(Y0, 5.0, 0.1)
-_, Y_ne, _ = integrate(Y0, 5.0, 0.1, which="ne")
-_, Y_loose, _ = integrate(Y0, 5.0, 0.1, tol=1e-12)
-_, Y_tight, _ = integrate(Y0, 5.0, 0.1, tol=2.5e-14)
-records = []
-E0 = None
-drift = 0.0
-tcon = 0.0
-tvcon = 0.0
-for tt, yv in zip(ts, Y):
-    q, u = full_state(yv)
-    E_ = energy(q, u)[0]
-    E0 = E_ if E0 is None else E0
-    drift = max(drift, abs(E_ - E0))
-    tcon = max(tcon, abs(float(con_f(q, u, PV)[0, 0])))
-    tvcon = max(tvcon, float(np.max(np.abs(vcon_f(q, u, PV)))))
-    records.append({"t": float(tt), "q": q.tolist(), "u": u.tolist(), "energy": E_})
-traj_ne = float(np.max(np.abs(Y - Y_ne)))
-traj_err = float(np.max(np.abs(Y - Y_loose)))
-traj_err_tight = float(np.max(np.abs(Y - Y_tight)))
+ts, Y, nfev, traj_ne, traj_err, traj_err_tight = integrate_checked(
+    rhs, Y0, 5.0, 0.1, cross="ne")
+records, E0, drift, tcon, tvcon = trajectory_records(
+    ts, Y, full_state, energy, con_f, vcon_f, PV)
 phis = Y[:, 3]
 print(f"trajectory: nfev {nfev}, E0 {E0:.15g}, max|E-E0| {drift:.3e} "
       f"(rel {drift/abs(E0):.3e}), kane vs NE {traj_ne:.3e}, tol 1e-12 vs 1e-13 "
@@ -393,7 +346,7 @@ for phi0, Om in cases_in:
     du_expected = np.array([0.0, PAR["r"] * w2 * Om, 0.0,
                             -Om * np.cos(phi0) * thd, 0.0, 0.0])
     inst_err = float(np.max(np.abs(du0 - du_expected)))
-    tt, YY, nf = integrate(yv0, 5.0, 0.05)
+    tt, YY, nf = integrate(rhs, yv0, 5.0, 0.05)
     dev_phi = float(np.max(np.abs(YY[:, 3] - phi0)))
     rates = np.array([kane_qdot(*full_state(yy)) for yy in YY])
     dev_psid = float(np.max(np.abs(rates[:, 3] - Om)))
@@ -423,14 +376,12 @@ for phi0, Om in cases_in:
         "check_5s_max_abs_psi_theta_vs_linear": dev_ang,
     })
 
-out = {
-    "model": "rolling_disc",
-    "generator": "sympy.physics.mechanics KanesMethod with configuration and "
-                 "velocity (rolling) constraints; du/dt (all speeds) = M^-1 f, "
-                 "M = [dynamic eqs; acceleration constraints]",
-    "versions": {"python": platform.python_version(), "sympy": sp.__version__,
-                 "numpy": np.__version__, "scipy": scipy.__version__},
-    "spec": "refgen/rolling_disc.md",
+out = header(
+    model="rolling_disc",
+    generator="sympy.physics.mechanics KanesMethod with configuration and "
+              "velocity (rolling) constraints; du/dt (all speeds) = M^-1 f, "
+              "M = [dynamic eqs; acceleration constraints]",
+    spec="refgen/rolling_disc.md") | {
     "coordinates": QN,
     "speeds": UN,
     "independent_coordinates": ["x", "y", "psi", "phi", "theta"],
@@ -466,13 +417,11 @@ out = {
         "max_configuration_residual": mx["con"],
         "max_velocity_residual": mx["vcon"]},
     "samples": samples,
-    "trajectory": {
-        "integrator": "scipy solve_ivp DOP853, rtol = atol = 1e-13, reduced ODE in "
-                      "[x, y, psi, phi, theta, u4, u5, u6]; restarted every 0.1 s so "
-                      "each record is a step end; z, ux, uy, uz reconstructed",
-        "q0": records[0]["q"], "u0": records[0]["u"], "t_end": 5.0, "dt": 0.1,
-        "nfev": int(nfev),
-        "energy_max_abs_drift": float(drift),
+    "trajectory": trajectory_head(
+        integrator="scipy solve_ivp DOP853, rtol = atol = 1e-13, reduced ODE in "
+                   "[x, y, psi, phi, theta, u4, u5, u6]; restarted every 0.1 s so "
+                   "each record is a step end; z, ux, uy, uz reconstructed",
+        records=records, t_end=5.0, dt=0.1, nfev=nfev, drift=drift) | {
         "energy_max_rel_drift": float(drift / abs(E0)),
         "max_configuration_residual": float(tcon),
         "max_velocity_residual": float(tvcon),
@@ -493,6 +442,4 @@ out = {
         "cases": steady},
     "runtime_s": round(time.time() - T0, 1),
 }
-with open(os.path.join(HERE, "..", "rolling-disc.json"), "w") as fh:
-    json.dump(out, fh, indent=1)
-print(f"wrote rolling_disc.json in {time.time() - T0:.1f} s")
+write_reference(out, "rolling-disc.json", T0)

@@ -88,6 +88,16 @@ fn label(label: &Option<crate::syntax::ast::Label>) -> String {
         .unwrap_or_default()
 }
 
+/// `<kind> <name> "<label>" { options }`.
+fn labelled<K: OptionKey>(
+    kind: &str,
+    name: &crate::syntax::ast::Name,
+    l: &Option<crate::syntax::ast::Label>,
+    entries: &[Opt<K>],
+) -> String {
+    format!("{kind} {}{} {}", name.text, label(l), opts(entries))
+}
+
 fn opts<K: OptionKey>(entries: &[Opt<K>]) -> String {
     let parts: Vec<String> = entries
         .iter()
@@ -126,12 +136,7 @@ pub(crate) fn summary(model: &Model) -> String {
                     .collect();
                 format!("parameters {}", params.join(", "))
             }
-            Item::Body(b) => format!(
-                "body {}{} {}",
-                b.name.text,
-                label(&b.label),
-                opts(&b.options.entries)
-            ),
+            Item::Body(b) => labelled("body", &b.name, &b.label, &b.options.entries),
             Item::Point(p) => format!(
                 "point {}{} in {} at {}",
                 p.name.text,
@@ -140,18 +145,8 @@ pub(crate) fn summary(model: &Model) -> String {
                 p.at
             ),
             Item::Let(l) => format!("let {} = {}", l.name.text, l.value),
-            Item::Force(f) => format!(
-                "force {}{} {}",
-                f.name.text,
-                label(&f.label),
-                opts(&f.options.entries)
-            ),
-            Item::Moment(m) => format!(
-                "moment {}{} {}",
-                m.name.text,
-                label(&m.label),
-                opts(&m.options.entries)
-            ),
+            Item::Force(f) => labelled("force", &f.name, &f.label, &f.options.entries),
+            Item::Moment(m) => labelled("moment", &m.name, &m.label, &m.options.entries),
             Item::Gravity(g) => format!("gravity = {}", g.value),
             Item::Inputs(i) => {
                 let inputs: Vec<String> = i
@@ -200,12 +195,7 @@ pub(crate) fn summary(model: &Model) -> String {
                 label(&c.label),
                 opts(&c.options.entries)
             ),
-            Item::Motion(m) => format!(
-                "motion {}{} {}",
-                m.name.text,
-                label(&m.label),
-                opts(&m.options.entries)
-            ),
+            Item::Motion(m) => labelled("motion", &m.name, &m.label, &m.options.entries),
         };
         let _ = writeln!(out, "{line}");
     }

@@ -1,0 +1,42 @@
+# Preamble shared by the bench/*/run.sh scripts; sourced, not run. Each script
+# starts with
+#
+#   set -euo pipefail
+#   source "$(dirname "${BASH_SOURCE[0]}")/../common.sh"
+#
+# and keeps its own settings (counts, paths of its peers, ...) after that line.
+#
+# Sets:
+#   HERE   absolute path of the folder of the script that sources this file
+#          (bench/<peer>), where it keeps its inputs and writes its results
+#   REPO   absolute path of the repository root
+#   NICE   prefix for every compile and timing run: "nice -n 10" (the machine
+#          may be shared with other jobs)
+#   PY     the Python interpreter: $PYTHON, default python3
+# Defines:
+#   run_report   runs a script's report writer, a Python program read from
+#                stdin (a heredoc), as `$PY - "$HERE"`, so its sys.argv[1] is
+#                HERE; first it exports, beside the script's own BENCH_*
+#                settings, the machine and the commit measured: BENCH_NPROC,
+#                BENCH_RUSTC, BENCH_LOAD and BENCH_DATE (at that moment, after
+#                the runs) and BENCH_GIT.
+
+# BASH_SOURCE[1] is the file that sourced this one.
+[ -n "${BASH_SOURCE[1]:-}" ] || { echo "bench/common.sh: source it from a script" >&2; return 1; }
+HERE="$(cd "$(dirname "${BASH_SOURCE[1]}")" && pwd)"
+REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+NICE="nice -n 10"
+PY="${PYTHON:-python3}"
+
+run_report() {
+  export BENCH_NPROC="$(nproc)"
+  export BENCH_RUSTC="$(cd "$REPO" && rustc --version)"
+  export BENCH_LOAD="$(cat /proc/loadavg)"
+  export BENCH_DATE="$(date -u '+%Y-%m-%d %H:%M UTC')"
+  # Read-only git queries (no index refresh): which autosim was measured.
+  local head_sha dirty
+  head_sha="$(git -C "$REPO" rev-parse --short HEAD 2>/dev/null || echo '?')"
+  dirty="$(git -C "$REPO" --no-optional-locks status --porcelain --untracked-files=no 2>/dev/null | wc -l)"
+  export BENCH_GIT="commit $head_sha, $dirty tracked files with uncommitted changes in the working tree"
+  $PY - "$HERE"
+}

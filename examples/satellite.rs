@@ -181,17 +181,11 @@ fn main() -> Result<(), Box<dyn Error>> {
     println!("Slew maneuver of Sayers (1991), Figures 8-9: classic RK4, h = {H} s, t = 0..15 s");
 
     let mut full_model = Satellite::new(Figure8::default());
-    let full = fly(
-        &mut full_model,
-        |m| m.externs.fire,
-        &progress_bar("satellite.sim (full)"),
-    )?;
+    let bar = progress_bar("satellite.sim (full)");
+    let full = fly(&mut full_model, |m| m.externs.fire, &bar)?;
     let mut small_model = SatelliteSmall::new(Figure8::default());
-    let small = fly(
-        &mut small_model,
-        |m| m.externs.fire,
-        &progress_bar("satellite_small.sim (small)"),
-    )?;
+    let bar = progress_bar("satellite_small.sim (small)");
+    let small = fly(&mut small_model, |m| m.externs.fire, &bar)?;
 
     let files = write_outputs(&folder, &full, &small)?;
     println!();

@@ -8,21 +8,10 @@
 
 use autosim::runtime::integrate::DormandPrince;
 use autosim::runtime::{Model, RunSettings, run};
-use autosim_test_support::load;
+use autosim_test_support::{floats, load};
 
 autosim::model!(file = "examples/models/andrews.sim");
 use andrews::Andrews;
-
-/// The test set's consistent initial state: (β, Θ, γ, Φ, δ, Ω, ε), at rest.
-const Q0: [f64; 7] = [
-    -0.0617138900142764496358948458001,
-    0.0,
-    0.455279819163070380255912382449,
-    0.222668390165885884674473185609,
-    0.487364979543842550225598953530,
-    -0.222668390165885884674473185609,
-    1.23054744454982119249735015568,
-];
 
 /// The test set's names of the angles, in its order.
 const NAMES: [&str; 7] = ["beta", "Theta", "gamma", "Phi", "delta", "Omega", "epsilon"];
@@ -36,10 +25,11 @@ fn slot(k: usize) -> usize {
         .unwrap()
 }
 
-/// Our state at the test set's initial state (the crank's speed last).
+/// Our state at the test set's consistent initial state (its angles in its
+/// order, at rest; the crank's speed last).
 fn initial_state() -> [f64; 8] {
     let mut x = [0.0; 8];
-    for (k, q) in Q0.iter().enumerate() {
+    for (k, q) in floats(&load("andrews")["initial"]["q"]).iter().enumerate() {
         x[slot(k)] = *q;
     }
     x

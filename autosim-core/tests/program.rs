@@ -58,42 +58,39 @@ fn derivatives_mut(p: &mut Program) -> &mut Vec<Stmt> {
     &mut b.stmts
 }
 
+/// What the verifier says of chain-planar-2's program once `edit` has
+/// changed its derivatives block's statements.
+fn verify_edited(edit: impl FnOnce(&mut Vec<Stmt>)) -> String {
+    let mut p = chain_planar_2();
+    edit(derivatives_mut(&mut p));
+    p.verify().expect_err("the edit breaks an invariant")
+}
+
 #[test]
 fn verifier_catches_a_value_read_before_it_is_bound() {
-    let mut p = chain_planar_2();
-    let stmts = derivatives_mut(&mut p);
-    let first_let = stmts
-        .iter()
-        .position(|s| matches!(s, Stmt::Let(_)))
-        .expect("a let");
-    let st = stmts.remove(first_let);
-    stmts.push(st);
-    let e = p.verify().expect_err("a use before the binding");
+    let e = verify_edited(|stmts| {
+        let first_let = stmts.iter().position(|s| matches!(s, Stmt::Let(_)));
+        let st = stmts.remove(first_let.expect("a let"));
+        stmts.push(st);
+    });
     assert!(e.contains("before it is bound"), "{e}");
 }
 
 #[test]
 fn verifier_catches_a_missing_and_a_doubled_store() {
-    let mut p = chain_planar_2();
-    let stmts = derivatives_mut(&mut p);
-    let last = stmts
-        .iter()
-        .rposition(|s| matches!(s, Stmt::Store { .. }))
-        .expect("a store");
-    let st = stmts.remove(last);
-    assert!(
-        p.verify()
-            .expect_err("a slot never written")
-            .contains("never written")
-    );
-    let stmts = derivatives_mut(&mut p);
-    stmts.push(st.clone());
-    stmts.push(st);
-    assert!(
-        p.verify()
-            .expect_err("a slot written twice")
-            .contains("twice")
-    );
+    let last_store = |stmts: &[Stmt]| {
+        let last = stmts.iter().rposition(|s| matches!(s, Stmt::Store { .. }));
+        last.expect("a store")
+    };
+    let e = verify_edited(|stmts| {
+        stmts.remove(last_store(stmts));
+    });
+    assert!(e.contains("never written"), "{e}");
+    let e = verify_edited(|stmts| {
+        let st = stmts[last_store(stmts)].clone();
+        stmts.push(st);
+    });
+    assert!(e.contains("twice"), "{e}");
 }
 
 #[test]

@@ -9,7 +9,7 @@ use autosim_runtime::{
     IntegrationError, Model, ModelError, Observer, RunError, RunSettings, Stepper, run,
 };
 use autosim_test_support::max_diff;
-use common::{Decay, Oscillator, run_recorded, run_unobserved};
+use common::{Decay, Oscillator, run_from_start, run_unobserved};
 
 /// Records every call of `derivatives`: (t, x).
 #[derive(Default)]
@@ -77,11 +77,8 @@ fn euler_and_heun_call_at_their_stage_times() {
 
 #[test]
 fn outputs_land_on_output_times_with_exact_step_counts() {
-    let mut model = Oscillator::default();
-    let mut x = model.initial_state();
-    let mut rk4 = Rk4::new();
     let settings = RunSettings::new(0.0, 1.0, 0.01, 0.1);
-    let (summary, seen) = run_recorded(&mut model, &mut rk4, &mut x, &settings);
+    let (summary, seen, _) = run_from_start(&mut Oscillator::default(), &mut Rk4::new(), &settings);
     let summary = summary.unwrap();
     assert_eq!(summary.steps, 100);
     assert_eq!(summary.evaluations, 400);
@@ -100,13 +97,10 @@ fn outputs_land_on_output_times_with_exact_step_counts() {
 
 #[test]
 fn steps_divide_output_intervals_and_the_last_interval_is_short() {
-    let mut model = Decay { k: 1.0 };
-    let mut x = model.initial_state();
-    let mut rk4 = Rk4::new();
     // 0.1 / 0.03 → 4 steps of 0.025 per interval; the last interval [0.2, 0.25]
     // takes 2 steps of 0.025.
     let settings = RunSettings::new(0.0, 0.25, 0.03, 0.1);
-    let (summary, seen) = run_recorded(&mut model, &mut rk4, &mut x, &settings);
+    let (summary, seen, x) = run_from_start(&mut Decay { k: 1.0 }, &mut Rk4::new(), &settings);
     let summary = summary.unwrap();
     let times: Vec<f64> = seen.iter().map(|output| output.0).collect();
     assert_eq!(times, [0.0, 0.1, 0.2, 0.25]);
@@ -117,11 +111,9 @@ fn steps_divide_output_intervals_and_the_last_interval_is_short() {
 
 #[test]
 fn adaptive_runs_land_on_output_times() {
-    let mut model = Oscillator::default();
-    let mut x = model.initial_state();
     let mut dp = DormandPrince::new(DopriSettings::new(1e-9, 1e-9)).unwrap();
     let settings = RunSettings::new(0.0, 10.0, 0.01, 0.25);
-    let (summary, seen) = run_recorded(&mut model, &mut dp, &mut x, &settings);
+    let (summary, seen, _) = run_from_start(&mut Oscillator::default(), &mut dp, &settings);
     let summary = summary.unwrap();
     assert_eq!(seen.len(), 41);
     let exact = Oscillator::default();

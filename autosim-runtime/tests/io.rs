@@ -64,10 +64,7 @@ fn partial_files_and_integers_are_accepted() {
 
 #[test]
 fn a_misspelled_key_names_the_key_and_the_closest_parameter() {
-    let mut model = VanDerPol {
-        mu: 2.0,
-        stiffness: 1.0,
-    };
+    let mut model = VanDerPol::with_mu(2.0);
     let err = read_parameters(&mut model, "mu = 3.0\nstifness = 4.0\n").unwrap_err();
     assert!(
         matches!(&err, ParameterError::UnknownParameter { key, suggestion: Some("stiffness"), .. } if key == "stifness"),
@@ -155,10 +152,7 @@ fn csv_rows_up_to_a_failure_are_on_disk() {
 
 #[test]
 fn svg_plot_has_labelled_axes_and_a_legend() {
-    let mut model = VanDerPol {
-        mu: 1.0,
-        stiffness: 1.0,
-    };
+    let mut model = VanDerPol::with_mu(1.0);
     let mut x = model.initial_state();
     let mut rec = Recording::<VanDerPol>::new();
     let settings = RunSettings::new(0.0, 10.0, 0.01, 0.05);

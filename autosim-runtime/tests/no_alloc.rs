@@ -81,10 +81,7 @@ fn steppers_and_driver_do_not_allocate() {
             0.01,
         );
         run_quietly(
-            VanDerPol {
-                mu: 100.0,
-                stiffness: 1.0,
-            },
+            VanDerPol::with_mu(100.0),
             Sdirk3::new(SdirkSettings::default()),
             0.01,
         );

@@ -6,7 +6,7 @@ mod common;
 use autosim_runtime::integrate::{Analytic, Rk4, Sdirk3, SdirkSettings};
 use autosim_runtime::{IntegrationError, Model, ModelError, RunError, RunSettings, Stepper};
 use autosim_test_support::max_diff;
-use common::{StiffLinear, VanDerPol, run_recorded, run_unobserved};
+use common::{StiffLinear, VanDerPol, run_from_start, run_unobserved};
 
 /// Runs `stepper` on the stiff linear system over [0, 1] with step `h`.
 fn stiff_run<S: Stepper<StiffLinear>>(
@@ -52,11 +52,9 @@ fn rk4_at_a_huge_step_stops_with_a_named_non_finite_state() {
 
 #[test]
 fn rk4_failure_leaves_the_last_finite_state() {
-    let mut model = StiffLinear::default();
-    let mut x = model.initial_state();
-    let mut rk4 = Rk4::new();
     let settings = RunSettings::new(0.0, 1.0, 0.01, 0.01);
-    let (result, outputs) = run_recorded(&mut model, &mut rk4, &mut x, &settings);
+    let (result, outputs, x) =
+        run_from_start(&mut StiffLinear::default(), &mut Rk4::new(), &settings);
     let err = result.unwrap_err();
     assert!(matches!(
         err,
@@ -98,10 +96,7 @@ fn analytic_jacobian_matches_finite_differences_with_fewer_evaluations() {
 fn sdirk_handles_stiff_van_der_pol() {
     // μ = 1000: the relaxation oscillation is stiff (a fast eigenvalue near
     // −μ(x² − 1) ≈ −3000), and from x = 2 the solution follows the slow manifold.
-    let mut model = VanDerPol {
-        mu: 1000.0,
-        stiffness: 1.0,
-    };
+    let mut model = VanDerPol::with_mu(1000.0);
     let mut x = model.initial_state();
     let mut sdirk = Sdirk3::new(SdirkSettings::default());
     let settings = RunSettings::new(0.0, 100.0, 0.05, 10.0);

@@ -124,12 +124,18 @@ inline void torque(const VectorXd &q, const VectorXd &v, VectorXd &tau) {
   tau.noalias() = -kStiff * q - kDamp * v;
 }
 
-struct AbaCall {
+// What each forward-dynamics call below holds: the model, its data and a
+// torque buffer.
+struct CallState {
   const Model &model;
   Data &data;
   VectorXd tau;
+  CallState(const Model &m, Data &d) : model(m), data(d), tau(m.nv) {}
+};
+
+struct AbaCall : CallState {
+  using CallState::CallState;
   static const char *name() { return "aba"; }
-  AbaCall(const Model &m, Data &d) : model(m), data(d), tau(m.nv) {}
   void operator()(const VectorXd &q, const VectorXd &v, VectorXd &xdot) {
     const int n = model.nv;
     torque(q, v, tau);
@@ -139,12 +145,9 @@ struct AbaCall {
   }
 };
 
-struct CrbaCholCall {
-  const Model &model;
-  Data &data;
-  VectorXd tau;
+struct CrbaCholCall : CallState {
+  using CallState::CallState;
   static const char *name() { return "crba-chol"; }
-  CrbaCholCall(const Model &m, Data &d) : model(m), data(d), tau(m.nv) {}
   void operator()(const VectorXd &q, const VectorXd &v, VectorXd &xdot) {
     const int n = model.nv;
     torque(q, v, tau);

@@ -32,21 +32,27 @@ fn slew_settings(step: f64) -> RunSettings<f64> {
     RunSettings::new(0.0, STOP, step, STOP).with_max_steps(100_000_000)
 }
 
+/// A model of the slew made by `new` with the paper's thruster logic, and
+/// its initial state.
+fn at_start<M: Model>(new: fn(Figure8) -> M) -> (M, M::State) {
+    let m = new(Figure8::new());
+    let x = m.initial_state();
+    (m, x)
+}
+
 /// Roll, pitch, yaw at the end and the derivative evaluations, the
 /// thrusters in the derivatives.
 pub fn in_derivatives<S: Stepper<Satellite<Figure8>>>(
     mut stepper: S,
     step: f64,
 ) -> ([f64; 3], u64) {
-    let mut m = Satellite::new(Figure8::new());
-    let mut x = m.initial_state();
-    let settings = slew_settings(step);
+    let (mut m, mut x) = at_start(Satellite::new);
     let mut end = [0.0; 3];
     let summary = run(
         &mut m,
         &mut stepper,
         &mut x,
-        &settings,
+        &slew_settings(step),
         &mut |_t, _x: &[f64; 20], y: &[f64; 6]| {
             end = [y[0], y[1], y[2]];
         },
@@ -61,9 +67,7 @@ pub fn sampled<S: Stepper<SatelliteSampled<Figure8>>>(
     mut stepper: S,
     step: f64,
 ) -> ([f64; 3], u64) {
-    let mut m = SatelliteSampled::new(Figure8::new());
-    let mut x = m.initial_state();
-    let settings = slew_settings(step);
+    let (mut m, mut x) = at_start(SatelliteSampled::new);
     let mut logic = Figure8::new();
     let mut controller = |t: f64, _x: &[f64; 20], y: &[f64; 9], w: &mut [f64]| {
         for axis in 0..3 {
@@ -75,7 +79,7 @@ pub fn sampled<S: Stepper<SatelliteSampled<Figure8>>>(
         &mut m,
         &mut stepper,
         &mut x,
-        &settings,
+        &slew_settings(step),
         0.01,
         &mut controller,
         &mut |_t, _x: &[f64; 20], y: &[f64; 9]| {

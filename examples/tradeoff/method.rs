@@ -117,24 +117,13 @@ where
     M: Model<State = [<M as Model>::Float; N]>,
 {
     let f = <M::Float as Float>::from_f64;
+    let abm = AdamsBashforthMoulton::new;
     match method {
         Method::Euler => go(model, &mut Euler::new(), x0, t_end, setting),
         Method::Heun => go(model, &mut Heun::new(), x0, t_end, setting),
         Method::Rk4 => go(model, &mut Rk4::new(), x0, t_end, setting),
-        Method::Abm2 => go(
-            model,
-            &mut AdamsBashforthMoulton::new(AbmOrder::Two),
-            x0,
-            t_end,
-            setting,
-        ),
-        Method::Abm4 => go(
-            model,
-            &mut AdamsBashforthMoulton::new(AbmOrder::Four),
-            x0,
-            t_end,
-            setting,
-        ),
+        Method::Abm2 => go(model, &mut abm(AbmOrder::Two), x0, t_end, setting),
+        Method::Abm4 => go(model, &mut abm(AbmOrder::Four), x0, t_end, setting),
         Method::Dopri => match DormandPrince::with_tolerances(f(setting), f(setting)) {
             Ok(mut dopri) => go(model, &mut dopri, x0, t_end, 1e-3),
             Err(e) => Outcome {
@@ -145,13 +134,10 @@ where
                 failure: Some(e),
             },
         },
-        Method::Sdirk3 => go(
-            model,
-            &mut Sdirk3::<M, N>::new(SdirkSettings::default()),
-            x0,
-            t_end,
-            setting,
-        ),
+        Method::Sdirk3 => {
+            let mut sdirk = Sdirk3::<M, N>::new(SdirkSettings::default());
+            go(model, &mut sdirk, x0, t_end, setting)
+        }
     }
 }
 

@@ -372,6 +372,9 @@ struct Parser<'a> {
     arena: &'a mut Arena,
 }
 
+/// A binary operation of the arena, joining two operands.
+type Join = fn(&mut Arena, ExprId, ExprId) -> ExprId;
+
 impl Parser<'_> {
     fn peek_op(&self, c: char) -> bool {
         self.tokens.get(self.pos) == Some(&Tok::Op(c))
@@ -399,7 +402,7 @@ impl Parser<'_> {
     fn left_assoc(
         &mut self,
         operand: fn(&mut Self) -> Result<ExprId, String>,
-        operators: [(char, fn(&mut Arena, ExprId, ExprId) -> ExprId); 2],
+        operators: [(char, Join); 2],
     ) -> Result<ExprId, String> {
         let mut acc = operand(self)?;
         while let Some(&(_, join)) = operators.iter().find(|(op, _)| self.peek_op(*op)) {

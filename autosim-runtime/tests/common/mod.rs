@@ -29,8 +29,7 @@ impl Oscillator {
 
 impl Model for Oscillator {
     autosim_test_support::model_header!(f64, "Oscillator", states: ["x" in "m", "v" in "m/s"], outputs: 1);
-    const PARAMETER_NAMES: &'static [&'static str] = &["omega", "mass"];
-    const PARAMETER_UNITS: &'static [&'static str] = &["rad/s", "kg"];
+    autosim_test_support::model_parameters!(omega in "rad/s", mass in "kg");
     const OUTPUT_NAMES: &'static [&'static str] = &["energy"];
     const OUTPUT_UNITS: &'static [&'static str] = &["J"];
 
@@ -43,14 +42,6 @@ impl Model for Oscillator {
         let k = self.mass * self.omega * self.omega;
         y[0] = 0.5 * self.mass * x[1] * x[1] + 0.5 * k * x[0] * x[0];
         Ok(())
-    }
-    fn parameter_values(&self, values: &mut [f64]) {
-        values[0] = self.omega;
-        values[1] = self.mass;
-    }
-    fn set_parameter_values(&mut self, values: &[f64]) {
-        self.omega = values[0];
-        self.mass = values[1];
     }
     fn initial_state(&self) -> [f64; 2] {
         [1.0, 0.0]
@@ -65,18 +56,11 @@ pub struct Decay {
 
 impl Model for Decay {
     autosim_test_support::model_header!(f64, "Decay", states: ["x" in "1"], outputs: 0);
-    const PARAMETER_NAMES: &'static [&'static str] = &["k"];
-    const PARAMETER_UNITS: &'static [&'static str] = &["1/s"];
+    autosim_test_support::model_parameters!(k in "1/s");
 
     fn derivatives(&mut self, _t: f64, x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
         dx[0] = -self.k * x[0];
         Ok(())
-    }
-    fn parameter_values(&self, values: &mut [f64]) {
-        values[0] = self.k;
-    }
-    fn set_parameter_values(&mut self, values: &[f64]) {
-        self.k = values[0];
     }
     fn initial_state(&self) -> [f64; 1] {
         [1.0]
@@ -138,10 +122,16 @@ pub struct VanDerPol {
     pub stiffness: f64,
 }
 
+impl VanDerPol {
+    /// Damping `mu`, stiffness 1 (x'' = μ(1 − x²)x' − x).
+    pub fn with_mu(mu: f64) -> Self {
+        VanDerPol { mu, stiffness: 1.0 }
+    }
+}
+
 impl Model for VanDerPol {
     autosim_test_support::model_header!(f64, "VanDerPol", states: ["x" in "1", "v" in "1/s"], outputs: 1);
-    const PARAMETER_NAMES: &'static [&'static str] = &["mu", "stiffness"];
-    const PARAMETER_UNITS: &'static [&'static str] = &["1", "1/s2"];
+    autosim_test_support::model_parameters!(mu in "1", stiffness in "1/s2");
     const OUTPUT_NAMES: &'static [&'static str] = &["x_squared"];
     const OUTPUT_UNITS: &'static [&'static str] = &["1"];
 
@@ -153,14 +143,6 @@ impl Model for VanDerPol {
     fn outputs(&mut self, _t: f64, x: &[f64; 2], y: &mut [f64; 1]) -> Result<(), ModelError> {
         y[0] = x[0] * x[0];
         Ok(())
-    }
-    fn parameter_values(&self, values: &mut [f64]) {
-        values[0] = self.mu;
-        values[1] = self.stiffness;
-    }
-    fn set_parameter_values(&mut self, values: &[f64]) {
-        self.mu = values[0];
-        self.stiffness = values[1];
     }
     fn initial_state(&self) -> [f64; 2] {
         [2.0, 0.0]
@@ -258,4 +240,16 @@ pub fn run_recorded<M: Model, S: Stepper<M> + ?Sized>(
         },
     );
     (result, outputs)
+}
+
+/// [`run_recorded`] from the model's initial state: the result, every
+/// output and the last state.
+pub fn run_from_start<M: Model, S: Stepper<M> + ?Sized>(
+    model: &mut M,
+    stepper: &mut S,
+    settings: &RunSettings<M::Float>,
+) -> (RunResult<M>, Vec<Output<M>>, M::State) {
+    let mut x = model.initial_state();
+    let (result, outputs) = run_recorded(model, stepper, &mut x, settings);
+    (result, outputs, x)
 }

@@ -253,7 +253,7 @@ def main():
 
     print(f"|g(q0)| = {np.max(np.abs(constraints(Q0))):.2e}")
     w0, lam0 = accelerations(Q0, np.zeros(7))
-    out["initial"] = {"w": w0.tolist(), "lambda": lam0.tolist()}
+    out["initial"] = {"q": Q0.tolist(), "w": w0.tolist(), "lambda": lam0.tolist()}
     print("initial accelerations and multipliers:")
     for k in range(7):
         pub = W0_PUB.get(k, 0.0)

@@ -73,6 +73,32 @@ macro_rules! model_header {
     };
 }
 
+/// The parameters of a hand-written test model, `f64` fields of it, with
+/// their units: `PARAMETER_NAMES`, `PARAMETER_UNITS`, `parameter_values`
+/// and `set_parameter_values` of its `Model` implementation.
+///
+/// ```ignore
+/// autosim_test_support::model_parameters!(omega in "rad/s", mass in "kg");
+/// ```
+#[macro_export]
+macro_rules! model_parameters {
+    ($($p:ident in $u:literal),* $(,)?) => {
+        const PARAMETER_NAMES: &'static [&'static str] = &[$(stringify!($p)),*];
+        const PARAMETER_UNITS: &'static [&'static str] = &[$($u),*];
+        fn parameter_values(&self, values: &mut [f64]) {
+            for (v, p) in values.iter_mut().zip([$(self.$p),*]) {
+                *v = p;
+            }
+        }
+        fn set_parameter_values(&mut self, values: &[f64]) {
+            let mut values = values.iter();
+            $(if let Some(v) = values.next() {
+                self.$p = *v;
+            })*
+        }
+    };
+}
+
 /// Models from one `.sim` file (a path relative to the calling crate),
 /// each under its own name with its scene options, as `autosim::model!`
 /// takes them:

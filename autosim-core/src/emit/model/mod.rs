@@ -9,7 +9,7 @@ mod structs;
 
 use super::block::BlockEmitter;
 use super::expr::{Locals, float_type, ident};
-use crate::opt::{BlockKind, Ops, Program, Quantity, StateVar};
+use crate::opt::{BlockKind, Interface, Ops, Program, Quantity, StateVar};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
@@ -353,11 +353,7 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
     let n = prog.n();
     let n_lit = Literal::usize_unsuffixed(n);
     let n_states = Literal::usize_unsuffixed(prog.states().len());
-    let (generics, struct_generics, where_clause) = if i.has_externs() {
-        (quote!(<E: Externs>), quote!(<E>), quote!(where E: Externs))
-    } else {
-        (quote!(), quote!(), quote!())
-    };
+    let [generics, struct_generics, where_clause] = impl_generics(i);
     let new_fn = constructors(i);
     let ops: Vec<TokenStream> = prog
         .blocks
@@ -510,6 +506,16 @@ fn by_index(fields: &[Quantity], place: &TokenStream) -> (TokenStream, TokenStre
     )
 }
 
+/// The generics of an impl of the model type, `[<E: Externs>, <E>, where
+/// E: Externs]` when the model calls user code, empty otherwise.
+fn impl_generics(i: &Interface) -> [TokenStream; 3] {
+    if i.has_externs() {
+        [quote!(<E: Externs>), quote!(<E>), quote!(where E: Externs)]
+    } else {
+        Default::default()
+    }
+}
+
 /// `impl Model for <Model>`.
 fn model_trait_impl(be: &BlockEmitter<'_>) -> TokenStream {
     let prog = be.prog;
@@ -519,11 +525,7 @@ fn model_trait_impl(be: &BlockEmitter<'_>) -> TokenStream {
     let model_ty = ident(&i.name);
     let n_states = Literal::usize_unsuffixed(prog.states().len());
     let n_out = Literal::usize_unsuffixed(i.outputs.len());
-    let (generics, struct_generics, where_clause) = if i.has_externs() {
-        (quote!(<E: Externs>), quote!(<E>), quote!(where E: Externs))
-    } else {
-        (quote!(), quote!(), quote!())
-    };
+    let [generics, struct_generics, where_clause] = impl_generics(i);
     let names = name_lists(i);
     let (p_get, p_set) = parameter_access(i, be.locals);
     let inputs = input_access(i);

@@ -381,20 +381,20 @@ fn print_operations() {
     println!(
         "Operations of the generated code (adds + multiplies + divides + functions; user calls):"
     );
-    let full_ops = Ops {
-        derivatives: Satellite::<Figure8>::DERIVATIVE_OPS,
-        outputs: Satellite::<Figure8>::OUTPUT_OPS,
-        constants: Satellite::<Figure8>::CONSTANT_OPS,
-        mass_matrix: Satellite::<Figure8>::MASS_MATRIX_OPS,
-        forcing: Satellite::<Figure8>::FORCING_OPS,
-    };
-    let small_ops = Ops {
-        derivatives: SatelliteSmall::<Figure8>::DERIVATIVE_OPS,
-        outputs: SatelliteSmall::<Figure8>::OUTPUT_OPS,
-        constants: SatelliteSmall::<Figure8>::CONSTANT_OPS,
-        mass_matrix: SatelliteSmall::<Figure8>::MASS_MATRIX_OPS,
-        forcing: SatelliteSmall::<Figure8>::FORCING_OPS,
-    };
+    // The counts are constants of each generated model type.
+    macro_rules! ops_of {
+        ($model:ty) => {
+            Ops {
+                derivatives: <$model>::DERIVATIVE_OPS,
+                outputs: <$model>::OUTPUT_OPS,
+                constants: <$model>::CONSTANT_OPS,
+                mass_matrix: <$model>::MASS_MATRIX_OPS,
+                forcing: <$model>::FORCING_OPS,
+            }
+        };
+    }
+    let full_ops = ops_of!(Satellite<Figure8>);
+    let small_ops = ops_of!(SatelliteSmall<Figure8>);
     let ops = |o: OpCount| {
         format!(
             "{}+{}+{}+{}; {}",

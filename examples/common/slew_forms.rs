@@ -47,18 +47,11 @@ pub fn in_derivatives<S: Stepper<Satellite<Figure8>>>(
     step: f64,
 ) -> ([f64; 3], u64) {
     let (mut m, mut x) = at_start(Satellite::new);
+    let settings = slew_settings(step);
     let mut end = [0.0; 3];
-    let summary = run(
-        &mut m,
-        &mut stepper,
-        &mut x,
-        &slew_settings(step),
-        &mut |_t, _x: &[f64; 20], y: &[f64; 6]| {
-            end = [y[0], y[1], y[2]];
-        },
-    )
-    .expect("the slew runs");
-    (end, summary.evaluations)
+    let mut keep_attitude = |_t, _x: &[f64; 20], y: &[f64; 6]| end = [y[0], y[1], y[2]];
+    let summary = run(&mut m, &mut stepper, &mut x, &settings, &mut keep_attitude);
+    (end, summary.expect("the slew runs").evaluations)
 }
 
 /// The same, the thruster logic sampled at 100 Hz (thrust held between

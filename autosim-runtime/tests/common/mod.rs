@@ -28,10 +28,8 @@ impl Oscillator {
 }
 
 impl Model for Oscillator {
-    autosim_test_support::model_header!(f64, "Oscillator", states: ["x" in "m", "v" in "m/s"], outputs: 1);
+    autosim_test_support::model_header!(f64, "Oscillator", states: ["x" in "m", "v" in "m/s"], outputs: ["energy" in "J"]);
     autosim_test_support::model_parameters!(omega in "rad/s", mass in "kg");
-    const OUTPUT_NAMES: &'static [&'static str] = &["energy"];
-    const OUTPUT_UNITS: &'static [&'static str] = &["J"];
 
     fn derivatives(&mut self, _t: f64, x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
         dx[0] = x[1];
@@ -130,10 +128,8 @@ impl VanDerPol {
 }
 
 impl Model for VanDerPol {
-    autosim_test_support::model_header!(f64, "VanDerPol", states: ["x" in "1", "v" in "1/s"], outputs: 1);
+    autosim_test_support::model_header!(f64, "VanDerPol", states: ["x" in "1", "v" in "1/s"], outputs: ["x_squared" in "1"]);
     autosim_test_support::model_parameters!(mu in "1", stiffness in "1/s2");
-    const OUTPUT_NAMES: &'static [&'static str] = &["x_squared"];
-    const OUTPUT_UNITS: &'static [&'static str] = &["1"];
 
     fn derivatives(&mut self, _t: f64, x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
         dx[0] = x[1];

@@ -47,7 +47,8 @@ pub fn kinetic_energy<const N: usize>(mass: &[[f64; N]; N], u: &[f64]) -> f64 {
 }
 
 /// The associated types, name and state names of a hand-written model,
-/// inside its `impl Model` (the other lists default to empty):
+/// inside its `impl Model` (the other lists default to empty); `outputs`
+/// is their number, or their names and units (`["energy" in "J"]`):
 ///
 /// ```
 /// use autosim_runtime::{Model, ModelError};
@@ -63,7 +64,12 @@ pub fn kinetic_energy<const N: usize>(mass: &[[f64; N]; N], u: &[f64]) -> f64 {
 /// ```
 #[macro_export]
 macro_rules! model_header {
-    ($f:ty, $name:literal, states: [$($s:literal in $u:literal),* $(,)?], outputs: $n:literal) => {
+    ($f:ty, $name:literal, states: [$($s:literal in $u:literal),* $(,)?], outputs: [$($o:literal in $ou:literal),* $(,)?]) => {
+        $crate::model_header!($f, $name, states: [$($s in $u),*], outputs: [$($o),*].len());
+        const OUTPUT_NAMES: &'static [&'static str] = &[$($o),*];
+        const OUTPUT_UNITS: &'static [&'static str] = &[$($ou),*];
+    };
+    ($f:ty, $name:literal, states: [$($s:literal in $u:literal),* $(,)?], outputs: $n:expr) => {
         type Float = $f;
         type State = [$f; [$($s),*].len()];
         type Outputs = [$f; $n];

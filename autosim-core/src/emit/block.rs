@@ -27,12 +27,19 @@ pub enum Target<'a> {
 /// Blocks with more bound values than this compute sines and cosines by
 /// `math::sin_cos_inline` (no branch on the angle) instead of libm's
 /// `sincos`, whose branches, mispredicted at random angles, discard the
-/// work a big block has in flight. Measured on `bench/peers` at random
-/// states: chain-spatial-50 2 773 → 2 468 ns, chain-planar-50 1 590 →
-/// 1 330 ns (1 685 values); at 635-713 values (chain-planar-20,
-/// chain-spatial-10) within 2 %; smaller blocks are faster with libm's
-/// shorter path (chain-planar-5 87.5 ns against 99.8).
-pub const MIN_VALUES_FOR_INLINE_SINES: usize = 1000;
+/// work a block has in flight. Measured on `bench/peers` at random
+/// states. On a 2-vCPU AMD EPYC: chain-spatial-50 2 773 → 2 468 ns,
+/// chain-planar-50 1 590 → 1 330 ns (1 685 values), at 635-713 values
+/// (chain-planar-20, chain-spatial-10) within 2 %, chain-planar-5 faster
+/// with libm's shorter path (87.5 ns against 99.8). On a 2-vCPU Intel Xeon
+/// (AVX-512): chain-planar-20 (697 values) 511 → 430 ns, chain-spatial-10
+/// (745) 288 → 270, chain-spatial-20 (its shared block, 611) 707 → 642;
+/// chain-planar-10 (317) gains too (215 → 192) but chain-spatial-2 loses
+/// (20 → 23), and at a threshold of 250 chain-spatial-20's two
+/// formulations moved apart from 6e-13 to 1.2e-12 (`tests/formulation.rs`
+/// holds them to 1e-12: the sines differ by up to one unit in the last
+/// place, and a 20-link chain amplifies that).
+pub const MIN_VALUES_FOR_INLINE_SINES: usize = 600;
 
 /// The array index of each bound value of a block with more than
 /// [`MAX_LETS_IN_FUNCTION`] of them (none otherwise).

@@ -131,14 +131,18 @@ struct CallState {
   Data &data;
   VectorXd tau;
   CallState(const Model &m, Data &d) : model(m), data(d), tau(m.nv) {}
+  // Sets tau for (q, v); the number of speeds.
+  int begin(const VectorXd &q, const VectorXd &v) {
+    torque(q, v, tau);
+    return model.nv;
+  }
 };
 
 struct AbaCall : CallState {
   using CallState::CallState;
   static const char *name() { return "aba"; }
   void operator()(const VectorXd &q, const VectorXd &v, VectorXd &xdot) {
-    const int n = model.nv;
-    torque(q, v, tau);
+    const int n = begin(q, v);
     pinocchio::aba(model, data, CRef(q), CRef(v), CRef(tau));
     xdot.head(n) = v;
     xdot.tail(n) = data.ddq;
@@ -149,8 +153,7 @@ struct CrbaCholCall : CallState {
   using CallState::CallState;
   static const char *name() { return "crba-chol"; }
   void operator()(const VectorXd &q, const VectorXd &v, VectorXd &xdot) {
-    const int n = model.nv;
-    torque(q, v, tau);
+    const int n = begin(q, v);
     pinocchio::crba(model, data, CRef(q));                     // upper triangle of M(q)
     pinocchio::nonLinearEffects(model, data, CRef(q), CRef(v)); // b(q, v) = C(q, v) v + g(q)
     pinocchio::cholesky::decompose(model, data);    // M = U D U^T

@@ -173,43 +173,48 @@ mod tests {
         assert_eq!(count("2.5f").total(), 0);
     }
 
-    #[test]
-    fn sums_and_subtractions() {
-        assert_eq!(count("a + b"), ops(1, 0, 0, 0, 0));
-        assert_eq!(count("a - b + c - d"), ops(3, 0, 0, 0, 0));
-        // -(a + b) is a negated sum: the negation is free.
-        assert_eq!(count("-a - b"), ops(1, 0, 0, 0, 0));
-        assert_eq!(count("1 + a"), ops(1, 0, 0, 0, 0));
-    }
+    /// Each text and its counts `[adds, muls, divs, funcs, pows]`.
+    const COUNTS: &[(&str, [usize; 5])] = &[
+        // Sums and subtractions; -(a + b) is a negated sum: the negation is free.
+        ("a + b", [1, 0, 0, 0, 0]),
+        ("a - b + c - d", [3, 0, 0, 0, 0]),
+        ("-a - b", [1, 0, 0, 0, 0]),
+        ("1 + a", [1, 0, 0, 0, 0]),
+        // Products, coefficients and divisions.
+        ("a*b*c", [0, 2, 0, 0, 0]),
+        ("-a*b", [0, 1, 0, 0, 0]),
+        ("3*a", [0, 1, 0, 0, 0]),
+        ("3*a*b", [0, 2, 0, 0, 0]),
+        ("-a", [0, 0, 0, 0, 0]),
+        ("a/b", [0, 0, 1, 0, 0]),
+        ("a*b/c", [0, 1, 1, 0, 0]),
+        ("a/(b*c)", [0, 0, 2, 0, 0]),
+        ("3*a/b", [0, 1, 1, 0, 0]),
+        ("1/b", [0, 0, 1, 0, 0]),
+        ("-1/b", [0, 0, 1, 0, 0]),
+        ("1/(a*b)", [0, 1, 1, 0, 0]),
+        ("a/2", [0, 1, 0, 0, 0]),
+        // Powers and functions.
+        ("x^2", [0, 0, 0, 0, 1]),
+        ("x^-2", [0, 0, 0, 0, 1]),
+        ("sqrt(x)", [0, 0, 0, 1, 0]),
+        ("1/sqrt(x)", [0, 0, 1, 1, 0]),
+        ("x^(1/3)", [0, 0, 0, 0, 1]),
+        ("x^y", [0, 0, 0, 0, 1]),
+        ("sin(x)", [0, 0, 0, 1, 0]),
+        ("atan2(y, x + 1)", [1, 0, 0, 1, 0]),
+        ("a*sin(x)^2", [0, 1, 0, 1, 1]),
+    ];
 
     #[test]
-    fn products_coefficients_and_divisions() {
-        assert_eq!(count("a*b*c"), ops(0, 2, 0, 0, 0));
-        assert_eq!(count("-a*b"), ops(0, 1, 0, 0, 0));
-        assert_eq!(count("3*a"), ops(0, 1, 0, 0, 0));
-        assert_eq!(count("3*a*b"), ops(0, 2, 0, 0, 0));
-        assert_eq!(count("-a"), ops(0, 0, 0, 0, 0));
-        assert_eq!(count("a/b"), ops(0, 0, 1, 0, 0));
-        assert_eq!(count("a*b/c"), ops(0, 1, 1, 0, 0));
-        assert_eq!(count("a/(b*c)"), ops(0, 0, 2, 0, 0));
-        assert_eq!(count("3*a/b"), ops(0, 1, 1, 0, 0));
-        assert_eq!(count("1/b"), ops(0, 0, 1, 0, 0));
-        assert_eq!(count("-1/b"), ops(0, 0, 1, 0, 0));
-        assert_eq!(count("1/(a*b)"), ops(0, 1, 1, 0, 0));
-        assert_eq!(count("a/2"), ops(0, 1, 0, 0, 0));
-    }
-
-    #[test]
-    fn powers_and_functions() {
-        assert_eq!(count("x^2"), ops(0, 0, 0, 0, 1));
-        assert_eq!(count("x^-2"), ops(0, 0, 0, 0, 1));
-        assert_eq!(count("sqrt(x)"), ops(0, 0, 0, 1, 0));
-        assert_eq!(count("1/sqrt(x)"), ops(0, 0, 1, 1, 0));
-        assert_eq!(count("x^(1/3)"), ops(0, 0, 0, 0, 1));
-        assert_eq!(count("x^y"), ops(0, 0, 0, 0, 1));
-        assert_eq!(count("sin(x)"), ops(0, 0, 0, 1, 0));
-        assert_eq!(count("atan2(y, x + 1)"), ops(1, 0, 0, 1, 0));
-        assert_eq!(count("a*sin(x)^2"), ops(0, 1, 0, 1, 1));
+    fn sums_products_powers_and_functions() {
+        for (text, [adds, muls, divs, funcs, pows]) in COUNTS {
+            assert_eq!(
+                count(text),
+                ops(*adds, *muls, *divs, *funcs, *pows),
+                "{text}"
+            );
+        }
     }
 
     #[test]

@@ -186,7 +186,7 @@ impl BlockEmitter<'_> {
         let in_constants = matches!(target, Target::Constants(_));
         let Locals { x, dx, p, c, .. } = self.locals;
         let mut out = TokenStream::new();
-        if !in_constants && block.leaves.iter().any(|l| matches!(l, Leaf::Param(_))) {
+        if !in_constants && block.reads_parameters() {
             out.extend(quote!(let #p = &self.parameters;));
         }
         if hoisted && !block.hoisted.is_empty() {
@@ -237,10 +237,7 @@ impl BlockEmitter<'_> {
     /// arguments `shared_terms` takes).
     pub fn shared_reads(&self) -> (bool, bool) {
         match self.prog.try_block(BlockKind::Common) {
-            Some(b) => (
-                b.leaves.contains(&Leaf::Time),
-                b.leaves.iter().any(|l| matches!(l, Leaf::State(_))),
-            ),
+            Some(b) => (b.reads_time(), b.reads_state()),
             None => (false, false),
         }
     }

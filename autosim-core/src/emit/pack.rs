@@ -45,10 +45,10 @@ fn short_elements_after<'a>(lines: &[&'a str], open: usize) -> Option<Vec<&'a st
         return None;
     }
     let outer = indentation(lines[open]);
-    let inner = format!("{outer}    ");
+    let (inner, close) = (format!("{outer}    "), format!("{outer}]"));
     let mut elements = Vec::new();
     for line in &lines[open + 1..] {
-        if line.starts_with(&format!("{outer}]")) {
+        if line.starts_with(&close) {
             return (elements.len() > 1).then_some(elements);
         }
         let element = line.strip_prefix(&inner)?.strip_suffix(',')?;

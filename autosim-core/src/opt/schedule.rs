@@ -145,6 +145,23 @@ pub struct Block {
     pub ops: Ops,
 }
 
+impl Block {
+    /// Whether the block reads the time.
+    pub fn reads_time(&self) -> bool {
+        self.leaves.contains(&Leaf::Time)
+    }
+
+    /// Whether the block reads a state.
+    pub fn reads_state(&self) -> bool {
+        self.leaves.iter().any(|l| matches!(l, Leaf::State(_)))
+    }
+
+    /// Whether the block reads a parameter.
+    pub fn reads_parameters(&self) -> bool {
+        self.leaves.iter().any(|l| matches!(l, Leaf::Param(_)))
+    }
+}
+
 /// How to schedule a block.
 #[derive(Clone, Copy)]
 pub struct Options<'a> {

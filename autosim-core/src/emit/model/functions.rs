@@ -4,7 +4,7 @@
 
 use crate::emit::block::{BlockEmitter, Target};
 use crate::emit::expr::Locals;
-use crate::opt::{Block, BlockKind, Leaf, MassLayout, Ops, Program, Stmt};
+use crate::opt::{Block, BlockKind, MassLayout, Ops, Program, Stmt};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
@@ -13,14 +13,6 @@ use quote::quote;
 pub(super) struct Args {
     pub t: TokenStream,
     pub x: TokenStream,
-}
-
-fn uses_time(b: &Block) -> bool {
-    b.leaves.contains(&Leaf::Time)
-}
-
-fn reads_state(b: &Block) -> bool {
-    b.leaves.iter().any(|l| matches!(l, Leaf::State(_)))
 }
 
 /// `t`/`_` and `x`/`_` for the function of a block (the outputs take both
@@ -35,12 +27,12 @@ pub(super) fn args(prog: &Program, kind: BlockKind, locals: &Locals) -> Args {
     let need = kind == BlockKind::Outputs && prog.outputs_need_derivatives;
     let lx = &locals.x;
     Args {
-        t: if uses_time(b) || uses_time(shared) || need {
+        t: if b.reads_time() || shared.reads_time() || need {
             quote!(t)
         } else {
             quote!(_)
         },
-        x: if reads_state(b) || reads_state(shared) || need {
+        x: if b.reads_state() || shared.reads_state() || need {
             quote!(#lx)
         } else {
             quote!(_)
@@ -228,17 +220,12 @@ fn constants_new(be: &BlockEmitter<'_>, block: &Block) -> TokenStream {
     let n = Literal::usize_unsuffixed(be.prog.hoisted.len());
     let body = be.emit(block, false, Target::Constants(lc));
     let body = quote!(let mut #lc = [0.0; #n]; #body Constants { p: #lc });
-    if reads_parameters(block) {
+    if block.reads_parameters() {
         let lp = &be.locals.p;
         quote!(let #lp = parameters; #body)
     } else {
         body
     }
-}
-
-/// Whether a block reads a parameter.
-pub(super) fn reads_parameters(block: &Block) -> bool {
-    block.leaves.iter().any(|l| matches!(l, Leaf::Param(_)))
 }
 
 /// The constant reporting the cost of a block's function, if it has one:

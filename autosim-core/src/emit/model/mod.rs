@@ -156,7 +156,7 @@ fn constants_struct(be: &BlockEmitter<'_>) -> TokenStream {
     let ty = float_type(be.float);
     let n = Literal::usize_unsuffixed(be.prog.hoisted.len());
     let body = functions::body(be, BlockKind::Constants);
-    let param = if functions::reads_parameters(be.prog.block(BlockKind::Constants)) {
+    let param = if be.prog.block(BlockKind::Constants).reads_parameters() {
         quote!(parameters)
     } else {
         quote!(_parameters)

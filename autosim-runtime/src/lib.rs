@@ -131,5 +131,6 @@ pub use run::{Controller, Observer, RunError, RunSettings, RunSummary, run, run_
 /// Items used by generated code. Not a public API: it may change without notice.
 #[doc(hidden)]
 pub mod __private {
+    pub use crate::float::MulAdd;
     pub use crate::float::math;
 }

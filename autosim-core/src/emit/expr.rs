@@ -8,6 +8,9 @@ use crate::opt::{Ir, Leaf, Nid, Op, Program};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 use rustc_hash::FxHashMap;
+use std::cell::RefCell;
+
+mod sum;
 
 /// An identifier from a model name (raw identifiers kept raw; anything that
 /// is not an identifier is sanitized, never a panic).
@@ -230,6 +233,9 @@ pub struct ExprPrinter<'a> {
     /// Bound values kept in the local array `z` instead of `let`s (blocks
     /// too big for one `let` each), by index.
     pub array: &'a FxHashMap<Nid, usize>,
+    /// When each value of the block is ready, in rough cycles from its
+    /// start (filled as sums ask: see [`sum`]).
+    pub ready: RefCell<FxHashMap<Nid, u32>>,
 }
 
 impl ExprPrinter<'_> {
@@ -250,7 +256,7 @@ impl ExprPrinter<'_> {
                 }
             }
             Op::Leaf(_) | Op::Call(..) | Op::Sqrt(_) | Op::Powf(..) => Prec::Atom,
-            Op::Sum { .. } => Prec::Sum,
+            Op::Sum { pos, neg } => self.sum_prec(pos, neg),
             Op::Mul(..) | Op::Div(..) => Prec::Prod,
             Op::Powi(_, k) => {
                 if *k <= 3 {
@@ -302,22 +308,7 @@ impl ExprPrinter<'_> {
         match self.ir().op(n).clone() {
             Op::Num(b) => literal(f64::from_bits(b), self.float),
             Op::Leaf(l) => self.leaf(l),
-            Op::Sum { pos, neg } => {
-                let mut out = TokenStream::new();
-                for (i, t) in pos.iter().enumerate() {
-                    let e = self.wrap(*t, Prec::Sum);
-                    if i == 0 {
-                        out.extend(e)
-                    } else {
-                        out.extend(quote!(+ #e))
-                    }
-                }
-                for t in neg.iter() {
-                    let e = self.wrap(*t, Prec::Prod);
-                    out.extend(quote!(- #e));
-                }
-                out
-            }
+            Op::Sum { pos, neg } => self.sum(&pos, &neg),
             Op::Mul(a, b) => {
                 let x = self.wrap(a, Prec::Prod);
                 let y = self.wrap(b, Prec::Unary);
@@ -329,7 +320,15 @@ impl ExprPrinter<'_> {
                 quote!(#x / #y)
             }
             Op::Neg(a) => {
-                let x = self.wrap(a, Prec::Unary);
+                // `-(x.add_mul(a, b))`, not `-x.add_mul(a, b)` (the same, but
+                // read as if the minus came first).
+                let x = match self.ir().op(a) {
+                    Op::Sum { .. } if !self.is_name(a) => {
+                        let e = self.expr(a);
+                        quote!((#e))
+                    }
+                    _ => self.wrap(a, Prec::Unary),
+                };
                 quote!(-#x)
             }
             Op::Powi(a, k) => {

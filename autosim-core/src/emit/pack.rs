@@ -4,7 +4,9 @@
 //! simple literal of at most ten characters
 //! (`short_array_element_width_threshold`), which is what the name and unit
 //! tables of a large model are: a 50-link chain's 100 state names take 9
-//! lines instead of 100.
+//! lines instead of 100. The field lists of the parameter and input
+//! accessors (`[p.m1, p.L1, …]`, `[&mut p.m1, …]`) are packed the same way,
+//! where rustfmt would keep them vertical: 252 parameters take 26 lines.
 
 /// rustfmt's `max_width`: a packed line stays shorter than this, as
 /// rustfmt's do.
@@ -12,6 +14,9 @@ const MAX_WIDTH: usize = 100;
 
 /// rustfmt's `short_array_element_width_threshold`.
 const SHORT_ELEMENT: usize = 10;
+
+/// The longest field place (`&mut self.inputs.name`) packed.
+const SHORT_PLACE: usize = 32;
 
 /// `text` with every vertically written array of short literals packed.
 pub fn pack_short_arrays(text: &str) -> String {
@@ -52,7 +57,7 @@ fn short_elements_after<'a>(lines: &[&'a str], open: usize) -> Option<Vec<&'a st
             return (elements.len() > 1).then_some(elements);
         }
         let element = line.strip_prefix(&inner)?.strip_suffix(',')?;
-        if !is_short_literal(element) {
+        if !is_short_literal(element) && !is_short_place(element) {
             return None;
         }
         elements.push(element);
@@ -75,6 +80,19 @@ fn is_short_literal(element: &str) -> bool {
             .chars()
             .all(|c| c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '+' | '-'));
     (string || number) && element.chars().count() <= SHORT_ELEMENT
+}
+
+/// A field of a local (`p.m1`, `self.inputs.torque`), or `&mut` of one, of
+/// at most [`SHORT_PLACE`] characters.
+fn is_short_place(element: &str) -> bool {
+    let path = element.strip_prefix("&mut ").unwrap_or(element);
+    let parts: Vec<&str> = path.split('.').collect();
+    let identifier = |s: &str| {
+        let s = s.strip_prefix("r#").unwrap_or(s);
+        s.starts_with(|c: char| c.is_alphabetic() || c == '_')
+            && s.chars().all(|c| c.is_alphanumeric() || c == '_')
+    };
+    parts.len() >= 2 && parts.iter().all(|p| identifier(p)) && element.len() <= SHORT_PLACE
 }
 
 /// The leading spaces of `line`.
@@ -127,10 +145,19 @@ mod tests {
 
     #[test]
     fn arrays_with_a_long_or_compound_element_stay_vertical() {
-        for odd in ["\"N m s/rad\"", "a + b", "\"a\\\"b\"", "x"] {
+        for odd in ["\"N m s/rad\"", "a + b", "\"a\\\"b\"", "x", "p.f(x)", "&p"] {
             let text = format!("let v = [\n    \"a\",\n    {odd},\n    \"b\",\n];\n");
             assert_eq!(pack_short_arrays(&text), text, "{odd}");
         }
+    }
+
+    #[test]
+    fn field_places_pack() {
+        let text = "    for (v, field) in values.iter_mut().zip([\n        p.m1,\n        &mut p.L1,\n        self.inputs.r#type,\n    ]) {\n";
+        assert_eq!(
+            pack_short_arrays(text),
+            "    for (v, field) in values.iter_mut().zip([\n        p.m1, &mut p.L1, self.inputs.r#type,\n    ]) {\n"
+        );
     }
 
     #[test]

@@ -137,6 +137,46 @@ macro_rules! impl_float {
 impl_float!(f64);
 impl_float!(f32);
 
+/// Sums of products for generated code: `acc.add_mul(a, b)` is
+/// `acc + a * b`, `acc.sub_mul(a, b)` is `acc - a * b`. Each is one fused
+/// multiply-add (a single rounding) where the target has the instruction
+/// and `std` provides it (`-C target-cpu=native` on current x86-64, every
+/// 64-bit Arm); otherwise exactly the bits of the plain expression.
+pub trait MulAdd: Sized {
+    /// `self + a * b`.
+    fn add_mul(self, a: Self, b: Self) -> Self;
+    /// `self - a * b`.
+    fn sub_mul(self, a: Self, b: Self) -> Self;
+}
+
+/// Whether [`MulAdd`] fuses: `std`'s `mul_add` compiles to one instruction.
+macro_rules! fused {
+    ($fused:expr, $plain:expr) => {{
+        #[cfg(all(feature = "std", any(target_feature = "fma", target_arch = "aarch64")))]
+        return $fused;
+        #[cfg(not(all(feature = "std", any(target_feature = "fma", target_arch = "aarch64"))))]
+        return $plain;
+    }};
+}
+
+macro_rules! impl_mul_add {
+    ($t:ident) => {
+        impl MulAdd for $t {
+            #[inline(always)]
+            fn add_mul(self, a: Self, b: Self) -> Self {
+                fused!($t::mul_add(a, b, self), self + a * b)
+            }
+            #[inline(always)]
+            fn sub_mul(self, a: Self, b: Self) -> Self {
+                fused!($t::mul_add(-a, b, self), self - a * b)
+            }
+        }
+    };
+}
+
+impl_mul_add!(f64);
+impl_mul_add!(f32);
+
 /// The math functions of [`Float`] as free functions `imp::f64::sin`, … .
 ///
 /// The trigonometric functions and their inverses come from `libm` (musl's
@@ -315,5 +355,28 @@ pub mod math {
     #[inline(always)]
     pub fn is_regular<F: Float>(x: F) -> bool {
         x.is_finite() && x.abs() > F::from_f64(16.0) * F::EPSILON
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::MulAdd;
+
+    /// `(1 + ε)(1 - ε) = 1 - ε²` rounds to 1 as a product: the sum with -1
+    /// is 0 unfused and -ε² fused (one rounding).
+    #[test]
+    fn add_mul_rounds_once_exactly_where_it_fuses() {
+        let fused = cfg!(all(
+            feature = "std",
+            any(target_feature = "fma", target_arch = "aarch64")
+        ));
+        let (a, b) = (1.0 + f64::EPSILON, 1.0 - f64::EPSILON);
+        let expected = if fused { -f64::EPSILON * f64::EPSILON } else { 0.0 };
+        assert_eq!((-1.0_f64).add_mul(a, b), expected);
+        assert_eq!((-1.0_f64).sub_mul(-a, b), expected);
+        assert_eq!(1.0_f64.sub_mul(a, b), -expected);
+        let (a32, b32) = (1.0 + f32::EPSILON, 1.0 - f32::EPSILON);
+        let expected32 = if fused { -f32::EPSILON * f32::EPSILON } else { 0.0 };
+        assert_eq!((-1.0_f32).add_mul(a32, b32), expected32);
     }
 }

@@ -10,7 +10,7 @@ mod structs;
 use super::block::BlockEmitter;
 use super::expr::{Locals, float_type, ident};
 use crate::opt::{BlockKind, Interface, Ops, Program, Quantity, StateVar};
-use proc_macro2::{Literal, TokenStream};
+use proc_macro2::{Ident, Literal, TokenStream};
 use quote::{format_ident, quote};
 
 /// How generated code is written.
@@ -132,7 +132,7 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
         )]
         pub mod #module {
             #[allow(unused_imports)]
-            use #rt::__private::math;
+            use #rt::__private::{MulAdd as _, math};
 
             #parameters
 
@@ -475,32 +475,20 @@ fn input_access(i: &crate::opt::Interface) -> TokenStream {
 }
 
 /// The loops that copy the fields of `place` (named after `fields`) into
-/// `values` by index, and back: indices past the fields are left alone.
+/// `values` in order, and back: values past the fields are left alone.
 fn by_index(fields: &[Quantity], place: &TokenStream) -> (TokenStream, TokenStream) {
-    let (get, set): (Vec<_>, Vec<_>) = fields
-        .iter()
-        .enumerate()
-        .map(|(k, f)| {
-            let id = ident(&f.name);
-            let k = Literal::usize_unsuffixed(k);
-            (quote!(#k => #place.#id,), quote!(#k => #place.#id = *v,))
-        })
-        .unzip();
+    let names: Vec<Ident> = fields.iter().map(|f| ident(&f.name)).collect();
     (
         quote! {
-            for (k, v) in values.iter_mut().enumerate() {
-                *v = match k {
-                    #(#get)*
-                    _ => *v,
-                };
+            let fields = [#(#place.#names),*];
+            for (v, field) in values.iter_mut().zip(fields) {
+                *v = field;
             }
         },
         quote! {
-            for (k, v) in values.iter().enumerate() {
-                match k {
-                    #(#set)*
-                    _ => {}
-                }
+            let fields = [#(&mut #place.#names),*];
+            for (field, v) in fields.into_iter().zip(values) {
+                *field = *v;
             }
         },
     )

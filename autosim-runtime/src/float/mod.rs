@@ -371,12 +371,20 @@ mod tests {
             any(target_feature = "fma", target_arch = "aarch64")
         ));
         let (a, b) = (1.0 + f64::EPSILON, 1.0 - f64::EPSILON);
-        let expected = if fused { -f64::EPSILON * f64::EPSILON } else { 0.0 };
+        let expected = if fused {
+            -f64::EPSILON * f64::EPSILON
+        } else {
+            0.0
+        };
         assert_eq!((-1.0_f64).add_mul(a, b), expected);
         assert_eq!((-1.0_f64).sub_mul(-a, b), expected);
         assert_eq!(1.0_f64.sub_mul(a, b), -expected);
         let (a32, b32) = (1.0 + f32::EPSILON, 1.0 - f32::EPSILON);
-        let expected32 = if fused { -f32::EPSILON * f32::EPSILON } else { 0.0 };
+        let expected32 = if fused {
+            -f32::EPSILON * f32::EPSILON
+        } else {
+            0.0
+        };
         assert_eq!((-1.0_f32).add_mul(a32, b32), expected32);
     }
 }

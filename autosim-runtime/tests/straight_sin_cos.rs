@@ -91,3 +91,26 @@ fn f32_rounds_the_f64_result() {
         assert_eq!(x.sin_cos_inline(), (s as f32, c as f32));
     }
 }
+
+#[test]
+fn lanes_equal_one_call_per_angle_bit_for_bit() {
+    let mut state = 7;
+    let specials = [0.0, -0.0, 1e-12, 2e6, f64::NAN, f64::INFINITY, 0.7, -3.0];
+    for round in 0..20_000 {
+        let mut pair = [uniform(&mut state) * 10.0, uniform(&mut state) * 1e3];
+        if round % 100 == 0 {
+            pair[round / 100 % 2] = specials[round / 200 % specials.len()];
+        }
+        let (s, c) = f64::sin_cos_inline_lanes(pair);
+        for lane in 0..2 {
+            let (ls, lc) = pair[lane].sin_cos_inline();
+            assert_eq!(s[lane].to_bits(), ls.to_bits(), "sin {}", pair[lane]);
+            assert_eq!(c[lane].to_bits(), lc.to_bits(), "cos {}", pair[lane]);
+        }
+    }
+    let (s, c) = f32::sin_cos_inline_lanes([0.5f32, -2.0, 3.0, 100.0]);
+    assert_eq!(
+        (s[1], c[3]),
+        ((-2.0f32).sin_cos_inline().0, 100f32.sin_cos_inline().1)
+    );
+}

@@ -2,6 +2,7 @@
 //! user calls, named intermediates, pivot checks and stores.
 
 use super::expr::{ExprPrinter, Locals, ident};
+use super::sines;
 use crate::limits::MAX_LETS_IN_FUNCTION;
 use crate::model::FloatType;
 use crate::opt::{Block, BlockKind, Guard, Leaf, Nid, Program, Stmt};
@@ -120,7 +121,19 @@ impl BlockEmitter<'_> {
             let (z, len) = (&self.locals.z, Literal::usize_unsuffixed(array.len()));
             out.extend(quote!(let mut #z = [0.0; #len];));
         }
-        for st in &block.stmts {
+        let inline_sines = block.names.len() > MIN_VALUES_FOR_INLINE_SINES;
+        let groups = match inline_sines {
+            true => sines::groups(&self.prog.ir, block, &|n| printer.is_outside(n)),
+            false => Default::default(),
+        };
+        for (i, st) in block.stmts.iter().enumerate() {
+            if groups.skip.contains(&i) {
+                continue;
+            }
+            if let Some(group) = groups.at.get(&i) {
+                out.extend(self.sin_cos_lanes(block, &printer, group, !array.is_empty()));
+                continue;
+            }
             match st {
                 Stmt::Let(n) => {
                     let e = printer.definition(*n);
@@ -142,7 +155,7 @@ impl BlockEmitter<'_> {
                         _ => printer.definition(*sin),
                     };
                     let m = &self.math;
-                    let f = match block.names.len() > MIN_VALUES_FOR_INLINE_SINES {
+                    let f = match inline_sines {
                         true => quote!(sin_cos_inline),
                         false => quote!(sin_cos),
                     };
@@ -179,6 +192,34 @@ impl BlockEmitter<'_> {
             }
         }
         out
+    }
+
+    /// Sines and cosines in one call: `let ([sin_q1, sin_q2], [cos_q1,
+    /// cos_q2]) = math::sin_cos_inline_lanes([q1, q2]);` (assigned to `z[k]`
+    /// in a block that keeps its values in the array).
+    fn sin_cos_lanes(
+        &self,
+        block: &Block,
+        printer: &ExprPrinter<'_>,
+        group: &[sines::SinCos],
+        in_array: bool,
+    ) -> TokenStream {
+        let bound = |n: Nid| match in_array {
+            true => printer.expr(n),
+            false => {
+                let name = ident(&block.names[&n]);
+                quote!(#name)
+            }
+        };
+        let sins: Vec<TokenStream> = group.iter().map(|g| bound(g.sin)).collect();
+        let coss: Vec<TokenStream> = group.iter().map(|g| bound(g.cos)).collect();
+        let angles: Vec<TokenStream> = group.iter().map(|g| printer.expr(g.angle)).collect();
+        let m = &self.math;
+        let call = quote!(#m::sin_cos_inline_lanes([#(#angles),*]));
+        match in_array {
+            true => quote!(([#(#sins),*], [#(#coss),*]) = #call;),
+            false => quote!(let ([#(#sins),*], [#(#coss),*]) = #call;),
+        }
     }
 
     /// Bindings of the values the block reads: parameters, constants,

@@ -269,6 +269,12 @@ impl ExprPrinter<'_> {
         }
     }
 
+    /// Whether `n` is read from outside the block (the common block's
+    /// values, hoisted constants) rather than computed in it.
+    pub fn is_outside(&self, n: Nid) -> bool {
+        self.common_slot.contains_key(&n) || (self.hoisted && self.constant_slot.contains_key(&n))
+    }
+
     fn is_name(&self, n: Nid) -> bool {
         self.names.contains_key(&n)
             || self.common_slot.contains_key(&n)

@@ -8,6 +8,7 @@ mod markdown;
 mod model;
 mod pack;
 mod placeholder;
+mod sines;
 
 pub use file::{format_tokens, header, source_hash};
 pub use markdown::markdown;

@@ -50,6 +50,9 @@ pub trait Float:
     /// in the last place of [`Float::sin_cos`] up to 10 rad, two up to
     /// 1e6): for big functions, where a mispredicted branch costs most.
     fn sin_cos_inline(self) -> (Self, Self);
+    /// [`Float::sin_cos_inline`] of four angles at once, the same values,
+    /// in vector instructions where the target has them.
+    fn sin_cos_inline_lanes<const N: usize>(x: [Self; N]) -> ([Self; N], [Self; N]);
     /// Tangent.
     fn tan(self) -> Self;
     /// Arc sine.
@@ -110,6 +113,10 @@ macro_rules! impl_float {
             #[inline(always)]
             fn to_f64(self) -> f64 {
                 self as f64
+            }
+            #[inline(always)]
+            fn sin_cos_inline_lanes<const N: usize>(x: [Self; N]) -> ([Self; N], [Self; N]) {
+                imp::$t::sin_cos_inline_lanes(x)
             }
             forward! {
                 fn is_finite(self) -> bool => $t::is_finite;
@@ -211,6 +218,14 @@ mod imp {
                     let (s, c) = crate::float::straight_sin_cos::sin_cos(f64::from(x));
                     (<$t>::from_f64(s), <$t>::from_f64(c))
                 }
+                /// Four sines and cosines without branches on the angles,
+                /// computed in `f64`.
+                #[inline(always)]
+                pub fn sin_cos_inline_lanes<const N: usize>(x: [$t; N]) -> ([$t; N], [$t; N]) {
+                    use crate::float::Float;
+                    let (s, c) = crate::float::straight_sin_cos::sin_cos_lanes(x.map(f64::from));
+                    (s.map(<$t>::from_f64), c.map(<$t>::from_f64))
+                }
                 #[cfg(feature = "std")]
                 forward! {
                     pub fn sqrt(x: $t) -> $t => $t::sqrt;
@@ -273,6 +288,12 @@ pub mod math {
     #[inline(always)]
     pub fn sin_cos_inline<F: Float>(x: F) -> (F, F) {
         x.sin_cos_inline()
+    }
+    /// Sines and cosines of four angles without branches on them
+    /// ([`Float::sin_cos_inline_lanes`]).
+    #[inline(always)]
+    pub fn sin_cos_inline_lanes<F: Float, const N: usize>(x: [F; N]) -> ([F; N], [F; N]) {
+        F::sin_cos_inline_lanes(x)
     }
     /// Tangent.
     #[inline(always)]

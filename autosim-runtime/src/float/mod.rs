@@ -385,27 +385,22 @@ mod tests {
 
     /// `(1 + ε)(1 - ε) = 1 - ε²` rounds to 1 as a product: the sum with -1
     /// is 0 unfused and -ε² fused (one rounding).
+    fn rounds_once_where_fused<F: crate::Float + MulAdd>(epsilon: F, fused: bool) {
+        let one = F::ONE;
+        let (a, b) = (one + epsilon, one - epsilon);
+        let expected = if fused { -(epsilon * epsilon) } else { F::ZERO };
+        assert_eq!((-one).add_mul(a, b), expected);
+        assert_eq!((-one).sub_mul(-a, b), expected);
+        assert_eq!(one.sub_mul(a, b), -expected);
+    }
+
     #[test]
     fn add_mul_rounds_once_exactly_where_it_fuses() {
         let fused = cfg!(all(
             feature = "std",
             any(target_feature = "fma", target_arch = "aarch64")
         ));
-        let (a, b) = (1.0 + f64::EPSILON, 1.0 - f64::EPSILON);
-        let expected = if fused {
-            -f64::EPSILON * f64::EPSILON
-        } else {
-            0.0
-        };
-        assert_eq!((-1.0_f64).add_mul(a, b), expected);
-        assert_eq!((-1.0_f64).sub_mul(-a, b), expected);
-        assert_eq!(1.0_f64.sub_mul(a, b), -expected);
-        let (a32, b32) = (1.0 + f32::EPSILON, 1.0 - f32::EPSILON);
-        let expected32 = if fused {
-            -f32::EPSILON * f32::EPSILON
-        } else {
-            0.0
-        };
-        assert_eq!((-1.0_f32).add_mul(a32, b32), expected32);
+        rounds_once_where_fused(f64::EPSILON, fused);
+        rounds_once_where_fused(f32::EPSILON, fused);
     }
 }

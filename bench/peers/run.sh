@@ -13,7 +13,7 @@
 # Needs the peers built by their own scripts first (each installs what it
 # needs; about 30 minutes together):
 #   NS_SYMPY="1 2 3 5" bash ../shared/bench/perf/run.sh    # -> /tmp/anchors
-#   CAS_METHODS=aba,aba_plain bash ../shared/bench/casadi/run.sh   # -> /tmp/casadi
+#   bash ../shared/bench/casadi/run.sh   # -> /tmp/casadi (ABA and CRBA; 4 min here)
 # Then this script (about 10 minutes): generates chain-{planar,spatial}-n for
 # n = 1, 2, 3, 5, 7, 10, 20, 50, builds autosim_bench, runs ROUNDS (default 5)
 # interleaved rounds pinned to one CPU when taskset exists, measures the

@@ -195,7 +195,7 @@ impl BlockEmitter<'_> {
     }
 
     /// Sines and cosines in one call: `let ([sin_q1, sin_q2], [cos_q1,
-    /// cos_q2]) = math::sin_cos_inline_lanes([q1, q2]);` (assigned to `z[k]`
+    /// cos_q2]) = math::sin_cos_lanes([q1, q2]);` (assigned to `z[k]`
     /// in a block that keeps its values in the array).
     fn sin_cos_lanes(
         &self,
@@ -215,7 +215,7 @@ impl BlockEmitter<'_> {
         let coss: Vec<TokenStream> = group.iter().map(|g| bound(g.cos)).collect();
         let angles: Vec<TokenStream> = group.iter().map(|g| printer.expr(g.angle)).collect();
         let m = &self.math;
-        let call = quote!(#m::sin_cos_inline_lanes([#(#angles),*]));
+        let call = quote!(#m::sin_cos_lanes([#(#angles),*]));
         match in_array {
             true => quote!(([#(#sins),*], [#(#coss),*]) = #call;),
             false => quote!(let ([#(#sins),*], [#(#coss),*]) = #call;),

@@ -5,7 +5,7 @@
 //! such a block reads from outside (coordinates, parameters, inputs, time,
 //! the common block's values) are all known when it starts, so their sines
 //! and cosines can be taken [`LANES`] at a time,
-//! `sin_cos_inline_lanes([q1, q2])`: the same values (lane by lane the
+//! `sin_cos_lanes([q1, q2])`: the same values (lane by lane the
 //! same operations) in vector instructions where the target has them, half
 //! the instructions of two calls. A group is computed where the first of
 //! its angles was; one left over, and angles the block computes itself,

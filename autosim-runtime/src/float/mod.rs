@@ -50,7 +50,7 @@ pub trait Float:
     /// in the last place of [`Float::sin_cos`] up to 10 rad, two up to
     /// 1e6): for big functions, where a mispredicted branch costs most.
     fn sin_cos_inline(self) -> (Self, Self);
-    /// [`Float::sin_cos_inline`] of four angles at once, the same values,
+    /// [`Float::sin_cos_inline`] of `N` angles at once, the same values,
     /// in vector instructions where the target has them.
     fn sin_cos_inline_lanes<const N: usize>(x: [Self; N]) -> ([Self; N], [Self; N]);
     /// Tangent.
@@ -289,10 +289,11 @@ pub mod math {
     pub fn sin_cos_inline<F: Float>(x: F) -> (F, F) {
         x.sin_cos_inline()
     }
-    /// Sines and cosines of four angles without branches on them
+    /// Sines and cosines of `N` angles without branches on them, in vector
+    /// instructions where the target has them
     /// ([`Float::sin_cos_inline_lanes`]).
     #[inline(always)]
-    pub fn sin_cos_inline_lanes<F: Float, const N: usize>(x: [F; N]) -> ([F; N], [F; N]) {
+    pub fn sin_cos_lanes<F: Float, const N: usize>(x: [F; N]) -> ([F; N], [F; N]) {
         F::sin_cos_inline_lanes(x)
     }
     /// Tangent.

@@ -19,10 +19,11 @@ fn main() {
     };
     let file = SourceFile::new(&path, text);
     match compile_source(&file) {
-        Ok(c) => print!(
-            "{}",
-            format_tokens(&model_tokens(&c.program, &EmitOptions::default()))
-        ),
+        Ok(c) => {
+            let code = format_tokens(&model_tokens(&c.program, &EmitOptions::default()));
+            // A closed pipe (`| head`) ends the output quietly, not in a panic.
+            let _ = std::io::Write::write_all(&mut std::io::stdout(), code.as_bytes());
+        }
         Err(d) => {
             eprint!("{}", d.render(&file));
             std::process::exit(1);

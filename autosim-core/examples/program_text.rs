@@ -15,7 +15,11 @@ fn main() {
     });
     let file = SourceFile::new(&path, text);
     match compile_source(&file) {
-        Ok(c) => print!("{}", c.program),
+        Ok(c) => {
+            // A closed pipe (`| head`) ends the output quietly, not in a panic.
+            let text = c.program.to_string();
+            let _ = std::io::Write::write_all(&mut std::io::stdout(), text.as_bytes());
+        }
         Err(d) => {
             eprint!("{}", d.render(&file));
             std::process::exit(1);

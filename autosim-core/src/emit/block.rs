@@ -113,7 +113,7 @@ impl BlockEmitter<'_> {
             math: self.math.clone(),
             locals: self.locals,
             array: &array,
-            ready: Default::default(),
+            timing: Default::default(),
         };
         let mut out = self.reads(block, hoisted, &target);
         out.extend(self.shared_terms_call(block));

@@ -8,8 +8,6 @@ use crate::opt::{Ir, Leaf, Nid, Op, Program};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;
 use rustc_hash::FxHashMap;
-use std::cell::RefCell;
-
 mod sum;
 
 /// An identifier from a model name (raw identifiers kept raw; anything that
@@ -233,9 +231,9 @@ pub struct ExprPrinter<'a> {
     /// Bound values kept in the local array `z` instead of `let`s (blocks
     /// too big for one `let` each), by index.
     pub array: &'a FxHashMap<Nid, usize>,
-    /// When each value of the block is ready, in rough cycles from its
-    /// start (filled as sums ask: see [`sum`]).
-    pub ready: RefCell<FxHashMap<Nid, u32>>,
+    /// When each value is ready and how each sum is printed (see
+    /// [`sum`]).
+    pub timing: sum::Timing,
 }
 
 impl ExprPrinter<'_> {
@@ -256,7 +254,7 @@ impl ExprPrinter<'_> {
                 }
             }
             Op::Leaf(_) | Op::Call(..) | Op::Sqrt(_) | Op::Powf(..) => Prec::Atom,
-            Op::Sum { pos, neg } => self.sum_prec(pos, neg),
+            Op::Sum { pos, neg } => self.sum_prec(n, pos, neg),
             Op::Mul(..) | Op::Div(..) => Prec::Prod,
             Op::Powi(_, k) => {
                 if *k <= 3 {
@@ -314,7 +312,7 @@ impl ExprPrinter<'_> {
         match self.ir().op(n).clone() {
             Op::Num(b) => literal(f64::from_bits(b), self.float),
             Op::Leaf(l) => self.leaf(l),
-            Op::Sum { pos, neg } => self.sum(&pos, &neg),
+            Op::Sum { pos, neg } => self.sum(n, &pos, &neg),
             Op::Mul(a, b) => {
                 let x = self.wrap(a, Prec::Prod);
                 let y = self.wrap(b, Prec::Unary);

@@ -19,12 +19,22 @@ use crate::opt::{Nid, Op};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 use rustc_hash::FxHashMap;
+use std::cell::RefCell;
 
 /// Cycles of an add, a multiply and a fused multiply-add (Intel's; an
 /// estimate that only has to rank).
 const ADD: u32 = 2;
 const MUL: u32 = 4;
 const FMA: u32 = 4;
+
+/// What the printer of one block knows of its timing: when each value is
+/// ready, in rough cycles from the block's start, and each sum's terms in
+/// printing order (both filled once, as sums are printed).
+#[derive(Default)]
+pub struct Timing {
+    ready: RefCell<FxHashMap<Nid, u32>>,
+    plans: RefCell<FxHashMap<Nid, Vec<Term>>>,
+}
 
 /// One term of a sum in printing order.
 #[derive(Clone, Copy, Debug)]
@@ -36,10 +46,10 @@ enum Term {
 }
 
 impl ExprPrinter<'_> {
-    /// A sum, printed left to right with its fused products.
-    pub(super) fn sum(&self, pos: &[Nid], neg: &[Nid]) -> TokenStream {
-        self.ready_at(pos.iter().chain(neg).copied());
-        let (terms, _) = self.plan(pos, neg, &self.ready.borrow());
+    /// The sum `n` (terms `pos`, `neg`), printed left to right with its
+    /// fused products.
+    pub(super) fn sum(&self, n: Nid, pos: &[Nid], neg: &[Nid]) -> TokenStream {
+        let terms = self.terms(n, pos, neg);
         let mut out = TokenStream::new();
         // How tightly `out` binds: whether it needs parentheses as a receiver.
         let mut out_prec = Prec::Atom;
@@ -75,15 +85,26 @@ impl ExprPrinter<'_> {
         out
     }
 
-    /// How tightly a sum binds as printed: a method call if it ends with a
-    /// fused product.
-    pub(super) fn sum_prec(&self, pos: &[Nid], neg: &[Nid]) -> Prec {
-        self.ready_at(pos.iter().chain(neg).copied());
-        let (terms, _) = self.plan(pos, neg, &self.ready.borrow());
-        match terms[..] {
+    /// How tightly the sum `n` binds as printed: a method call if it ends
+    /// with a fused product.
+    pub(super) fn sum_prec(&self, n: Nid, pos: &[Nid], neg: &[Nid]) -> Prec {
+        match self.terms(n, pos, neg)[..] {
             [.., Term::Fused { .. }] => Prec::Atom,
             _ => Prec::Sum,
         }
+    }
+
+    /// The terms of the sum `n` in printing order, planned once.
+    fn terms(&self, n: Nid, pos: &[Nid], neg: &[Nid]) -> Vec<Term> {
+        if let Some(terms) = self.timing.plans.borrow().get(&n) {
+            return terms.clone();
+        }
+        // A sum computed outside the block is not timed; plan it from its
+        // terms' times.
+        self.ready_at(pos.iter().chain(neg).copied());
+        let (terms, _) = self.plan(pos, neg, &self.timing.ready.borrow());
+        self.timing.plans.borrow_mut().insert(n, terms.clone());
+        terms
     }
 
     /// The first term of a sum and how tightly it binds; a literal that
@@ -158,10 +179,10 @@ impl ExprPrinter<'_> {
         (planned, acc)
     }
 
-    /// Computes (once) when each of `roots` is ready: iterative, chains of
-    /// big models are thousands deep.
+    /// Computes (once) when each of `roots` is ready, planning the sums on
+    /// the way: iterative, chains of big models are thousands deep.
     fn ready_at(&self, roots: impl Iterator<Item = Nid>) {
-        let mut ready = self.ready.borrow_mut();
+        let mut ready = self.timing.ready.borrow_mut();
         let mut stack: Vec<(Nid, bool)> = roots.map(|n| (n, false)).collect();
         while let Some((n, expanded)) = stack.pop() {
             if ready.contains_key(&n) {
@@ -170,7 +191,7 @@ impl ExprPrinter<'_> {
             let ir = self.ir();
             let from_outside = matches!(ir.op(n), Op::Num(_) | Op::Leaf(_))
                 || ir.is_constant(n)
-                || self.common_slot.contains_key(&n);
+                || self.is_outside(n);
             if from_outside {
                 ready.insert(n, 0);
             } else if expanded {
@@ -188,7 +209,11 @@ impl ExprPrinter<'_> {
         let ir = self.ir();
         let operands = || ir.children(n).iter().map(|c| ready[c]).max().unwrap_or(0);
         match ir.op(n) {
-            Op::Sum { pos, neg } => self.plan(pos, neg, ready).1,
+            Op::Sum { pos, neg } => {
+                let (terms, at) = self.plan(pos, neg, ready);
+                self.timing.plans.borrow_mut().insert(n, terms);
+                at
+            }
             Op::Num(_) | Op::Leaf(_) => 0,
             Op::Neg(_) => operands() + 1,
             Op::Mul(..) | Op::Powi(_, 2) => operands() + MUL,

@@ -61,55 +61,53 @@ const C: [f64; 8] = [
 /// Sine and cosine of `x` (see the module documentation).
 #[inline(always)]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    let size = x.abs();
-    if !(1.0e-9..=1.0e6).contains(&size) {
+    let ([sin], [cos]) = sin_cos_lanes([x]);
+    (sin, cos)
+}
+
+/// Sines and cosines of `N` angles, lane by lane the same operations, in
+/// one loop over the lanes without branches (the quadrant from the rounded
+/// value's low bits, the swap and signs by bit masks), which the compiler
+/// turns into vector instructions where the target has them.
+#[inline(always)]
+pub fn sin_cos_lanes<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+    // Every lane compared, then one branch (`&`, not `&&`).
+    if !x.iter().fold(true, |all, &x| all & in_range(x)) {
         return elsewhere(x);
     }
-    let k = ROUNDING.add_mul(x, core::f64::consts::FRAC_2_PI) - ROUNDING;
+    let (mut sin, mut cos) = ([0.0; N], [0.0; N]);
+    for lane in 0..N {
+        (sin[lane], cos[lane]) = reduced(x[lane]);
+    }
+    (sin, cos)
+}
+
+/// Whether `x` takes the branch-free path.
+#[inline(always)]
+fn in_range(x: f64) -> bool {
+    (x.abs() >= 1.0e-9) & (x.abs() <= 1.0e6)
+}
+
+/// Sine and cosine of an angle [`in_range`], by its nearest multiple of
+/// π/2 and the remainder.
+#[inline(always)]
+fn reduced(x: f64) -> (f64, f64) {
+    // `1.5 · 2^52 + k`: its low bits are `k`'s (two's complement).
+    let shifted = ROUNDING.add_mul(x, core::f64::consts::FRAC_2_PI);
+    let k = shifted - ROUNDING;
     let r = x
         .sub_mul(k, PI_2_HI)
         .sub_mul(k, PI_2_MID)
         .sub_mul(k, PI_2_LO);
     let (s, c) = near_zero(r);
-    let quadrant = k as i64;
-    let (sin, cos) = if quadrant & 1 == 0 { (s, c) } else { (c, s) };
+    let quadrant = shifted.to_bits();
+    let swap = 0u64.wrapping_sub(quadrant & 1);
+    let (s, c) = (s.to_bits(), c.to_bits());
+    let (s, c) = ((s & !swap) | (c & swap), (c & !swap) | (s & swap));
     (
-        negate_if(sin, quadrant & 2 != 0),
-        negate_if(cos, (quadrant + 1) & 2 != 0),
+        f64::from_bits(s ^ ((quadrant & 2) << 62)),
+        f64::from_bits(c ^ ((quadrant.wrapping_add(1) & 2) << 62)),
     )
-}
-
-/// Sines and cosines of `N` angles: lane by lane the operations of
-/// [`sin_cos`], so the same bits, written as one loop over the lanes
-/// without branches (the quadrant from the rounded value's low bits, the
-/// swap and signs by bit masks), which the compiler turns into vector
-/// instructions where the target has them.
-#[inline(always)]
-pub fn sin_cos_lanes<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
-    // Every lane compared, then one branch (`&`, not `&&`).
-    let inside = x.map(|x| (x.abs() >= 1.0e-9) & (x.abs() <= 1.0e6));
-    if !inside.iter().fold(true, |all, &lane| all & lane) {
-        return elsewhere_lanes(x);
-    }
-    let (mut sin, mut cos) = ([0.0; N], [0.0; N]);
-    for lane in 0..N {
-        let x = x[lane];
-        // `1.5 · 2^52 + k`: its low bits are `k`'s (two's complement).
-        let shifted = ROUNDING.add_mul(x, core::f64::consts::FRAC_2_PI);
-        let k = shifted - ROUNDING;
-        let r = x
-            .sub_mul(k, PI_2_HI)
-            .sub_mul(k, PI_2_MID)
-            .sub_mul(k, PI_2_LO);
-        let (s, c) = near_zero(r);
-        let quadrant = shifted.to_bits();
-        let swap = 0u64.wrapping_sub(quadrant & 1);
-        let (s, c) = (s.to_bits(), c.to_bits());
-        let (s, c) = ((s & !swap) | (c & swap), (c & !swap) | (s & swap));
-        sin[lane] = f64::from_bits(s ^ ((quadrant & 2) << 62));
-        cos[lane] = f64::from_bits(c ^ ((quadrant.wrapping_add(1) & 2) << 62));
-    }
-    (sin, cos)
 }
 
 /// Sine and cosine of `|r| ≤ π/4`.
@@ -133,24 +131,18 @@ fn near_zero(r: f64) -> (f64, f64) {
     (sin, cos)
 }
 
-/// `-x` if `negate`, by the sign bit.
-#[inline(always)]
-fn negate_if(x: f64, negate: bool) -> f64 {
-    f64::from_bits(x.to_bits() ^ (u64::from(negate) << 63))
-}
-
-/// [`sin_cos_lanes`] with a tiny, huge or non-finite argument: lane by
-/// lane.
+/// [`sin_cos_lanes`] with a tiny, huge or non-finite angle: lane by lane,
+/// libm's `sincos` for those (which keeps `sin(-0) = -0`, NaN and
+/// infinities, and reduces huge angles exactly).
 #[cold]
 #[inline(never)]
-fn elsewhere_lanes<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
-    let pairs = x.map(sin_cos);
+fn elsewhere<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+    let pairs = x.map(|x| {
+        if in_range(x) {
+            reduced(x)
+        } else {
+            libm::sincos(x)
+        }
+    });
     (pairs.map(|p| p.0), pairs.map(|p| p.1))
-}
-
-/// Tiny, huge and non-finite arguments.
-#[cold]
-#[inline(never)]
-fn elsewhere(x: f64) -> (f64, f64) {
-    libm::sincos(x)
 }

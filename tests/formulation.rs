@@ -89,12 +89,27 @@ where
         if ra.is_err() {
             continue;
         }
-        let scale = da.iter().fold(1.0f64, |m, v| m.max(v.abs()));
-        for k in 0..N {
-            worst = worst.max((da[k] - db[k]).abs() / scale);
-        }
+        worst = worst.max(relative_difference(&da, &db));
     }
     worst
+}
+
+/// The largest difference of `b` from `a`, relative to the largest entry
+/// of `a` (or to 1 if all are smaller).
+fn relative_difference(a: &[f64], b: &[f64]) -> f64 {
+    let scale = a.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+    a.iter()
+        .zip(b)
+        .fold(0.0f64, |w, (p, q)| w.max((p - q).abs() / scale))
+}
+
+/// The largest entry of `M du - f`, relative to the largest force.
+fn residual<const S: usize>(m: &[[f64; S]; S], du: &[f64], f: &[f64; S]) -> f64 {
+    let scale = f.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+    m.iter().zip(f).fold(0.0f64, |w, (row, fi)| {
+        let m_du: f64 = row.iter().zip(du).map(|(mk, duk)| mk * duk).sum();
+        w.max((m_du - fi).abs() / scale)
+    })
 }
 
 /// Largest difference of two functions of the state, relative to the
@@ -167,11 +182,7 @@ where
         }
         forcing(model, 0.0, &x, &mut f);
         entries(model, 0.0, &x, &mut m);
-        let scale = f.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        for (row, fi) in m.iter().zip(&f) {
-            let m_du: f64 = row.iter().zip(&dx[S..]).map(|(mk, duk)| mk * duk).sum();
-            worst = worst.max((m_du - fi).abs() / scale);
-        }
+        worst = worst.max(residual(&m, &dx[S..], &f));
     }
     worst
 }
@@ -251,18 +262,10 @@ fn spatial_20_forms_differ_only_by_what_the_conditioning_allows() {
         let eigenvalues =
             nalgebra::DMatrix::from_fn(20, 20, |i, j| m[i][j]).symmetric_eigenvalues();
         let conditioning = eigenvalues.max() / eigenvalues.min();
-        let force_scale = f.iter().fold(0.0f64, |s, v| s.max(v.abs()));
         for d in [&da, &db] {
-            for (row, fi) in m.iter().zip(&f) {
-                let m_du: f64 = row.iter().zip(&d[20..]).map(|(mk, duk)| mk * duk).sum();
-                worst_residual = worst_residual.max((m_du - fi).abs() / force_scale);
-            }
+            worst_residual = worst_residual.max(residual(&m, &d[20..], &f));
         }
-        let scale = da.iter().fold(1.0f64, |s, v| s.max(v.abs()));
-        let difference = da
-            .iter()
-            .zip(&db)
-            .fold(0.0f64, |w, (p, q)| w.max((p - q).abs() / scale));
+        let difference = relative_difference(&da, &db);
         worst_ratio = worst_ratio.max(difference / (conditioning * f64::EPSILON));
     }
     eprintln!("spatial20: backward error {worst_residual:e}, difference / (κ ε) {worst_ratio}");

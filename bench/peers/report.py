@@ -1,5 +1,6 @@
 """Tables of bench/peers/run.sh: median ns per call of every (tool, method)
-over all batches of all rounds, autosim against the fastest peer."""
+over all batches of all rounds, autosim against the fastest peer. The
+environment gives COMMIT and ROUNDS for the header."""
 import json, statistics, sys, datetime, os
 
 out, md_path, jsonl_path = sys.argv[1], sys.argv[2], sys.argv[3]
@@ -19,7 +20,8 @@ for r in rows:
     k = (r["kind"], r["n"], r["tool"], r["method"])
     if k in med:
         best_round[k] = min(best_round.get(k, float("inf")), statistics.median(r["batches_ns"]))
-cases = sorted({(k[0], k[1]) for k in med}, key=lambda c: (c[0], c[1]))
+# the chains, then the satellite (autosim only)
+cases = sorted({(k[0], k[1]) for k in med}, key=lambda c: (c[0] == "satellite", c[0], c[1]))
 table = ["| model | autosim | Pinocchio (best method) | CasADi (best method) | SymPy C | autosim / fastest peer | same, fastest rounds |",
          "|---|---:|---:|---:|---:|---:|---:|"]
 summary = []
@@ -35,10 +37,11 @@ for kind, n in cases:
     fast_p = [t for (k, nn, tt, m), t in best_round.items() if k == kind and nn == n and tt != "autosim"]
     fast_ratio = min(fast_a) / min(fast_p) if fast_a and fast_p else None
     fmt = lambda x: f"{x[0]:.1f} ({x[1]})" if x else "—"
-    table.append(f"| chain-{kind}-{n} | {a[0]:.1f} | {fmt(p)} | {fmt(c)} | {fmt(s)} | "
+    name = f"chain-{kind}-{n}" if kind in ("planar", "spatial") else kind
+    table.append(f"| {name} | {a[0]:.1f} | {fmt(p)} | {fmt(c)} | {fmt(s)} | "
                  + (f"{ratio:.2f}" if ratio else "—") + " | "
                  + (f"{fast_ratio:.2f}" if fast_ratio else "—") + " |")
-    summary.append({"model": f"chain-{kind}-{n}", "autosim_ns": a[0] if a else None,
+    summary.append({"model": name, "autosim_ns": a[0] if a else None,
                     "pinocchio": p, "casadi": c, "sympy": s, "ratio_to_fastest_peer": ratio,
                     "ratio_fastest_rounds": fast_ratio})
 comp = [json.loads(l) for l in open(os.path.join(out, "compile.jsonl")) if l.strip()] \
@@ -49,13 +52,15 @@ for c in comp:
 text = f"""# autosim against the peers on the chain models
 
 `bash bench/peers/run.sh` (after the peers' own scripts in `../shared/bench`),
-{datetime.datetime.utcnow():%Y-%m-%d %H:%M} UTC. Median ns per forward-dynamics call over
+{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, commit {os.environ.get("COMMIT", "?")},
+{os.environ.get("ROUNDS", "?")} rounds. Median ns per forward-dynamics call over
 every batch (1000 calls over 1000 random states) of every round; the rounds
 interleave the programs, so load hits all alike. The best method of each
 peer is shown with its name. The last column compares the fastest round's
 median of each program instead (timings here are bimodal). Everything is
 compiled for this machine's CPU: the peers with gcc/g++ `-O3 -march=native`,
-autosim's generated Rust with `-C target-cpu=native`.
+autosim's generated Rust with `-C target-cpu=native`. The satellite (the
+paper's spacecraft; no peer has it) is timed the same way.
 
 {chr(10).join(table)}
 

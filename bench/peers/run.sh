@@ -34,6 +34,7 @@ PINCPU=(); command -v taskset >/dev/null && PINCPU=(taskset -c 1)
 echo "== 1. models"
 rm -rf "$HERE/models" && mkdir -p "$HERE/models"
 (cd "$REPO" && cargo run -q --release --example gen_chains -- "$HERE/models" 1 2 3 5 7 10 20 50)
+cp "$REPO/examples/models/satellite.sim" "$HERE/models/"
 
 echo "== 2. autosim_bench (release, -C target-cpu=native as the peers' -march=native)"
 # The peers' C and C++ are compiled for this machine's CPU (-march=native);
@@ -97,4 +98,6 @@ TOML
 done
 
 echo "== 5. tables"
-$PY "$HERE/report.py" "$OUT" "$HERE/results.md" "$HERE/results.jsonl"
+COMMIT="$(git -C "$REPO" rev-parse --short HEAD)"
+git -C "$REPO" diff --quiet HEAD -- . ':!bench/peers/results.md' ':!bench/peers/results.jsonl' || COMMIT="$COMMIT with uncommitted changes"
+COMMIT="$COMMIT" ROUNDS="$ROUNDS" $PY "$HERE/report.py" "$OUT" "$HERE/results.md" "$HERE/results.jsonl"

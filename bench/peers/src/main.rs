@@ -2,7 +2,9 @@
 //! `derivatives()` timed exactly as the peers' `pin_bench bench` and
 //! `cas_bench bench` time theirs (1000 random states, q in [-π, π], speeds
 //! in [-1, 1]; batches of 1000 calls, about 0.04 s of batches per model and
-//! round), printing the same JSON lines with method `autosim`.
+//! round), printing the same JSON lines with method `autosim`. Then the
+//! satellite (kind `satellite`, no peer has it), timed the same way, for
+//! the "no slower than today" beside the chains.
 
 use autosim::runtime::Model;
 use std::hint::black_box;
@@ -37,6 +39,27 @@ models! {
 }
 
 /// SplitMix64, uniform in [lo, hi).
+autosim::include_model!(satellite);
+
+/// The satellite's user code: thrusters with a dead band, fixed clock and
+/// camera commands (as `examples/perf.rs`).
+#[derive(Clone, Copy)]
+struct Quiet;
+impl satellite::Externs for Quiet {
+    fn thrust(&mut self, _t: f64, _axis: f64, error: f64) -> f64 {
+        if error > 0.0025 {
+            -1.0
+        } else if error < -0.0025 {
+            1.0
+        } else {
+            0.0
+        }
+    }
+    fn cmd(&mut self, _t: f64) -> [f64; 2] {
+        [0.8584074, -0.5]
+    }
+}
+
 struct Rng(u64);
 impl Rng {
     fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
@@ -92,6 +115,8 @@ fn main() {
     let mut rng = Rng(12345);
     let mut out = Vec::new();
     run_all(rounds, &mut rng, &mut out);
+    let satellite = satellite::Satellite::new(Quiet);
+    out.push(("satellite".to_string(), 10, time(satellite, rounds, &mut rng)));
     for (kind, n, batches) in out {
         let list: Vec<String> = batches.iter().map(|b| format!("{b:.3}")).collect();
         println!(

@@ -126,7 +126,7 @@ fn build_satellite(params: &Value, small: bool, quaternion: bool, lock_boom: boo
     ] {
         sys.add_input(n, 0.0, Some(u)).unwrap();
     }
-    satellite_moments(&mut sys);
+    satellite_moments(&mut sys, lock_boom);
     sys
 }
 
@@ -206,11 +206,17 @@ fn satellite_boom(
     (be, f)
 }
 
-/// The moments: the boom's springs, the clock's and the camera's servos,
-/// and the three thruster pairs.
-fn satellite_moments(sys: &mut System) {
-    moment(sys, "boom1", "F", Some("B"), "E", 3, "-KB*q9 - DB*u9");
-    moment(sys, "boom2", "F", Some("B"), "F", 1, "-KB*q10 - DB*u10");
+/// The moments: the boom's springs (without their dampers if the boom is
+/// locked: its speeds are zero, and `u9`, `u10` are no symbols of that
+/// model), the clock's and the camera's servos, and the three thruster
+/// pairs.
+fn satellite_moments(sys: &mut System, lock_boom: bool) {
+    let (boom1, boom2) = match lock_boom {
+        true => ("-KB*q9", "-KB*q10"),
+        false => ("-KB*q9 - DB*u9", "-KB*q10 - DB*u10"),
+    };
+    moment(sys, "boom1", "F", Some("B"), "E", 3, boom1);
+    moment(sys, "boom2", "F", Some("B"), "F", 1, boom2);
     moment(
         sys,
         "clock",

@@ -25,23 +25,20 @@ pub enum Target<'a> {
     Matrices(&'a [(TokenStream, usize, usize)]),
 }
 
-/// Blocks with more bound values than this compute sines and cosines by
-/// `math::sin_cos_inline` (no branch on the angle) instead of libm's
-/// `sincos`, whose branches, mispredicted at random angles, discard the
-/// work a block has in flight. Measured on `bench/peers` at random
-/// states. On a 2-vCPU AMD EPYC: chain-spatial-50 2 773 → 2 468 ns,
-/// chain-planar-50 1 590 → 1 330 ns (1 685 values), at 635-713 values
-/// (chain-planar-20, chain-spatial-10) within 2 %, chain-planar-5 faster
-/// with libm's shorter path (87.5 ns against 99.8). On a 2-vCPU Intel Xeon
-/// (AVX-512): chain-planar-20 (697 values) 511 → 430 ns, chain-spatial-10
-/// (745) 288 → 270, chain-spatial-20 (its shared block, 611) 707 → 642;
-/// chain-planar-10 (317) gains too (215 → 192) but chain-spatial-2 loses
-/// (20 → 23), and at a threshold of 250 chain-spatial-20's two
-/// formulations moved apart from 6e-13 to 1.2e-12 at the 50 states where
-/// `tests/formulation.rs` holds them to 1e-12: its mass matrix is ill
-/// conditioned there, so the mass-matrix form's own rounding error (up to
-/// κ(M)·ε; the recursion stays within 1e-13 of exact accelerations) moves
-/// with any change of a sine's last bit.
+/// Blocks with more bound values than this compute the sines and cosines
+/// they do not take in pairs (`emit/sines.rs`: one left over, or of an
+/// angle the block computes) by `math::sin_cos_inline` (no branch on the
+/// angle) instead of libm's `sincos`, whose branches, mispredicted at
+/// random angles, discard the work a block has in flight. Measured on
+/// `bench/peers` at random states, one call per angle. On a 2-vCPU AMD
+/// EPYC: chain-spatial-50 2 773 → 2 468 ns, chain-planar-50 1 590 → 1 330
+/// ns (1 685 values), at 635-713 values (chain-planar-20,
+/// chain-spatial-10) within 2 %, chain-planar-5 faster with libm's
+/// shorter path (87.5 ns against 99.8). On a 2-vCPU Intel Xeon (AVX-512):
+/// chain-planar-20 (697 values) 511 → 430 ns, chain-spatial-10 (745) 288
+/// → 270, chain-spatial-20 (its shared block, 611) 707 → 642;
+/// chain-planar-10 (317) gained too (215 → 192) but chain-spatial-2 lost
+/// (20 → 23).
 pub const MIN_VALUES_FOR_INLINE_SINES: usize = 600;
 
 /// The array index of each bound value of a block with more than
@@ -124,7 +121,10 @@ impl BlockEmitter<'_> {
             out.extend(quote!(let mut #z = [0.0; #len];));
         }
         let inline_sines = block.names.len() > MIN_VALUES_FOR_INLINE_SINES;
-        let groups = match inline_sines {
+        // Pairs of sines in every `f64` block; `f32` ones below the
+        // threshold keep libm's `sincosf` (the kernel computes in `f64`,
+        // in software on a single-precision FPU such as a Cortex-M4F's).
+        let groups = match inline_sines || self.float == FloatType::F64 {
             true => sines::groups(&self.prog.ir, block, &|n| printer.is_outside(n)),
             false => Default::default(),
         };

@@ -1,15 +1,16 @@
-//! Sines and cosines of a big block two at a time.
+//! Sines and cosines two at a time.
 //!
-//! Blocks of more than [`MIN_VALUES_FOR_INLINE_SINES`] values compute sines
-//! and cosines by the runtime's branch-free `sin_cos_inline`; the angles
-//! such a block reads from outside (coordinates, parameters, inputs, time,
-//! the common block's values) are all known when it starts, so their sines
-//! and cosines can be taken [`LANES`] at a time,
-//! `sin_cos_lanes([q1, q2])`: the same values (lane by lane the
-//! same operations) in vector instructions where the target has them, half
-//! the instructions of two calls. A group is computed where the first of
-//! its angles was; one left over, and angles the block computes itself,
-//! keep one call each.
+//! The angles a block reads from outside (coordinates, parameters,
+//! inputs, time, the common block's values) are all known when it starts,
+//! so their sines and cosines can be taken [`LANES`] at a time,
+//! `sin_cos_lanes([q1, q2])`: the runtime's branch-free kernel, lane by
+//! lane the same operations as its one-angle `sin_cos_inline`, in vector
+//! instructions where the target has them, half the instructions of two
+//! calls. A group is computed where the first of its angles was; one left
+//! over, and angles the block computes itself, keep one call each (libm's
+//! in small blocks, the branch-free one in blocks of more than
+//! [`MIN_VALUES_FOR_INLINE_SINES`] values). `f32` models group only in
+//! those big blocks (`emit/block.rs`).
 //!
 //! [`MIN_VALUES_FOR_INLINE_SINES`]: super::block::MIN_VALUES_FOR_INLINE_SINES
 
@@ -18,10 +19,13 @@ use rustc_hash::{FxHashMap, FxHashSet};
 
 /// Angles per group. Measured on the chains of `bench/peers` (Intel Xeon
 /// with AVX-512, `-C target-cpu=native`, interleaved A/B against one call
-/// per angle): two lanes made chain-planar-20 and -50 and chain-spatial-10
-/// 9-11 % faster and chain-spatial-50 8.5 %, slowing none; four lanes
-/// (256-bit vectors) made chain-spatial-50 4 % faster but chain-planar-50
-/// 20 % and chain-spatial-10 29 % slower.
+/// per angle): in big blocks two lanes made chain-planar-20 and -50 and
+/// chain-spatial-10 9-11 % faster and chain-spatial-50 8.5 %, slowing
+/// none; four lanes (256-bit vectors) made chain-spatial-50 4 % faster but
+/// chain-planar-50 20 % and chain-spatial-10 29 % slower. Pairs in small
+/// blocks too, against libm's `sincos` there: chain-planar-7 and -10 20 %
+/// faster, chain-spatial-2 16 %, -5 9 %, -7 15 %, -20 19 %, the 50-link
+/// chains unchanged.
 pub const LANES: usize = 2;
 
 /// One sine and cosine: the two bound values and the angle.

@@ -12,10 +12,11 @@
 //! between 1e-9 and 1e6 in size (libm's `sincos` takes the rest, which
 //! keeps `sin(-0) = -0`, NaN and infinities, and exact reductions of huge
 //! arguments). Measured on the chains of `bench/peers`: chain-spatial-50
-//! 2 773 → 2 468 ns, chain-planar-50 1 590 → 1 330 ns; in small functions,
-//! whose time is their critical path, libm's shorter fast path wins
-//! (chain-planar-5 87.5 ns with libm against 99.8), so generated code
-//! calls this only from big blocks.
+//! 2 773 → 2 468 ns, chain-planar-50 1 590 → 1 330 ns; for one angle in a
+//! small function, whose time is its critical path, libm's shorter fast
+//! path wins (chain-planar-5 87.5 ns with libm against 99.8), so generated
+//! code calls the one-angle form only from big blocks; two angles at once
+//! ([`sin_cos_lanes`]) beat two libm calls in every block.
 //!
 //! Accuracy: the reduction subtracts `k π/2` in three parts, the first two
 //! exact for `|k| < 2^20`; the polynomials are the Taylor series to the

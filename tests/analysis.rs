@@ -5,6 +5,7 @@
 
 use autosim::runtime::analysis::{LinearSystem, Trim, TrimError, trim};
 use autosim::runtime::{Model, RunSettings, integrate::DormandPrince, run};
+use autosim_test_support::worst_of;
 
 autosim::model!(file = "examples/models/pendulum.sim");
 
@@ -151,7 +152,7 @@ fn bicycle_steady_turn_trims_from_a_rough_start() {
         &mut x,
         &settings,
         &mut |_t, x: &[f64; 11], _y: &[f64; 3]| {
-            worst = worst.max((x[3] - 0.1).abs());
+            worst = worst_of(worst, (x[3] - 0.1).abs());
         },
     )
     .unwrap();

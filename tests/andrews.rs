@@ -8,7 +8,7 @@
 
 use autosim::runtime::integrate::DormandPrince;
 use autosim::runtime::{Model, RunSettings, run};
-use autosim_test_support::{floats, load};
+use autosim_test_support::{floats, load, worst_of};
 
 autosim::model!(file = "examples/models/andrews.sim");
 use andrews::Andrews;
@@ -97,7 +97,7 @@ fn the_state_at_30_ms_matches_the_test_set() {
         .collect();
     let worst = (0..7)
         .map(|k| (x[slot(k)] - converged[k]).abs() / (1.0 + converged[k].abs()))
-        .fold(0.0f64, f64::max);
+        .fold(0.0f64, worst_of);
     eprintln!("andrews t = 0.03: vs test set beta {eb:e}, Theta {et:e}; vs converged {worst:e}");
     assert!(eb < 1e-6 && et < 1e-6, "beta {} Theta {}", x[0], x[1]);
     assert!(worst < 1e-9, "vs converged {worst:e}");

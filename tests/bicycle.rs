@@ -5,7 +5,7 @@
 //! 1.5e-14 (see `tests/reference/gen/bicycle.md`).
 
 use autosim::runtime::Model;
-use autosim_test_support::{kinetic_energy, load, tight_run};
+use autosim_test_support::{kinetic_energy, load, tight_run, worst_of};
 use serde_json::Value;
 
 autosim::model!(file = "examples/models/bicycle.sim");
@@ -69,7 +69,7 @@ fn run_case(case: &Value, stop: f64, tolerance: f64) -> ([f64; 11], f64) {
     let drift = out
         .iter()
         .map(|(_, x, p)| (energy(&mut m, x, *p) - e0).abs() / e0)
-        .fold(0.0, f64::max);
+        .fold(0.0, worst_of);
     let times: Vec<f64> = case["t"].as_array().unwrap().iter().map(number).collect();
     let rolls: Vec<f64> = case["roll"]
         .as_array()
@@ -83,7 +83,7 @@ fn run_case(case: &Value, stop: f64, tolerance: f64) -> ([f64; 11], f64) {
             .iter()
             .find(|o| (o.0 - t).abs() < 1e-9)
             .expect("output at the record");
-        worst = worst.max((x[PHI] - roll).abs());
+        worst = worst_of(worst, (x[PHI] - roll).abs());
     }
     eprintln!("bicycle at {v} m/s: roll vs reference {worst:e}, energy drift {drift:e}");
     assert!(worst < tolerance, "roll vs reference {worst:e}");

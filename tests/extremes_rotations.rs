@@ -12,7 +12,7 @@ mod extremes;
 use autosim::runtime::integrate::{DormandPrince, Rk4};
 use autosim::runtime::{Model, RunSettings, RunSummary, run};
 use autosim_test_support::quaternion::{distance as orientation_distance, from_123, rates_123};
-use autosim_test_support::{load, rel_err, satellite_samples};
+use autosim_test_support::{load, rel_err, satellite_samples, worst_of};
 use extremes::run_to;
 
 mod models {
@@ -51,7 +51,7 @@ fn rotation_through_the_1_2_3_singularity_and_with_euler_parameters() {
     let momentum_error = |y: &[f64; 3]| {
         (0..3)
             .map(|i| (y[i] - h_exact[i]).abs())
-            .fold(0.0, f64::max)
+            .fold(0.0, worst_of)
     };
 
     // Adaptive.

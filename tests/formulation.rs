@@ -87,30 +87,46 @@ fn random_state<const N: usize>(rng: &mut Rng, small: &[usize]) -> [f64; N] {
     x
 }
 
+/// How closely the two forms' derivatives agree at random states.
+struct Agreement {
+    /// The largest difference, relative to the derivatives' size.
+    worst: f64,
+    /// The same over the states where f64 determines the solution to
+    /// 1e-12 (κ(M)·ε ≤ 1e-12).
+    worst_where_determined: f64,
+    /// The largest ratio of the difference to `max(1e-12, κ(M) ε)`.
+    worst_ratio: f64,
+    /// How many states had κ(M)·ε > 1e-12.
+    ill_conditioned: usize,
+}
+
 /// The two forms' derivatives at `cases` random states (the states in
 /// `small` at 1e-6 scale: with small variables each formulation truncates
-/// a different model, equal to first order), with random inputs. Returns
-/// the largest difference relative to the derivatives' size, and the
-/// largest ratio of that difference to what f64 can determine:
-/// `max(1e-12, κ(M) ε)`, κ(M) = λmax/λmin of the mass matrix at the
-/// state. A mass-matrix solution is only determined to about κ(M)·ε (its
-/// entries' rounding alone moves it that much), so where M is that ill
-/// conditioned the forms may differ by it (chain-spatial-20 at 2.5 % of
-/// random states; the last test shows the recursion is the accurate one
-/// there); everywhere else the bound is 1e-12.
+/// a different model, equal to first order), with random inputs, and the
+/// conditioning κ(M) = λmax/λmin of the mass matrix at each. A mass-matrix
+/// solution is only determined to about κ(M)·ε (its entries' rounding
+/// alone moves it that much), so where M is that ill conditioned the
+/// forms may differ by that (chain-spatial-20 at 2.5 % of random states;
+/// the last test shows the recursion is the accurate one there).
 fn compare<A, B, const N: usize, const S: usize>(
     mut a: A,
     mut b: B,
-    mass: fn(&mut B, f64, &[f64; N], &mut [[f64; S]; S]),
+    mass_matrix: fn(&mut B, f64, &[f64; N], &mut [[f64; S]; S]),
     cases: usize,
     small: &[usize],
-) -> (f64, f64)
+) -> Agreement
 where
     A: Model<Float = f64, State = [f64; N]>,
     B: Model<Float = f64, State = [f64; N]>,
 {
     let mut rng = Rng::new(0x0bad_cafe_1234_5678);
-    let (mut worst, mut worst_ratio, mut evaluated) = (0.0f64, 0.0f64, 0);
+    let mut agreement = Agreement {
+        worst: 0.0,
+        worst_where_determined: 0.0,
+        worst_ratio: 0.0,
+        ill_conditioned: 0,
+    };
+    let mut evaluated = 0;
     for _ in 0..cases {
         let x: [f64; N] = random_state(&mut rng, small);
         let t = rng.uniform(0.0, 5.0);
@@ -128,22 +144,39 @@ where
         }
         evaluated += 1;
         let mut m = [[0.0; S]; S];
-        mass(&mut b, t, &x, &mut m);
+        mass_matrix(&mut b, t, &x, &mut m);
         let difference = relative_difference(&da, &db);
-        let allowed = (conditioning(&m) * f64::EPSILON).max(1e-12);
-        worst = worst_of(worst, difference);
-        worst_ratio = worst_of(worst_ratio, difference / allowed);
+        let determined = conditioning(&m) * f64::EPSILON;
+        agreement.worst = worst_of(agreement.worst, difference);
+        agreement.worst_ratio = worst_of(agreement.worst_ratio, difference / determined.max(1e-12));
+        match determined > 1e-12 {
+            true => agreement.ill_conditioned += 1,
+            false => {
+                agreement.worst_where_determined =
+                    worst_of(agreement.worst_where_determined, difference)
+            }
+        }
     }
     // A state may fail a pivot check in both forms alike; most must not.
     assert!(
         evaluated * 10 >= cases * 9,
         "only {evaluated} of {cases} states evaluated"
     );
-    (worst, worst_ratio)
+    agreement
 }
 
-/// κ(M) = λmax/λmin of a symmetric positive definite matrix.
+/// How many inputs `M` has.
+fn input_count<M: Model>(_: &M) -> usize {
+    M::INPUT_NAMES.len()
+}
+
+/// κ(M) = λmax/λmin of a symmetric positive definite matrix (finite:
+/// the eigenvalue iteration would not end on a NaN).
 fn conditioning<const S: usize>(m: &[[f64; S]; S]) -> f64 {
+    assert!(
+        m.iter().flatten().all(|v| v.is_finite()),
+        "mass matrix not finite"
+    );
     let eigenvalues = nalgebra::DMatrix::from_fn(S, S, |i, j| m[i][j]).symmetric_eigenvalues();
     eigenvalues.max() / eigenvalues.min()
 }
@@ -246,8 +279,18 @@ where
     worst
 }
 
+/// Which agreement of the derivatives a model is held to.
+#[derive(PartialEq)]
+enum Bound {
+    /// 1e-12 at every state.
+    Strict,
+    /// 1e-12 where κ(M)·ε ≤ 1e-12, κ(M)·ε elsewhere: for a model whose
+    /// mass-matrix form is less accurate than that at some states.
+    Conditioned,
+}
+
 macro_rules! check {
-    ($test:ident, $module:ident, $small:expr, $($user:expr)?) => {
+    ($test:ident, $module:ident, $bound:expr, $small:expr, $($user:expr)?) => {
         #[test]
         fn $test() {
             use $module::*;
@@ -256,10 +299,21 @@ macro_rules! check {
                 assert!(worst < tolerance, "{what}: {worst:e}");
             };
             let (mut a, mut b) = (matrix::Matrix::new($($user)?), recursive::Recursive::new($($user)?));
-            let (difference, ratio) =
+            let agreement =
                 compare(a.clone(), b.clone(), recursive::Recursive::mass_matrix, 50, &$small);
-            eprintln!("{}: recursive vs mass matrix {difference:e}", stringify!($module));
-            report("recursive vs mass matrix / max(1e-12, κ(M) ε)", ratio, 1.0);
+            eprintln!(
+                "{}: recursive vs mass matrix {:e}, {} of 50 states with κ(M) ε > 1e-12",
+                stringify!($module), agreement.worst, agreement.ill_conditioned
+            );
+            report("recursive vs mass matrix where κ(M) ε ≤ 1e-12", agreement.worst_where_determined, 1e-12);
+            report("recursive vs mass matrix / max(1e-12, κ(M) ε)", agreement.worst_ratio, 1.0);
+            if $bound == Bound::Strict {
+                report("recursive vs mass matrix", agreement.worst, 1e-12);
+            }
+            // The remaining checks with inputs too (the same in both).
+            let inputs: Vec<f64> = (0..input_count(&a)).map(|k| 0.7 - 0.3 * k as f64).collect();
+            a.set_input_values(&inputs);
+            b.set_input_values(&inputs);
             // With small variables the mass-matrix form truncates `M`
             // term by term and the recursion does not: they differ at
             // second order in the small states (1e-6 here).
@@ -280,34 +334,41 @@ macro_rules! check {
         }
     };
 }
-check!(planar_1, planar1, [],);
-check!(planar_2, planar2, [],);
-check!(planar_3, planar3, [],);
-check!(planar_5, planar5, [],);
-check!(planar_10, planar10, [],);
-check!(spatial_1, spatial1, [],);
-check!(spatial_2, spatial2, [],);
-check!(spatial_3, spatial3, [],);
-check!(spatial_3_stiff, spatial3_stiff, [],);
-check!(spatial_5, spatial5, [],);
-check!(spatial_7, spatial7, [],);
-check!(spatial_10, spatial10, [],);
+check!(planar_1, planar1, Bound::Strict, [],);
+check!(planar_2, planar2, Bound::Strict, [],);
+check!(planar_3, planar3, Bound::Strict, [],);
+check!(planar_5, planar5, Bound::Strict, [],);
+check!(planar_10, planar10, Bound::Strict, [],);
+check!(spatial_1, spatial1, Bound::Strict, [],);
+check!(spatial_2, spatial2, Bound::Strict, [],);
+check!(spatial_3, spatial3, Bound::Strict, [],);
+check!(spatial_3_stiff, spatial3_stiff, Bound::Strict, [],);
+check!(spatial_5, spatial5, Bound::Strict, [],);
+check!(spatial_7, spatial7, Bound::Strict, [],);
+check!(spatial_10, spatial10, Bound::Strict, [],);
 // Both forms share work between `derivatives` and `forcing` here. The
 // mass matrix is ill conditioned at some states (κ(M) up to 1.5e5), where
 // the mass-matrix form's own rounding error passes 1e-12 (at 2.5 % of
 // random states, up to 4.4e-12): the bound there is κ(M) ε, and the last
 // test measures both forms against exact accelerations.
-check!(spatial_20, spatial20, [],);
+check!(spatial_20, spatial20, Bound::Conditioned, [],);
 // The bead's slide `s` and its speed are small.
-check!(every_feature, features, [2, 10], User);
-check!(the_satellite, satellite, [], User);
-check!(the_sampled_satellite, satellite_sampled, [], User);
-check!(the_pendulum, pendulum, [],);
-check!(the_quarter_car, quarter_car, [],);
+check!(every_feature, features, Bound::Strict, [2, 10], User);
+check!(the_satellite, satellite, Bound::Strict, [], User);
+check!(
+    the_sampled_satellite,
+    satellite_sampled,
+    Bound::Strict,
+    [],
+    User
+);
+check!(the_pendulum, pendulum, Bound::Strict, [],);
+check!(the_quarter_car, quarter_car, Bound::Strict, [],);
 // The bus's six and the boom's two degrees of freedom are small.
 check!(
     the_small_satellite,
     satellite_small,
+    Bound::Strict,
     [0, 1, 2, 3, 4, 5, 8, 9, 10, 11, 12, 13, 14, 15, 18, 19],
     User
 );
@@ -326,8 +387,10 @@ fn planar_2_in_f32() {
     for _ in 0..50 {
         let x: [f32; 4] = random_state::<4>(&mut rng, &[]).map(|v| v as f32);
         let (mut da, mut db) = ([0.0f32; 4], [0.0f32; 4]);
-        a.derivatives(0.0, &x, &mut da).expect("finite");
-        b.derivatives(0.0, &x, &mut db).expect("finite");
+        a.derivatives(0.0, &x, &mut da)
+            .expect("no pivot check fails");
+        b.derivatives(0.0, &x, &mut db)
+            .expect("no pivot check fails");
         let (da, db) = (da.map(f64::from), db.map(f64::from));
         worst = worst_of(worst, relative_difference(&da, &db));
     }
@@ -362,8 +425,12 @@ fn spatial_20_against_its_exact_accelerations() {
         x[20..].copy_from_slice(&floats(&s["u"]));
         let exact = floats(&s["du"]);
         let (mut da, mut db) = ([0.0f64; 40], [0.0f64; 40]);
-        matrix.derivatives(0.0, &x, &mut da).expect("finite");
-        recursive.derivatives(0.0, &x, &mut db).expect("finite");
+        matrix
+            .derivatives(0.0, &x, &mut da)
+            .expect("no pivot check fails");
+        recursive
+            .derivatives(0.0, &x, &mut db)
+            .expect("no pivot check fails");
         let (mut m, mut f) = ([[0.0; 20]; 20], [0.0; 20]);
         recursive.mass_matrix(0.0, &x, &mut m);
         recursive.forcing(0.0, &x, &mut f);

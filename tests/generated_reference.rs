@@ -44,7 +44,7 @@ macro_rules! chain_test {
                     .unwrap();
                 let e_dq = rel_err(&dx[..n], &floats(&s["dq"]));
                 let e_du = rel_err(&dx[n..], &floats(&s["du"]));
-                worst = worst.max(e_dq).max(e_du);
+                worst = worst_of(worst_of(worst, e_dq), e_du);
                 assert!(
                     e_dq < REFERENCE_AGREEMENT && e_du < REFERENCE_AGREEMENT,
                     "{}: dq {e_dq:e}, du {e_du:e}",
@@ -168,7 +168,7 @@ fn satellite() {
         assert_eq!(model.externs.calls, [1, 2, 3]);
         let e_dq = rel_err(&dx[..10], &s.dq);
         let e_du = rel_err(&dx[10..], &s.du);
-        worst = worst.max(e_dq).max(e_du);
+        worst = worst_of(worst_of(worst, e_dq), e_du);
         assert!(
             e_dq < REFERENCE_AGREEMENT && e_du < REFERENCE_AGREEMENT,
             "satellite: dq {e_dq:e}, du {e_du:e}"

@@ -5,7 +5,7 @@
 //! independent coordinate is re-assembled before differencing).
 
 use autosim::runtime::{Linearize, Model, StateArray};
-use autosim_test_support::Rng;
+use autosim_test_support::{Rng, worst_of};
 
 mod chains {
     use autosim_test_support::models_from;
@@ -122,9 +122,9 @@ fn check<M: Linearize<Float = f64>>(
                 .iter()
                 .zip(&want[k])
                 .map(|(g, w)| (g - w).abs())
-                .fold(0.0, f64::max)
+                .fold(0.0, worst_of)
                 / scale;
-            worst = worst.max(err);
+            worst = worst_of(worst, err);
             assert!(
                 err < 1e-6,
                 "{name}: {label} differs from finite differences by {err:e}\n got {:?}\nwant {:?}",

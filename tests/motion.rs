@@ -5,6 +5,7 @@
 
 use autosim::runtime::integrate::{DormandPrince, Rk4};
 use autosim::runtime::{Model, RunSettings, Stepper, run};
+use autosim_test_support::worst_of;
 
 autosim::model! {
     /// A cart on a rail along n2, driven as `x = A sin(omega t)`, carrying
@@ -132,17 +133,17 @@ fn a_fully_driven_mechanism_balances_power() {
     .unwrap();
     // dE/dt (fourth-order central differences, error ~ dt^4 E(5)/30)
     // against the torque's power.
-    let peak = out.iter().map(|y| (y[4] * y[1]).abs()).fold(0.0, f64::max);
+    let peak = out.iter().map(|y| (y[4] * y[1]).abs()).fold(0.0, worst_of);
     let mut worst = 0.0f64;
     for k in 2..out.len() - 2 {
         let e = |j: usize| out[j][0];
         let rate = (e(k - 2) - 8.0 * e(k - 1) + 8.0 * e(k + 1) - e(k + 2)) / (12.0 * dt);
-        worst = worst.max((rate - out[k][4] * out[k][1]).abs());
+        worst = worst_of(worst, (rate - out[k][4] * out[k][1]).abs());
     }
     let closure = out
         .iter()
         .map(|y| y[2].abs().max(y[3].abs()))
-        .fold(0.0, f64::max);
+        .fold(0.0, worst_of);
     eprintln!(
         "driven four-bar: power balance {:e} of the peak {peak:.3} W, loop {closure:e}",
         worst / peak

@@ -8,7 +8,7 @@
 //! computed here from the chain's geometry) + Σ ½ k q_i².
 
 use autosim::runtime::Model;
-use autosim_test_support::{floats, kinetic_energy, load, tight_run};
+use autosim_test_support::{floats, kinetic_energy, load, tight_run, worst_of};
 use serde_json::Value;
 
 mod planar {
@@ -128,7 +128,7 @@ macro_rules! trajectory_test {
             let drift = outputs
                 .iter()
                 .map(|(_, x, tip)| (energy(&mut model, x, *tip) - e0).abs())
-                .fold(0.0f64, f64::max);
+                .fold(0.0f64, worst_of);
             assert!(drift < 1e-8 * e0.abs(), "energy drift {drift:e} of {e0}");
 
             eprintln!(

@@ -70,7 +70,7 @@ fn satellite_program_matches_reference() {
         let dx = it.derivatives(at, &mut user).unwrap();
         let e_dq = rel_err(&dx[..n], &floats(&s["dq"]));
         let e_du = rel_err(&dx[n..], &floats(&s["du"]));
-        worst = worst.max(e_dq).max(e_du);
+        worst = worst_of(worst_of(worst, e_dq), e_du);
         assert!(e_dq < 1e-9 && e_du < 1e-9, "dq {e_dq:e} du {e_du:e}");
     }
     eprintln!("satellite.sim program: worst relative error {worst:.2e}");

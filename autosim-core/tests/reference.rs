@@ -54,7 +54,7 @@ fn check_samples(
         let want_du = floats(&sample["du"]);
         let e_dq = rel_err(&dq, &want_dq);
         let e_du = rel_err(&du, &want_du);
-        worst = worst.max(e_dq).max(e_du);
+        worst = worst_of(worst_of(worst, e_dq), e_du);
         assert!(
             e_dq < 1e-9 && e_du < 1e-9,
             "{name}: dq err {e_dq:e}, du err {e_du:e}\n got {du:?}\nwant {want_du:?}"

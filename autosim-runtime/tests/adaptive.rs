@@ -4,7 +4,7 @@ mod common;
 
 use autosim_runtime::integrate::{DopriSettings, DormandPrince};
 use autosim_runtime::{IntegrationError, Model, RunSettings, Stepper};
-use autosim_test_support::max_diff;
+use autosim_test_support::{max_diff, worst_of};
 use common::{BlowUp, Oscillator, Polynomial, run_unobserved};
 
 /// Steps the oscillator to `t_end` with DOPRI5, returning the global error
@@ -71,7 +71,7 @@ fn dense_output_is_accurate_between_steps() {
             let ti = t0 + theta * (t1 - t0);
             let mut xi = [0.0; 2];
             dp.interpolate(ti, &mut xi).unwrap();
-            worst = worst.max(max_diff(&xi, &model.exact(ti)));
+            worst = worst_of(worst, max_diff(&xi, &model.exact(ti)));
             checked += 1;
         }
         t += info.h;

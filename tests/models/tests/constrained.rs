@@ -102,7 +102,7 @@ macro_rules! differential {
                 }
                 let Some(want) = reference(&c, &params, &x) else { continue };
                 let e = rel_err(&dx, &want);
-                worst = worst.max(e);
+                worst = worst_of(worst, e);
                 compared += 1;
                 assert!(e < 1e-9, "{}: generated vs nalgebra {e:e}", $file);
             }

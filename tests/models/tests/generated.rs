@@ -66,7 +66,7 @@ macro_rules! differential {
                 }
                 let want = reference_derivatives(&c, &params, t, &x, &[]);
                 let e = rel_err(&dx[..2 * n], &want);
-                worst = worst.max(e);
+                worst = worst_of(worst, e);
                 assert!(e < 1e-12, "{}: optimized vs unoptimized {e:e}", $file);
             }
             eprintln!("{}: worst relative difference {worst:.2e}", $file);
@@ -247,7 +247,7 @@ fn f32_model_matches_f64_model() {
         m64.derivatives(0.0, &x, &mut d64).unwrap();
         m32.derivatives(0.0, &x32, &mut d32).unwrap();
         let got: Vec<f64> = d32.iter().map(|v| f64::from(*v)).collect();
-        worst = worst.max(rel_err(&got, &d64));
+        worst = worst_of(worst, rel_err(&got, &d64));
     }
     eprintln!("f32 vs f64: worst relative difference {worst:.2e}");
     assert!(worst < 1e-4, "f32 model differs by {worst:e}");

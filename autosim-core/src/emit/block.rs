@@ -120,11 +120,12 @@ impl BlockEmitter<'_> {
             let (z, len) = (&self.locals.z, Literal::usize_unsuffixed(array.len()));
             out.extend(quote!(let mut #z = [0.0; #len];));
         }
-        let inline_sines = block.names.len() > MIN_VALUES_FOR_INLINE_SINES;
-        // Pairs of sines in every `f64` block; `f32` ones below the
-        // threshold keep libm's `sincosf` (the kernel computes in `f64`,
-        // in software on a single-precision FPU such as a Cortex-M4F's).
-        let groups = match inline_sines || self.float == FloatType::F64 {
+        // The branch-free kernel computes in `f64`, which a single-precision
+        // FPU (a Cortex-M4F's) does in software: `f32` models keep libm's
+        // `sincosf` for every angle.
+        let branch_free = self.float == FloatType::F64;
+        let inline_sines = branch_free && block.names.len() > MIN_VALUES_FOR_INLINE_SINES;
+        let groups = match branch_free {
             true => sines::groups(&self.prog.ir, block, &|n| printer.is_outside(n)),
             false => Default::default(),
         };

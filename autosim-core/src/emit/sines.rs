@@ -9,8 +9,8 @@
 //! calls. A group is computed where the first of its angles was; one left
 //! over, and angles the block computes itself, keep one call each (libm's
 //! in small blocks, the branch-free one in blocks of more than
-//! [`MIN_VALUES_FOR_INLINE_SINES`] values). `f32` models group only in
-//! those big blocks (`emit/block.rs`).
+//! [`MIN_VALUES_FOR_INLINE_SINES`] values). `f32` models take every sine
+//! from libm's `sincosf` instead (the kernel computes in `f64`).
 //!
 //! [`MIN_VALUES_FOR_INLINE_SINES`]: super::block::MIN_VALUES_FOR_INLINE_SINES
 

@@ -218,7 +218,7 @@ mod imp {
                     let (s, c) = crate::float::straight_sin_cos::sin_cos(f64::from(x));
                     (<$t>::from_f64(s), <$t>::from_f64(c))
                 }
-                /// Four sines and cosines without branches on the angles,
+                /// `N` sines and cosines without branches on the angles,
                 /// computed in `f64`.
                 #[inline(always)]
                 pub fn sin_cos_inline_lanes<const N: usize>(x: [$t; N]) -> ([$t; N], [$t; N]) {

@@ -1,5 +1,6 @@
-//! Sine and cosine of one angle in a fixed sequence of operations, for the
-//! big generated functions (`Float::sin_cos_inline`).
+//! Sines and cosines in a fixed sequence of operations: pairs of angles
+//! for every `f64` generated function (`Float::sin_cos_inline_lanes`),
+//! single angles for the big ones (`Float::sin_cos_inline`).
 //!
 //! libm's `sincos` branches on the argument: on its size (up to π/4 it
 //! skips the reduction) and on the quadrant (which of sine and cosine to

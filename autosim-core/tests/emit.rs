@@ -59,3 +59,15 @@ fn generation_is_deterministic() {
         assert!(a == b, "{f}: two generations differ");
     }
 }
+
+/// `f64` models take the sines of the angles they read in pairs by the
+/// branch-free kernel; `f32` models call libm's `sincosf` for every angle
+/// (the kernel computes in `f64`, in software on a single-precision FPU).
+#[test]
+fn sines_in_pairs_in_f64_models_only() {
+    let f64_code = generate("chain_planar_2.sim");
+    assert!(f64_code.contains("math::sin_cos_lanes([q2, q1])"));
+    let f32_code = generate("chain_planar_2_f32.sim");
+    assert!(f32_code.contains("math::sin_cos(q1)"));
+    assert!(!f32_code.contains("sin_cos_lanes") && !f32_code.contains("sin_cos_inline"));
+}

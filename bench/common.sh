@@ -19,7 +19,7 @@
 #                HERE; first it exports, beside the script's own BENCH_*
 #                settings, the machine and the commit measured: BENCH_NPROC,
 #                BENCH_RUSTC, BENCH_LOAD and BENCH_DATE (at that moment, after
-#                the runs) and BENCH_GIT.
+#                the runs) and BENCH_GIT (bench_git's line).
 
 # BASH_SOURCE[1] is the file that sourced this one.
 [ -n "${BASH_SOURCE[1]:-}" ] || { echo "bench/common.sh: source it from a script" >&2; return 1; }
@@ -28,15 +28,25 @@ REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 NICE="nice -n 10"
 PY="${PYTHON:-python3}"
 
+#   bench_git    prints which autosim was measured: the commit, and how many
+#                tracked files differ from it (not counting the benchmarks'
+#                own results, which runs rewrite)
+
+bench_git() {
+  # Read-only git queries (no index refresh); '?' outside a checkout.
+  local head_sha dirty
+  head_sha="$(git -C "$REPO" rev-parse --short HEAD 2>/dev/null || echo '?')"
+  dirty="$(git -C "$REPO" --no-optional-locks status --porcelain --untracked-files=no \
+    -- . ':!bench/*/results*' ':!bench/*/*.jsonl' 2>/dev/null | wc -l)"
+  echo "commit $head_sha, $dirty tracked files with uncommitted changes in the working tree"
+}
+
 run_report() {
   export BENCH_NPROC="$(nproc)"
   export BENCH_RUSTC="$(cd "$REPO" && rustc --version)"
   export BENCH_LOAD="$(cat /proc/loadavg)"
   export BENCH_DATE="$(date -u '+%Y-%m-%d %H:%M UTC')"
-  # Read-only git queries (no index refresh): which autosim was measured.
-  local head_sha dirty
-  head_sha="$(git -C "$REPO" rev-parse --short HEAD 2>/dev/null || echo '?')"
-  dirty="$(git -C "$REPO" --no-optional-locks status --porcelain --untracked-files=no 2>/dev/null | wc -l)"
-  export BENCH_GIT="commit $head_sha, $dirty tracked files with uncommitted changes in the working tree"
+  BENCH_GIT="$(bench_git)"
+  export BENCH_GIT
   $PY - "$HERE"
 }

@@ -1,4 +1,5 @@
-//! Compiles every chain model `run.sh` generated into `models/`.
+//! Compiles every model `run.sh` put into `models/` (the chains and the
+//! satellite).
 
 fn main() {
     let mut models: Vec<std::path::PathBuf> = std::fs::read_dir("models")

@@ -1,6 +1,7 @@
 """Tables of bench/peers/run.sh: median ns per call of every (tool, method)
 over all batches of all rounds, autosim against the fastest peer. The
-environment gives COMMIT and ROUNDS for the header."""
+environment gives BENCH_GIT (bench/common.sh's bench_git) and ROUNDS for the
+header."""
 import json, statistics, sys, datetime, os
 
 out, md_path, jsonl_path = sys.argv[1], sys.argv[2], sys.argv[3]
@@ -30,9 +31,10 @@ for kind, n in cases:
         v = [(t, m) for (k, nn, tt, m), t in med.items() if k == kind and nn == n and tt == tool]
         return min(v) if v else None
     a = best("autosim"); p = best("pinocchio"); c = best("casadi"); s = best("sympy")
+    if not a:
+        continue  # a peer's model without autosim's (not in this run)
     peers = [x[0] for x in (p, c, s) if x]
     ratio = a[0] / min(peers) if a and peers else None
-    fast = [t for (k, nn, tt, m), t in best_round.items() if k == kind and nn == n]
     fast_a = [t for (k, nn, tt, m), t in best_round.items() if k == kind and nn == n and tt == "autosim"]
     fast_p = [t for (k, nn, tt, m), t in best_round.items() if k == kind and nn == n and tt != "autosim"]
     fast_ratio = min(fast_a) / min(fast_p) if fast_a and fast_p else None
@@ -41,7 +43,7 @@ for kind, n in cases:
     table.append(f"| {name} | {a[0]:.1f} | {fmt(p)} | {fmt(c)} | {fmt(s)} | "
                  + (f"{ratio:.2f}" if ratio else "—") + " | "
                  + (f"{fast_ratio:.2f}" if fast_ratio else "—") + " |")
-    summary.append({"model": name, "autosim_ns": a[0] if a else None,
+    summary.append({"model": name, "autosim_ns": a[0],
                     "pinocchio": p, "casadi": c, "sympy": s, "ratio_to_fastest_peer": ratio,
                     "ratio_fastest_rounds": fast_ratio})
 comp = [json.loads(l) for l in open(os.path.join(out, "compile.jsonl")) if l.strip()] \
@@ -49,11 +51,12 @@ comp = [json.loads(l) for l in open(os.path.join(out, "compile.jsonl")) if l.str
 ctab = ["| model | generated lines | rustc (release, s) |", "|---|---:|---:|"]
 for c in comp:
     ctab.append(f"| chain-{c['kind']}-{c['n']} | {c['lines']} | {c['rustc_s']:.1f} |")
-text = f"""# autosim against the peers on the chain models
+text = f"""# autosim against the peers on the chain models, and the satellite
 
 `bash bench/peers/run.sh` (after the peers' own scripts in `../shared/bench`),
-{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, commit {os.environ.get("COMMIT", "?")},
-{os.environ.get("ROUNDS", "?")} rounds. Median ns per forward-dynamics call over
+{datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, autosim at
+{os.environ.get("BENCH_GIT", "an unknown commit")}, {os.environ.get("ROUNDS", "?")} rounds.
+Median ns per forward-dynamics call over
 every batch (1000 calls over 1000 random states) of every round; the rounds
 interleave the programs, so load hits all alike. The best method of each
 peer is shown with its name. The last column compares the fastest round's

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# autosim against the peers of ../shared/bench on the chain models, in one
-# interleaved run: Pinocchio (ABA, CRBA variants; pin_bench), CasADi-generated
+# autosim against the peers of ../shared/bench on the chain models (and the
+# satellite, which only autosim has), in one interleaved run: Pinocchio (ABA, CRBA variants; pin_bench), CasADi-generated
 # C of the articulated-body and CRBA algorithms (cas_bench), SymPy + cse C
 # where it exists, and autosim's generated derivatives() (autosim_bench,
 # this crate), all timed the same way (1000 random states, batches of 1000
@@ -98,6 +98,4 @@ TOML
 done
 
 echo "== 5. tables"
-COMMIT="$(git -C "$REPO" rev-parse --short HEAD)"
-git -C "$REPO" diff --quiet HEAD -- . ':!bench/peers/results.md' ':!bench/peers/results.jsonl' || COMMIT="$COMMIT with uncommitted changes"
-COMMIT="$COMMIT" ROUNDS="$ROUNDS" $PY "$HERE/report.py" "$OUT" "$HERE/results.md" "$HERE/results.jsonl"
+BENCH_GIT="$(bench_git)" ROUNDS="$ROUNDS" $PY "$HERE/report.py" "$OUT" "$HERE/results.md" "$HERE/results.jsonl"

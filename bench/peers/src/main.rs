@@ -3,8 +3,8 @@
 //! `cas_bench bench` time theirs (1000 random states, q in [-π, π], speeds
 //! in [-1, 1]; batches of 1000 calls, about 0.04 s of batches per model and
 //! round), printing the same JSON lines with method `autosim`. Then the
-//! satellite (kind `satellite`, no peer has it), timed the same way, for
-//! the "no slower than today" beside the chains.
+//! satellite (kind `satellite`; no peer has it), timed the same way, so
+//! its time is measured in the same run as the chains.
 
 use autosim::runtime::Model;
 use std::hint::black_box;
@@ -38,11 +38,11 @@ models! {
     chain_spatial50::ChainSpatial50 => "spatial", 50;
 }
 
-/// SplitMix64, uniform in [lo, hi).
 autosim::include_model!(satellite);
 
 /// The satellite's user code: thrusters with a dead band, fixed clock and
-/// camera commands (as `examples/perf.rs`).
+/// camera commands (those of `examples/common/perf_models.rs`, which this
+/// crate, outside the workspace, cannot share).
 #[derive(Clone, Copy)]
 struct Quiet;
 impl satellite::Externs for Quiet {
@@ -60,6 +60,7 @@ impl satellite::Externs for Quiet {
     }
 }
 
+/// SplitMix64, uniform in [lo, hi).
 struct Rng(u64);
 impl Rng {
     fn uniform(&mut self, lo: f64, hi: f64) -> f64 {

@@ -28,28 +28,10 @@ pub mod models {
     );
 }
 
-/// Thrusters on a dead band, fixed commands.
-#[derive(Clone, Copy)]
-pub struct Quiet;
+include!("quiet.rs");
 
-/// The same user code for both satellite models.
-macro_rules! quiet {
-    ($($module:ident),+) => {
-        $(impl models::$module::Externs for Quiet {
-            fn thrust(&mut self, _t: f64, _axis: f64, error: f64) -> f64 {
-                if error > 0.0025 {
-                    -1.0
-                } else if error < -0.0025 {
-                    1.0
-                } else {
-                    0.0
-                }
-            }
-            fn cmd(&mut self, _t: f64) -> [f64; 2] {
-                [0.8584074, -0.5]
-            }
-        })+
-    };
-}
-
-quiet!(satellite, satellite_small, satellite_linear);
+quiet!(
+    models::satellite::Externs,
+    models::satellite_small::Externs,
+    models::satellite_linear::Externs
+);

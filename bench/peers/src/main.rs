@@ -40,25 +40,9 @@ models! {
 
 autosim::include_model!(satellite);
 
-/// The satellite's user code: thrusters with a dead band, fixed clock and
-/// camera commands (those of `examples/common/perf_models.rs`, which this
-/// crate, outside the workspace, cannot share).
-#[derive(Clone, Copy)]
-struct Quiet;
-impl satellite::Externs for Quiet {
-    fn thrust(&mut self, _t: f64, _axis: f64, error: f64) -> f64 {
-        if error > 0.0025 {
-            -1.0
-        } else if error < -0.0025 {
-            1.0
-        } else {
-            0.0
-        }
-    }
-    fn cmd(&mut self, _t: f64) -> [f64; 2] {
-        [0.8584074, -0.5]
-    }
-}
+// The satellite's user code: `Quiet`, as `examples/perf.rs` times it.
+include!("../../../examples/common/quiet.rs");
+quiet!(satellite::Externs);
 
 /// SplitMix64, uniform in [lo, hi).
 struct Rng(u64);

@@ -101,7 +101,11 @@ fn main() {
     let mut out = Vec::new();
     run_all(rounds, &mut rng, &mut out);
     let satellite = satellite::Satellite::new(Quiet);
-    out.push(("satellite".to_string(), 10, time(satellite, rounds, &mut rng)));
+    out.push((
+        "satellite".to_string(),
+        10,
+        time(satellite, rounds, &mut rng),
+    ));
     for (kind, n, batches) in out {
         let list: Vec<String> = batches.iter().map(|b| format!("{b:.3}")).collect();
         println!(

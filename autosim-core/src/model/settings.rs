@@ -41,16 +41,22 @@ pub(super) fn apply_settings(
                         ),
                     ),
                 },
-                SettingKey::Formulation => match formulation(&opt.value) {
-                    Some(f) => out.formulation = f,
-                    None => r.push(
-                        Diagnostic::error(
-                            opt.value.span(),
-                            "`formulation` is `auto`, `mass_matrix` or `recursive`",
-                        )
-                        .help("`auto` (the default) generates whichever costs fewer operations"),
-                    ),
-                },
+                SettingKey::Formulation => {
+                    let written = match &opt.value {
+                        ast::Expr::Name(n) => n.text.as_str(),
+                        _ => "",
+                    };
+                    match Formulation::named(written) {
+                        Some(f) => out.formulation = f,
+                        None => r.push(
+                            Diagnostic::error(
+                                opt.value.span(),
+                                "`formulation` is `auto`, `mass_matrix` or `recursive`",
+                            )
+                            .help(Formulation::help_for(written)),
+                        ),
+                    }
+                }
                 SettingKey::Float => match &opt.value {
                     ast::Expr::Name(n) if n.text == "f64" => out.float = FloatType::F64,
                     ast::Expr::Name(n) if n.text == "f32" => out.float = FloatType::F32,
@@ -79,18 +85,6 @@ pub(super) fn apply_settings(
 }
 
 /// The formulation a setting names.
-pub(crate) fn formulation(value: &ast::Expr) -> Option<Formulation> {
-    match value {
-        ast::Expr::Name(n) => match n.text.as_str() {
-            "auto" => Some(Formulation::Auto),
-            "mass_matrix" => Some(Formulation::MassMatrix),
-            "recursive" => Some(Formulation::Recursive),
-            _ => None,
-        },
-        _ => None,
-    }
-}
-
 fn threshold(r: &mut Resolver<'_>, value: &ast::Expr) {
     let Some(k) = r.integer(value, "the threshold") else {
         return;

@@ -204,3 +204,21 @@ fn long_chains_of_lets_and_points_are_refused_not_a_stack_overflow() {
     text.push_str("output y = r400;\n");
     check(&text, "OK\n");
 }
+
+#[test]
+fn a_misspelled_formulation_is_named_and_an_unknown_one_explained() {
+    check(
+        &format!("{HEADER}settings {{ formulation: recursve }}\n"),
+        "
+test.sim:3:25: error: `formulation` is `auto`, `mass_matrix` or `recursive`
+  |
+3 | settings { formulation: recursve }
+  |                         ^^^^^^^^
+  = help: did you mean `recursive`?
+",
+    );
+    check_one_error(
+        &format!("{HEADER}settings {{ formulation: fastest }}\n"),
+        "`auto` (the default) generates whichever is estimated faster",
+    );
+}

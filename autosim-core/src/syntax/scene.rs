@@ -3,7 +3,7 @@
 //! [`Scene`](crate::model::Scene)).
 
 use crate::diag::Span;
-use crate::model::{FloatType, Scene};
+use crate::model::{FloatType, Formulation, Scene};
 use crate::syntax::ast;
 use proc_macro2::{TokenStream, TokenTree};
 use syn::parse::{Parse, ParseStream, Parser};
@@ -120,17 +120,16 @@ fn option(input: ParseStream, key: &syn::Ident, scene: &mut Scene) -> syn::Resul
         }
         "formulation" => {
             let f: syn::Ident = input.parse()?;
-            scene.formulation = Some(match f.to_string().as_str() {
-                "auto" => crate::model::Formulation::Auto,
-                "mass_matrix" => crate::model::Formulation::MassMatrix,
-                "recursive" => crate::model::Formulation::Recursive,
-                _ => {
-                    return Err(syn::Error::new(
-                        f.span(),
-                        "the formulation is `auto`, `mass_matrix` or `recursive`",
-                    ));
-                }
-            });
+            let name = f.to_string();
+            scene.formulation = Some(Formulation::named(&name).ok_or_else(|| {
+                syn::Error::new(
+                    f.span(),
+                    format!(
+                        "the formulation is `auto`, `mass_matrix` or `recursive`: {}",
+                        Formulation::help_for(&name)
+                    ),
+                )
+            })?);
         }
         "small" => scene.small = names(input)?,
         "lock" => scene.lock = names(input)?,

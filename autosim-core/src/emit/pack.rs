@@ -7,6 +7,9 @@
 //! lines instead of 100. The field lists of the parameter and input
 //! accessors (`[p.m1, p.L1, …]`, `[&mut p.m1, …]`) are packed the same way,
 //! where rustfmt would keep them vertical: 252 parameters take 26 lines.
+//! An array prettyplease split although the whole statement fits in 100
+//! characters goes back on one line, as rustfmt keeps it
+//! (`math::sin_cos_lanes([q10, q11])`).
 
 /// rustfmt's `max_width`: a packed line stays shorter than this, as
 /// rustfmt's do.
@@ -18,15 +21,24 @@ const SHORT_ELEMENT: usize = 10;
 /// The longest field place (`&mut self.inputs.name`) packed.
 const SHORT_PLACE: usize = 32;
 
-/// `text` with every vertically written array of short literals packed.
+/// `text` with every vertically written array of short elements on one
+/// line where the whole statement fits (`sin_cos_lanes([q10, q11])`), and
+/// every other one of short literals or places packed in rows.
 pub fn pack_short_arrays(text: &str) -> String {
     let lines: Vec<&str> = text.lines().collect();
     let mut out = String::with_capacity(text.len());
     let mut i = 0;
     while i < lines.len() {
+        let array = elements_after(&lines, i);
+        if let Some(one_line) = array.as_ref().and_then(|a| joined(lines[i], a)) {
+            out.push_str(&one_line);
+            out.push('\n');
+            i += array.map_or(0, |a| a.elements.len()) + 2;
+            continue;
+        }
         out.push_str(lines[i]);
         out.push('\n');
-        if let Some(elements) = short_elements_after(&lines, i) {
+        if let Some(elements) = array.filter(|a| a.packable).map(|a| a.elements) {
             let indent = indentation(lines[i + 1]);
             for row in packed_rows(indent, &elements) {
                 out.push_str(&row);
@@ -42,27 +54,63 @@ pub fn pack_short_arrays(text: &str) -> String {
     out
 }
 
-/// The elements of the array opened at line `open`, if it is written one
-/// element per line, every element a short literal, and closed at the
-/// opener's indentation.
-fn short_elements_after<'a>(lines: &[&'a str], open: usize) -> Option<Vec<&'a str>> {
+/// An array written one element per line.
+struct VerticalArray<'a> {
+    /// Its elements, without their commas.
+    elements: Vec<&'a str>,
+    /// Its closing line (`]`, `]);`, `]) {`, …).
+    close: &'a str,
+    /// Whether every element is a short literal or place (packed in rows
+    /// when the array does not fit on one line).
+    packable: bool,
+}
+
+/// The array opened at line `open`, if it is written one element per line,
+/// every element short (a literal, a place or an identifier), and closed
+/// at the opener's indentation.
+fn elements_after<'a>(lines: &[&'a str], open: usize) -> Option<VerticalArray<'a>> {
     if !lines[open].ends_with('[') {
         return None;
     }
     let outer = indentation(lines[open]);
     let (inner, close) = (format!("{outer}    "), format!("{outer}]"));
     let mut elements = Vec::new();
+    let mut packable = true;
     for line in &lines[open + 1..] {
         if line.starts_with(&close) {
-            return (elements.len() > 1).then_some(elements);
+            return (elements.len() > 1).then_some(VerticalArray {
+                elements,
+                close: line,
+                packable,
+            });
         }
         let element = line.strip_prefix(&inner)?.strip_suffix(',')?;
-        if !is_short_literal(element) && !is_short_place(element) {
+        let short = is_short_literal(element) || is_short_place(element);
+        if !short && !is_identifier(element) {
             return None;
         }
+        packable &= short;
         elements.push(element);
     }
     None
+}
+
+/// The array's opening line, elements and closing line as one line, if
+/// that is shorter than [`MAX_WIDTH`] (as rustfmt writes it).
+fn joined(open_line: &str, array: &VerticalArray<'_>) -> Option<String> {
+    let line = format!(
+        "{open_line}{}{}",
+        array.elements.join(", "),
+        array.close.trim_start()
+    );
+    (line.len() < MAX_WIDTH).then_some(line)
+}
+
+/// A plain identifier of at most [`SHORT_PLACE`] characters.
+fn is_identifier(element: &str) -> bool {
+    element.starts_with(|c: char| c.is_alphabetic() || c == '_')
+        && element.chars().all(|c| c.is_alphanumeric() || c == '_')
+        && element.len() <= SHORT_PLACE
 }
 
 /// A string literal without quotes or escapes inside, or a plain number,
@@ -145,27 +193,36 @@ mod tests {
 
     #[test]
     fn arrays_with_a_long_or_compound_element_stay_vertical() {
+        let many = "    \"a\",\n".repeat(30);
         for odd in ["\"N m s/rad\"", "a + b", "\"a\\\"b\"", "x", "p.f(x)", "&p"] {
-            let text = format!("let v = [\n    \"a\",\n    {odd},\n    \"b\",\n];\n");
+            let text = format!("let v = [\n{many}    {odd},\n    \"b\",\n];\n");
             assert_eq!(pack_short_arrays(&text), text, "{odd}");
         }
     }
 
     #[test]
     fn field_places_pack() {
-        let text = "    for (v, field) in values.iter_mut().zip([\n        p.m1,\n        &mut p.L1,\n        self.inputs.r#type,\n    ]) {\n";
+        let text = "    for (v, field) in values.iter_mut().zip([\n        p.mass_of_the_first_link,\n        &mut p.length_of_the_link,\n        self.inputs.r#type,\n    ]) {\n";
         assert_eq!(
             pack_short_arrays(text),
-            "    for (v, field) in values.iter_mut().zip([\n        p.m1, &mut p.L1, self.inputs.r#type,\n    ]) {\n"
+            "    for (v, field) in values.iter_mut().zip([\n        p.mass_of_the_first_link, &mut p.length_of_the_link, self.inputs.r#type,\n    ]) {\n"
         );
     }
 
     #[test]
-    fn numbers_pack_and_other_text_is_untouched() {
+    fn arrays_that_fit_go_on_one_line_and_other_text_is_untouched() {
         let text = "fn f() {\n    let v = [\n        1.0,\n        -2.5,\n        3,\n    ];\n}";
         assert_eq!(
             pack_short_arrays(text),
-            "fn f() {\n    let v = [\n        1.0, -2.5, 3,\n    ];\n}"
+            "fn f() {\n    let v = [1.0, -2.5, 3];\n}"
         );
+        let pair = "            let ([sin_q10, sin_q11], [cos_q10, cos_q11]) = math::sin_cos_lanes([\n                q10,\n                q11,\n            ]);\n";
+        assert_eq!(
+            pack_short_arrays(pair),
+            "            let ([sin_q10, sin_q11], [cos_q10, cos_q11]) = math::sin_cos_lanes([q10, q11]);\n"
+        );
+        // 100 characters or more: left as it is.
+        let long = pair.replace("sin_q", "sine_of_angle_q");
+        assert_eq!(pack_short_arrays(&long), long);
     }
 }

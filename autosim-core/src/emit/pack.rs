@@ -30,21 +30,23 @@ pub fn pack_short_arrays(text: &str) -> String {
     let mut i = 0;
     while i < lines.len() {
         let array = elements_after(&lines, i);
-        if let Some(one_line) = array.as_ref().and_then(|a| joined(lines[i], a)) {
+        if let Some(a) = &array
+            && let Some(one_line) = joined(lines[i], a)
+        {
             out.push_str(&one_line);
             out.push('\n');
-            i += array.map_or(0, |a| a.elements.len()) + 2;
+            i += a.elements.len() + 2;
             continue;
         }
         out.push_str(lines[i]);
         out.push('\n');
-        if let Some(elements) = array.filter(|a| a.packable).map(|a| a.elements) {
+        if let Some(a) = array.filter(|a| a.packable) {
             let indent = indentation(lines[i + 1]);
-            for row in packed_rows(indent, &elements) {
+            for row in packed_rows(indent, &a.elements) {
                 out.push_str(&row);
                 out.push('\n');
             }
-            i += elements.len();
+            i += a.elements.len();
         }
         i += 1;
     }

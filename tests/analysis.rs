@@ -209,29 +209,37 @@ fn exports_read_back_to_the_same_eigenvalues() {
     let check = "import sys; sys.path.insert(0, sys.argv[1]); import numpy as np, bike_linear as b; \
                  ev = sorted(np.linalg.eigvals(b.A), key=lambda z: (z.real, z.imag)); \
                  print(' '.join(f'{z.real:.17e} {z.imag:.17e}' for z in ev))";
-    match std::process::Command::new("python3")
+    let env = match autosim_test_support::python::python_env(&["numpy"]) {
+        Ok(env) => env,
+        Err(why) => {
+            autosim_test_support::python::skip("the NumPy check of the Python export", &why);
+            let _ = std::fs::remove_dir_all(&dir);
+            return;
+        }
+    };
+    let out = env
+        .command()
         .arg("-c")
         .arg(check)
         .arg(&dir)
         .output()
-    {
-        Ok(out) if out.status.success() => {
-            let nums: Vec<f64> = String::from_utf8_lossy(&out.stdout)
-                .split_whitespace()
-                .map(|v| v.parse().unwrap())
-                .collect();
-            for (k, l) in sys.eigenvalues().iter().enumerate() {
-                assert!(
-                    (nums[2 * k] - l.re).abs() < 1e-9 && (nums[2 * k + 1] - l.im).abs() < 1e-9,
-                    "NumPy {nums:?} vs {l}"
-                );
-            }
-            eprintln!("NumPy reproduces the eigenvalues");
-        }
-        _ => eprintln!(
-            "SKIPPED: no python3 with NumPy; the MATLAB script was read back in Rust instead"
-        ),
+        .expect("the environment's python runs");
+    assert!(
+        out.status.success(),
+        "the exported module fails in NumPy: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let nums: Vec<f64> = String::from_utf8_lossy(&out.stdout)
+        .split_whitespace()
+        .map(|v| v.parse().unwrap())
+        .collect();
+    for (k, l) in sys.eigenvalues().iter().enumerate() {
+        assert!(
+            (nums[2 * k] - l.re).abs() < 1e-9 && (nums[2 * k + 1] - l.im).abs() < 1e-9,
+            "NumPy {nums:?} vs {l}"
+        );
     }
+    eprintln!("NumPy reproduces the eigenvalues");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

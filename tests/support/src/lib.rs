@@ -10,9 +10,12 @@
 //! - [`quaternion`]: Euler parameters and 1-2-3 angles, for converting
 //!   states between orientations;
 //! - [`api`]: the reference models built through the core API, and their
-//!   equations evaluated and solved numerically.
+//!   equations evaluated and solved numerically;
+//! - [`python`]: the one Python virtual environment of the tests that run
+//!   Python (`SKIPPED: ...` when it cannot be had).
 
 pub mod api;
+pub mod python;
 pub mod quaternion;
 pub mod reference;
 mod rng;

@@ -8,6 +8,7 @@ mod axis_rotation;
 mod common;
 mod constrained;
 mod cost;
+pub mod dependencies;
 mod elim;
 mod interface;
 mod interleave;

@@ -29,9 +29,10 @@ impl<E: Export> Instance<E> {
     }
 
     /// `fmi2DoStep`: integrates from `t` (which must be the instance's time)
-    /// to `t + h`, projecting onto the position constraints after every
-    /// step. On failure the state is left where the last good step ended
-    /// and the error says why.
+    /// to `t + h` with the inputs held, the integrator restarted (Dormand–
+    /// Prince from its last suggested step), projecting onto the position
+    /// constraints after every step. On failure the state is left where
+    /// the last good step ended and the error says why.
     pub fn do_step(&mut self, t: f64, h: f64) -> Outcome {
         if (t - self.t).abs() > TIME_MATCH * (1.0 + self.t.abs()) {
             return Err(Fail::error(format!(
@@ -49,6 +50,11 @@ impl<E: Export> Instance<E> {
         let mut stepper = self.stepper.take().ok_or_else(|| {
             Fail::error("fmi2DoStep before the end of initialization".to_string())
         })?;
+        // Each communication step starts the integrator afresh: the inputs
+        // may have changed (a first-same-as-last stage or a multistep
+        // history would be stale), and a step's result depends only on
+        // what an FMU state saves.
+        stepper.reset();
         let result = self.advance(stepper.as_mut(), end);
         self.stepper = Some(stepper);
         self.touch();

@@ -8,6 +8,10 @@ use crate::layout::{DEFAULT_STEP, DEFAULT_TOLERANCE, Layout, Method, Setting, Va
 use crate::log::Log;
 use autosim_runtime::{Model, ModelError, StateArray, Stepper};
 
+/// Corrections of the dependent coordinates below this (relative to
+/// `1 + |q|`) are rounding, not drift: the state is left as it is.
+pub const PROJECTION_TOLERANCE: f64 = 1e-14;
+
 /// The states of FMI 2.0's state machines (Model Exchange and
 /// Co-Simulation share the first two and the last three).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -91,6 +95,10 @@ pub struct Instance<E: Export> {
     pub(crate) started: Vec<bool>,
     /// The dependent coordinates are solved for the current state.
     pub(crate) assembled: bool,
+    /// They were solved once since the start values were set: later
+    /// solutions start from the last one (a projection, which leaves a
+    /// state that satisfies the constraints bit for bit as it is).
+    pub(crate) solved_once: bool,
     /// Derivatives and outputs at the current time, state and inputs.
     pub(crate) cache: Option<(<E::Model as Model>::State, <E::Model as Model>::Outputs)>,
     pub(crate) settings: Settings,
@@ -119,6 +127,7 @@ impl<E: Export> Instance<E> {
             t: 0.0,
             x,
             assembled: E::DEPENDENT.is_empty(),
+            solved_once: false,
             cache: None,
             settings: Settings {
                 method: Method::DormandPrince,
@@ -163,13 +172,28 @@ impl<E: Export> Instance<E> {
     }
 
     /// Solves the position constraints for the dependent coordinates
-    /// (Newton's method from their current values), if needed.
+    /// (Newton's method from their current values), if needed: by
+    /// projection with [`PROJECTION_TOLERANCE`] (so that a new speed or a
+    /// rounding-level change leaves them as they are), by assembly the
+    /// first time and when the projection refuses a large move.
     pub(crate) fn assemble(&mut self) -> Outcome {
         if !self.assembled {
             let mut x = self.x;
-            self.model.assemble(self.t, &mut x)?;
+            let projected = self.solved_once
+                && self
+                    .model
+                    .project(self.t, &mut x, PROJECTION_TOLERANCE)
+                    .is_ok();
+            if !projected {
+                // First, or a jump larger than drift (an importer's trial
+                // state far from the last one): Newton's method without
+                // the projection's limit on how far it may move.
+                x = self.x;
+                self.model.assemble(self.t, &mut x)?;
+            }
             self.x = x;
             self.assembled = true;
+            self.solved_once = true;
         }
         Ok(())
     }
@@ -210,6 +234,7 @@ impl<E: Export> Instance<E> {
         for &slot in E::DEPENDENT {
             self.x.as_mut()[slot] = x0.as_ref()[slot];
         }
+        self.solved_once = false;
         self.touch_state();
     }
 
@@ -288,6 +313,7 @@ impl<E: Export> Instance<E> {
             Variable::State(k) if before_start => {
                 self.x.as_mut()[self.independent[k]] = value;
                 self.started[k] = true;
+                self.solved_once = false;
                 self.touch_state();
             }
             Variable::Setting(Setting::Method) => return Err(not_real(vr)),

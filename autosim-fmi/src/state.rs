@@ -60,6 +60,9 @@ impl<E: Export> Instance<E> {
         if let Some(stepper) = self.stepper.as_mut() {
             stepper.reset();
         }
+        // The saved state was assembled (or is the start, assembled when
+        // next needed).
+        self.solved_once = false;
         self.touch_state();
         Ok(())
     }

@@ -71,56 +71,51 @@ fn write_if_changed(path: &Path, text: &str) -> Result<(), FmuError> {
 }
 
 /// Builds the libraries of `prepared` (one per FMU) and returns their
-/// paths.
+/// paths: the generated crates as one workspace in one cargo run, each
+/// user crate (its own workspace) in a run of its own, all into one
+/// target folder.
 pub(crate) fn build(
     work: &Path,
     fmus: &[Fmu],
     prepared: &[Prepared],
 ) -> Result<Vec<PathBuf>, FmuError> {
     std::fs::create_dir_all(work).map_err(io(work))?;
-    let mut members = Vec::new();
-    let mut names = Vec::new();
+    let target = work.join("target");
+    let mut generated = Vec::new();
     for (fmu, p) in fmus.iter().zip(prepared) {
-        match &fmu.user_crate {
-            Some(dir) => {
-                let dir = dir.canonicalize().map_err(io(dir))?;
-                names.push(package_name(&dir)?);
-                members.push(dir);
+        if fmu.user_crate.is_none() {
+            if p.has_externs {
+                return Err(FmuError::Model(format!(
+                    "model {} calls user code: build its FMU from your crate (Fmu::user_crate, the guide's FMI chapter)",
+                    p.identifier
+                )));
             }
-            None => {
-                if p.has_externs {
-                    return Err(FmuError::Model(format!(
-                        "model {} calls user code: build its FMU from your crate (Fmu::user_crate, the guide's FMI chapter)",
-                        p.identifier
-                    )));
-                }
-                let dir = work.join("crates").join(&p.identifier);
-                write_crate(&dir, p)?;
-                names.push(crate_name(p));
-                members.push(dir);
-            }
+            let dir = work.join("crates").join(&p.identifier);
+            write_crate(&dir, p)?;
+            generated.push(dir);
         }
     }
-    let target = work.join("target");
-    let mut command = cargo_command(&target);
-    if fmus.iter().all(|f| f.user_crate.is_none()) {
-        write_workspace(work, &members)?;
-        command.arg("--manifest-path").arg(work.join("Cargo.toml"));
-    } else {
-        // A user crate is its own workspace: build each manifest.
-        return members
-            .iter()
-            .zip(&names)
-            .map(|(dir, name)| {
+    if !generated.is_empty() {
+        write_workspace(work, &generated)?;
+        let mut c = cargo_command(&target);
+        c.arg("--manifest-path").arg(work.join("Cargo.toml"));
+        run(c)?;
+    }
+    let mut libraries = Vec::with_capacity(fmus.len());
+    for (fmu, p) in fmus.iter().zip(prepared) {
+        let name = match &fmu.user_crate {
+            Some(dir) => {
+                let dir = dir.canonicalize().map_err(io(dir))?;
                 let mut c = cargo_command(&target);
                 c.arg("--manifest-path").arg(dir.join("Cargo.toml"));
                 run(c)?;
-                Ok(library(&target, name))
-            })
-            .collect();
+                package_name(&dir)?
+            }
+            None => crate_name(p),
+        };
+        libraries.push(library(&target, &name));
     }
-    run(command)?;
-    Ok(names.iter().map(|n| library(&target, n)).collect())
+    Ok(libraries)
 }
 
 /// `cargo build --release` into `target`, without the variables of an

@@ -323,7 +323,9 @@ pub fn model_description(program: &Program, deps: &Dependencies, options: &Optio
         let _ = writeln!(x, ">\n      {}\n    </ScalarVariable>", v.element);
     }
     x += "  </ModelVariables>\n";
-    x += &model_structure(deps, &layout);
+    let ny = i.outputs.len();
+    let first_residual = ny - i.motions.len() - i.closures.len();
+    x += &model_structure(deps, &layout, first_residual..ny - i.motions.len());
     x + "</fmiModelDescription>\n"
 }
 
@@ -353,8 +355,15 @@ fn type_definitions() -> String {
 /// `ModelStructure`: outputs and derivatives on states and inputs; the
 /// initial unknowns (outputs and derivatives, in index order) on the
 /// states, inputs and parameters they read, all of which have exact
-/// start values.
-fn model_structure(deps: &Dependencies, layout: &Layout) -> String {
+/// start values. The outputs in `residuals`, the residuals of position
+/// constraints, depend on nothing: the FMU solves the constraints before
+/// it evaluates, so they are zero (to the solution's rounding) whatever
+/// the states.
+fn model_structure(
+    deps: &Dependencies,
+    layout: &Layout,
+    residuals: std::ops::Range<usize>,
+) -> String {
     let states: Vec<usize> = (0..deps.derivatives.len())
         .filter(|s| !deps.dependent.contains(s))
         .collect();
@@ -376,11 +385,15 @@ fn model_structure(deps: &Dependencies, layout: &Layout) -> String {
     };
     let unknown =
         |i: u32, deps: String| format!("      <Unknown index=\"{i}\" dependencies=\"{deps}\"/>\n");
+    let nothing = Depends::default();
     let outputs: Vec<(u32, &Depends)> = deps
         .outputs
         .iter()
         .enumerate()
-        .map(|(k, d)| (index(Variable::Output(k)), d))
+        .map(|(k, d)| {
+            let d = if residuals.contains(&k) { &nothing } else { d };
+            (index(Variable::Output(k)), d)
+        })
         .collect();
     let derivatives: Vec<(u32, &Depends)> = states
         .iter()

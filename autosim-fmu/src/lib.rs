@@ -33,7 +33,7 @@ pub use description::Experiment;
 
 use autosim_core::build::Config;
 use autosim_core::diag::{SourceFile, Span};
-use autosim_core::model::Scene;
+use autosim_core::model::{FloatType, Scene};
 use autosim_core::opt::Program;
 use autosim_core::opt::dependencies::Dependencies;
 use autosim_core::pipeline::compile_source_scene;
@@ -227,6 +227,10 @@ pub(crate) struct Prepared {
 /// (directional derivatives) unless the model calls user code, whose
 /// derivatives the linearization cannot know.
 fn fmu_scene(path: &Path, scene: &Scene) -> Result<(Scene, Program), FmuError> {
+    let mut scene = scene.clone();
+    // FMI's Real is a double: an `f32` model is exported in `f64`.
+    scene.float = Some(FloatType::F64);
+    let scene = &scene;
     let file = SourceFile::read(path, path, Span::unknown())
         .map_err(|d| FmuError::Model(d.render(&SourceFile::new(path, String::new()))))?;
     let compile = |scene: &Scene| {

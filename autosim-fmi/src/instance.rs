@@ -65,6 +65,11 @@ impl From<ModelError> for Fail {
 /// What a call returns inside the crate.
 pub type Outcome<T = ()> = Result<T, Fail>;
 
+/// A model's state vector.
+type State<E> = <<E as Export>::Model as Model>::State;
+/// A model's output vector.
+type Outputs<E> = <<E as Export>::Model as Model>::Outputs;
+
 /// The Co-Simulation settings' values.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
@@ -90,7 +95,7 @@ pub struct Instance<E: Export> {
     pub(crate) independent: Vec<usize>,
     pub(crate) t: f64,
     /// The model's whole state vector (dependent coordinates included).
-    pub(crate) x: <E::Model as Model>::State,
+    pub(crate) x: State<E>,
     /// Which FMU states were given a start value by the importer.
     pub(crate) started: Vec<bool>,
     /// The dependent coordinates are solved for the current state.
@@ -100,7 +105,7 @@ pub struct Instance<E: Export> {
     /// state that satisfies the constraints bit for bit as it is).
     pub(crate) solved_once: bool,
     /// Derivatives and outputs at the current time, state and inputs.
-    pub(crate) cache: Option<(<E::Model as Model>::State, <E::Model as Model>::Outputs)>,
+    pub(crate) cache: Option<(State<E>, Outputs<E>)>,
     pub(crate) settings: Settings,
     /// Co-Simulation: the integrator (made at the end of initialization).
     pub(crate) stepper: Option<Box<dyn Stepper<E::Model>>>,
@@ -199,15 +204,13 @@ impl<E: Export> Instance<E> {
     }
 
     /// Derivatives and outputs at the current point (computed once).
-    pub(crate) fn evaluate(
-        &mut self,
-    ) -> Outcome<(<E::Model as Model>::State, <E::Model as Model>::Outputs)> {
+    pub(crate) fn evaluate(&mut self) -> Outcome<(State<E>, Outputs<E>)> {
         if let Some(c) = self.cache {
             return Ok(c);
         }
         self.assemble()?;
-        let mut dx = <E::Model as Model>::State::zeros();
-        let mut y = <E::Model as Model>::Outputs::zeros();
+        let mut dx = State::<E>::zeros();
+        let mut y = Outputs::<E>::zeros();
         self.model.derivatives(self.t, &self.x, &mut dx)?;
         self.model.outputs(self.t, &self.x, &mut y)?;
         let finite = dx.as_ref().iter().chain(y.as_ref()).all(|v| v.is_finite());

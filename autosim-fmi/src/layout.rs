@@ -152,7 +152,8 @@ impl Layout {
             let setting = [Setting::Method, Setting::Tolerance, Setting::Step][k];
             return Some(Variable::Setting(setting));
         }
-        let kinds: [(usize, usize, fn(usize) -> Variable); 5] = [
+        type Kind = (usize, usize, fn(usize) -> Variable);
+        let kinds: [Kind; 5] = [
             (self.first_input(), self.inputs, Variable::Input),
             (self.first_state(), self.states, Variable::State),
             (self.first_derivative(), self.states, Variable::Derivative),

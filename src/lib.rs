@@ -37,6 +37,13 @@ pub use autosim_runtime as runtime;
 #[cfg(feature = "build")]
 pub use autosim_core::build;
 
+/// Functional Mock-up Units (feature `fmu`): `autosim::fmu::Fmu::new(
+/// "models/quarter_car.sim").build()?` writes `QuarterCar.fmu` (FMI 2.0,
+/// Model Exchange and Co-Simulation) from a build script or any tool; see
+/// the guide's FMI chapter.
+#[cfg(feature = "fmu")]
+pub use autosim_fmu as fmu;
+
 /// Includes a model compiled by a build script (`autosim::build`): expands
 /// to the generated module `$name` from `OUT_DIR/$name.rs`.
 #[macro_export]
@@ -65,6 +72,8 @@ pub mod guide {
     pub mod generated_code {}
     #[doc = include_str!("../docs/guide/08_constraints_and_linearization.md")]
     pub mod constraints_and_linearization {}
+    #[doc = include_str!("../docs/guide/09_fmi.md")]
+    pub mod fmi {}
 }
 
 /// The README's example, compiled and run as a doctest.

@@ -28,35 +28,12 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use FmuType::{CoSimulation as CS, ModelExchange as ME};
 use Mode::*;
 
-/// Modes where values may be read (both kinds).
-const READ: &[Mode] = &[
-    Initialization,
-    Event,
-    Continuous,
-    StepComplete,
-    StepFailed,
-    Terminated,
-    Error,
-];
-/// Modes where values may be written (both kinds).
-const WRITE: &[Mode] = &[
-    Instantiated,
-    Initialization,
-    Event,
-    Continuous,
-    StepComplete,
-];
 /// Every mode but `Fatal`.
-const ANY: &[Mode] = &[
-    Instantiated,
-    Initialization,
-    Event,
-    Continuous,
-    StepComplete,
-    StepFailed,
-    Terminated,
-    Error,
-];
+const ANY: &[Mode] = &Mode::ALIVE;
+/// Modes where values may be read (both kinds): all but `Instantiated`.
+const READ: &[Mode] = Mode::ALIVE.split_at(1).1;
+/// Modes where values may be written (both kinds): before `Terminated`.
+const WRITE: &[Mode] = Mode::ALIVE.split_at(5).0;
 
 /// Runs `f` on the instance behind `c`: checks the pointer and the modes,
 /// catches a panic, logs a failure and moves the instance to `Error` or
@@ -293,7 +270,7 @@ pub unsafe fn exit_initialization_mode<E: Export>(c: Component) -> Status {
 
 /// `fmi2Terminate`.
 pub unsafe fn terminate<E: Export>(c: Component) -> Status {
-    let modes = &[Event, Continuous, StepComplete, StepFailed];
+    let modes = &[Event, Continuous, StepComplete];
     unsafe {
         call::<E>(c, "fmi2Terminate", modes, None, |i| {
             i.mode = Terminated;
@@ -314,6 +291,41 @@ pub unsafe fn reset<E: Export>(c: Component) -> Status {
     }
 }
 
+/// `fmi2Get<Type>`: each value by its reference.
+unsafe fn get_values<E: Export, T>(
+    c: Component,
+    what: &str,
+    (vr, n, values): (*const ValueReference, usize, *mut T),
+    get: fn(&mut Instance<E>, u32) -> Outcome<T>,
+) -> Status {
+    unsafe {
+        call::<E>(c, what, READ, None, |i| {
+            let (vr, out) = (slice(vr, n)?, slice_mut(values, n)?);
+            for (o, r) in out.iter_mut().zip(vr) {
+                *o = get(i, *r)?;
+            }
+            Ok(())
+        })
+    }
+}
+
+/// `fmi2Set<Type>`: each value by its reference.
+unsafe fn set_values<E: Export, T: Copy>(
+    c: Component,
+    what: &str,
+    (vr, n, values): (*const ValueReference, usize, *const T),
+    set: fn(&mut Instance<E>, u32, T) -> Outcome,
+) -> Status {
+    unsafe {
+        call::<E>(c, what, WRITE, None, |i| {
+            for (r, v) in slice(vr, n)?.iter().zip(slice(values, n)?) {
+                set(i, *r, *v)?;
+            }
+            Ok(())
+        })
+    }
+}
+
 /// `fmi2GetReal`.
 pub unsafe fn get_real<E: Export>(
     c: Component,
@@ -321,15 +333,7 @@ pub unsafe fn get_real<E: Export>(
     n: usize,
     values: *mut Real,
 ) -> Status {
-    unsafe {
-        call::<E>(c, "fmi2GetReal", READ, None, |i| {
-            let (vr, out) = (slice(vr, n)?, slice_mut(values, n)?);
-            for (o, r) in out.iter_mut().zip(vr) {
-                *o = i.get_real(*r)?;
-            }
-            Ok(())
-        })
-    }
+    unsafe { get_values::<E, Real>(c, "fmi2GetReal", (vr, n, values), Instance::get_real) }
 }
 
 /// `fmi2SetReal`.
@@ -339,14 +343,7 @@ pub unsafe fn set_real<E: Export>(
     n: usize,
     values: *const Real,
 ) -> Status {
-    unsafe {
-        call::<E>(c, "fmi2SetReal", WRITE, None, |i| {
-            for (r, v) in slice(vr, n)?.iter().zip(slice(values, n)?) {
-                i.set_real(*r, *v)?;
-            }
-            Ok(())
-        })
-    }
+    unsafe { set_values::<E, Real>(c, "fmi2SetReal", (vr, n, values), Instance::set_real) }
 }
 
 /// `fmi2GetInteger`.
@@ -356,15 +353,7 @@ pub unsafe fn get_integer<E: Export>(
     n: usize,
     values: *mut Integer,
 ) -> Status {
-    unsafe {
-        call::<E>(c, "fmi2GetInteger", READ, None, |i| {
-            let (vr, out) = (slice(vr, n)?, slice_mut(values, n)?);
-            for (o, r) in out.iter_mut().zip(vr) {
-                *o = i.get_integer(*r)?;
-            }
-            Ok(())
-        })
-    }
+    unsafe { get_values::<E, Integer>(c, "fmi2GetInteger", (vr, n, values), Instance::get_integer) }
 }
 
 /// `fmi2SetInteger`.
@@ -374,14 +363,7 @@ pub unsafe fn set_integer<E: Export>(
     n: usize,
     values: *const Integer,
 ) -> Status {
-    unsafe {
-        call::<E>(c, "fmi2SetInteger", WRITE, None, |i| {
-            for (r, v) in slice(vr, n)?.iter().zip(slice(values, n)?) {
-                i.set_integer(*r, *v)?;
-            }
-            Ok(())
-        })
-    }
+    unsafe { set_values::<E, Integer>(c, "fmi2SetInteger", (vr, n, values), Instance::set_integer) }
 }
 
 /// `fmi2GetBoolean`, `fmi2SetBoolean`, `fmi2GetString`, `fmi2SetString`:
@@ -703,7 +685,7 @@ pub unsafe fn do_step<E: Export>(c: Component, t: Real, h: Real, _no_set_prior: 
 }
 
 /// Modes where the Co-Simulation status may be asked.
-const CS_STATUS: &[Mode] = &[StepComplete, StepFailed, Terminated, Error];
+const CS_STATUS: &[Mode] = &[StepComplete, Terminated, Error];
 
 /// `fmi2GetRealStatus`: the last successful time.
 pub unsafe fn get_real_status<E: Export>(

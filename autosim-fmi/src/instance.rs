@@ -26,8 +26,6 @@ pub enum Mode {
     Continuous,
     /// Co-Simulation: between steps.
     StepComplete,
-    /// Co-Simulation: a step failed; values may be read, nothing advanced.
-    StepFailed,
     /// After `fmi2Terminate`.
     Terminated,
     /// A call returned `fmi2Error`: values may be read, `fmi2Reset` or a
@@ -35,6 +33,23 @@ pub enum Mode {
     Error,
     /// A call returned `fmi2Fatal` (a panic): only `fmi2FreeInstance`.
     Fatal,
+}
+
+impl Mode {
+    /// Every mode but `Fatal`, in the order of the standard's state
+    /// machine.
+    pub const ALIVE: [Mode; 7] = {
+        use Mode::*;
+        [
+            Instantiated,
+            Initialization,
+            Event,
+            Continuous,
+            StepComplete,
+            Terminated,
+            Error,
+        ]
+    };
 }
 
 /// Why a call failed: the status to return and the message to log.

@@ -9,14 +9,16 @@
 
 use super::satellite::Externs;
 
+/// The paper's user code, shared with the examples (its CMD is used here).
+#[allow(dead_code, unused_macros)]
+#[path = "../../common/figure8.rs"]
+mod figure8;
+
 /// The commands and the thrusters. No saved state: the FMU's states are
 /// the model's.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Control;
 
-/// `PARAMETER (PI = 3.1415926)` of the paper's Fortran.
-#[allow(clippy::approx_constant)]
-const PI: f64 = 3.1415926;
 /// Attitude error at which a thruster pair gives 76 % of its thrust (rad).
 const BAND: f64 = 0.05;
 
@@ -26,12 +28,6 @@ impl Externs for Control {
     }
 
     fn cmd(&mut self, t: f64) -> [f64; 2] {
-        if t < 1.0 {
-            [4.0 - PI, -0.5]
-        } else if t < 11.0 {
-            [4.0 - 0.025 * (t - 1.0) - PI, -0.5 + 0.01 * (t - 1.0)]
-        } else {
-            [3.75 - PI, -0.4]
-        }
+        figure8::Figure8::commands_only().cmd(t)
     }
 }

@@ -92,7 +92,7 @@ pub struct Settings {
     pub method: Method,
     /// `cs.tolerance`.
     pub tolerance: f64,
-    /// `cs.step` [s].
+    /// `cs.step` (s).
     pub step: f64,
 }
 

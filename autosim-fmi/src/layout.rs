@@ -42,7 +42,7 @@ pub enum Setting {
     Method,
     /// `cs.tolerance`: Dormand–Prince's relative and absolute tolerance.
     Tolerance,
-    /// `cs.step` [s]: the largest step of the fixed-step methods.
+    /// `cs.step` (s): the largest step of the fixed-step methods.
     Step,
 }
 
@@ -87,7 +87,7 @@ impl Method {
 
 /// Default of `cs.tolerance`.
 pub const DEFAULT_TOLERANCE: f64 = 1e-8;
-/// Default of `cs.step` [s].
+/// Default of `cs.step` (s).
 pub const DEFAULT_STEP: f64 = 1e-3;
 
 /// The counts that fix an FMU's numbering.

@@ -13,11 +13,11 @@ use std::fmt::Write as _;
 /// The `DefaultExperiment` of an FMU.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Experiment {
-    /// Start time [s].
+    /// Start time (s).
     pub start: f64,
-    /// Stop time [s].
+    /// Stop time (s).
     pub stop: f64,
-    /// Communication step or output interval [s].
+    /// Communication step or output interval (s).
     pub step: f64,
     /// Relative tolerance for the importer's integrator.
     pub tolerance: f64,

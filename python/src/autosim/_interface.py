@@ -1,0 +1,100 @@
+"""A model's interface as the compiler describes it (names, units, defaults
+and docs of its states, parameters, inputs and outputs; its constraints)."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from typing import Any, Optional, Sequence, Tuple
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """A named value of a model: a state, parameter, input or output."""
+
+    #: Name as written in the model.
+    name: str
+    #: Unit text (empty when the model gives none).
+    unit: str
+    #: Default value (parameters and inputs; 0 for states and outputs).
+    default: float = 0.0
+    #: The model's doc comment for it (empty when none).
+    doc: str = ""
+    #: For states: ``"coordinate"``, ``"speed"`` or ``"extra"``.
+    kind: str = ""
+
+    def describe(self) -> str:
+        """One line: name, unit, default and doc."""
+        unit = f" [{self.unit}]" if self.unit else ""
+        default = f" = {self.default:g}" if self.kind == "" else ""
+        doc = f"  {self.doc.splitlines()[0]}" if self.doc else ""
+        return f"{self.name}{default}{unit}{doc}"
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """A constraint of a model (position or speed) and what it determines."""
+
+    name: str
+    kind: str
+    dependent_speed: str
+    dependent_coordinate: Optional[str]
+    doc: str = ""
+
+
+@dataclass(frozen=True)
+class Interface:
+    """Everything the compiler says about a model's interface."""
+
+    name: str
+    doc: str
+    states: Tuple[Quantity, ...]
+    n_speeds: int
+    parameters: Tuple[Quantity, ...]
+    inputs: Tuple[Quantity, ...]
+    outputs: Tuple[Quantity, ...]
+    user_code: Tuple[str, ...]
+    constraints: Tuple[Constraint, ...]
+    dependent_coordinates: Tuple[int, ...]
+    linear_states: Optional[Tuple[int, ...]]
+    cautions: Tuple[str, ...]
+
+    @staticmethod
+    def from_json(text: str) -> "Interface":
+        """Reads the JSON the compiler writes."""
+        data: dict[str, Any] = json.loads(text)
+
+        def quantities(items: Sequence[dict[str, Any]]) -> Tuple[Quantity, ...]:
+            return tuple(
+                Quantity(q["name"], q["unit"], float(q["default"]), q.get("doc", ""))
+                for q in items
+            )
+
+        states = tuple(
+            Quantity(s["name"], s["unit"], 0.0, "", s["kind"]) for s in data["states"]
+        )
+        constraints = tuple(
+            Constraint(
+                c["name"],
+                c["kind"],
+                c["dependent_speed"],
+                c.get("dependent_coordinate"),
+                c.get("doc", ""),
+            )
+            for c in data["constraints"]
+        )
+        linear = data.get("linear_states")
+        return Interface(
+            name=data["name"],
+            doc=data.get("doc", ""),
+            states=states,
+            n_speeds=int(data["n_speeds"]),
+            parameters=quantities(data["parameters"]),
+            inputs=quantities(data["inputs"]),
+            outputs=quantities(data["outputs"]),
+            user_code=tuple(data.get("user_code", [])),
+            constraints=constraints,
+            dependent_coordinates=tuple(data.get("dependent_coordinates", [])),
+            linear_states=None if linear is None else tuple(linear),
+            cautions=tuple(data.get("cautions", [])),
+        )

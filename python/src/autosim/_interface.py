@@ -20,13 +20,14 @@ class Quantity:
     default: float = 0.0
     #: The model's doc comment for it (empty when none).
     doc: str = ""
-    #: For states: ``"coordinate"``, ``"speed"`` or ``"extra"``.
+    #: ``"parameter"``, ``"input"``, ``"output"``, or for states
+    #: ``"coordinate"``, ``"speed"`` or ``"extra"``.
     kind: str = ""
 
     def describe(self) -> str:
         """One line: name, unit, default and doc."""
         unit = f" [{self.unit}]" if self.unit else ""
-        default = f" = {self.default:g}" if self.kind == "" else ""
+        default = f" = {self.default:g}" if self.kind in ("parameter", "input") else ""
         doc = f"  {self.doc.splitlines()[0]}" if self.doc else ""
         return f"{self.name}{default}{unit}{doc}"
 
@@ -64,9 +65,9 @@ class Interface:
         """Reads the JSON the compiler writes."""
         data: dict[str, Any] = json.loads(text)
 
-        def quantities(items: Sequence[dict[str, Any]]) -> Tuple[Quantity, ...]:
+        def quantities(items: Sequence[dict[str, Any]], kind: str) -> Tuple[Quantity, ...]:
             return tuple(
-                Quantity(q["name"], q["unit"], float(q["default"]), q.get("doc", ""))
+                Quantity(q["name"], q["unit"], float(q["default"]), q.get("doc", ""), kind)
                 for q in items
             )
 
@@ -89,9 +90,9 @@ class Interface:
             doc=data.get("doc", ""),
             states=states,
             n_speeds=int(data["n_speeds"]),
-            parameters=quantities(data["parameters"]),
-            inputs=quantities(data["inputs"]),
-            outputs=quantities(data["outputs"]),
+            parameters=quantities(data["parameters"], "parameter"),
+            inputs=quantities(data["inputs"], "input"),
+            outputs=quantities(data["outputs"], "output"),
             user_code=tuple(data.get("user_code", [])),
             constraints=constraints,
             dependent_coordinates=tuple(data.get("dependent_coordinates", [])),

@@ -33,7 +33,10 @@ fn main() {
         manifest.hash(&mut hasher);
         entries.push((format!("{name}/Cargo.toml"), manifest_path));
         for file in rust_files(&dir.join("src")) {
-            let relative = file.strip_prefix(dir).expect("under the crate").to_path_buf();
+            let relative = file
+                .strip_prefix(dir)
+                .expect("under the crate")
+                .to_path_buf();
             entries.push((format!("{name}/{}", slashed(&relative)), file));
         }
         println!("cargo::rerun-if-changed={}", dir.display());
@@ -48,9 +51,15 @@ fn main() {
             std::fs::read(&file).expect("readable").hash(&mut hasher);
         }
     }
-    let mut code = String::from("/// The Rust sources of a per-model build.\npub static SOURCES: &[(&str, &str)] = &[\n");
+    let mut code = String::from(
+        "/// The Rust sources of a per-model build.\npub static SOURCES: &[(&str, &str)] = &[\n",
+    );
     for (path, file) in &entries {
-        let _ = writeln!(code, "    ({path:?}, include_str!({:?})),", file.display().to_string());
+        let _ = writeln!(
+            code,
+            "    ({path:?}, include_str!({:?})),",
+            file.display().to_string()
+        );
     }
     code.push_str("];\n");
     let _ = writeln!(
@@ -63,7 +72,8 @@ fn main() {
 
 fn read_table(path: &Path) -> toml::Table {
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    text.parse().unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    text.parse()
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 /// Every `.rs` file under `dir`, sorted (so the fingerprint is stable).
@@ -86,7 +96,10 @@ fn rust_files(dir: &Path) -> Vec<PathBuf> {
 }
 
 fn slashed(path: &Path) -> String {
-    let parts: Vec<String> = path.components().map(|c| c.as_os_str().to_string_lossy().into_owned()).collect();
+    let parts: Vec<String> = path
+        .components()
+        .map(|c| c.as_os_str().to_string_lossy().into_owned())
+        .collect();
     parts.join("/")
 }
 
@@ -97,17 +110,36 @@ fn slashed(path: &Path) -> String {
 fn standalone_manifest(path: &Path, workspace: &toml::Table) -> String {
     let mut manifest = read_table(path);
     let empty = toml::Table::new();
-    let ws = workspace.get("workspace").and_then(|w| w.as_table()).unwrap_or(&empty);
-    let ws_package = ws.get("package").and_then(|p| p.as_table()).unwrap_or(&empty);
-    let ws_deps = ws.get("dependencies").and_then(|p| p.as_table()).unwrap_or(&empty);
-    for section in ["dev-dependencies", "bench", "test", "example", "workspace", "lints"] {
+    let ws = workspace
+        .get("workspace")
+        .and_then(|w| w.as_table())
+        .unwrap_or(&empty);
+    let ws_package = ws
+        .get("package")
+        .and_then(|p| p.as_table())
+        .unwrap_or(&empty);
+    let ws_deps = ws
+        .get("dependencies")
+        .and_then(|p| p.as_table())
+        .unwrap_or(&empty);
+    for section in [
+        "dev-dependencies",
+        "bench",
+        "test",
+        "example",
+        "workspace",
+        "lints",
+    ] {
         manifest.remove(section);
     }
     if let Some(toml::Value::Table(package)) = manifest.get_mut("package") {
         let keys: Vec<String> = package.keys().cloned().collect();
         for key in keys {
             if inherits(&package[&key]) {
-                let value = ws_package.get(&key).cloned().unwrap_or_else(|| panic!("workspace.package.{key}"));
+                let value = ws_package
+                    .get(&key)
+                    .cloned()
+                    .unwrap_or_else(|| panic!("workspace.package.{key}"));
                 package.insert(key, value);
             }
         }
@@ -127,7 +159,11 @@ fn standalone_manifest(path: &Path, workspace: &toml::Table) -> String {
 }
 
 fn inherits(value: &toml::Value) -> bool {
-    value.as_table().and_then(|t| t.get("workspace")).and_then(|w| w.as_bool()) == Some(true)
+    value
+        .as_table()
+        .and_then(|t| t.get("workspace"))
+        .and_then(|w| w.as_bool())
+        == Some(true)
 }
 
 fn resolve_dependency(name: &str, value: &toml::Value, ws_deps: &toml::Table) -> toml::Value {
@@ -156,7 +192,13 @@ fn resolve_dependency(name: &str, value: &toml::Value, ws_deps: &toml::Table) ->
             .and_then(|f| f.as_array())
             .into_iter()
             .flatten()
-            .chain(table.get("features").and_then(|f| f.as_array()).into_iter().flatten())
+            .chain(
+                table
+                    .get("features")
+                    .and_then(|f| f.as_array())
+                    .into_iter()
+                    .flatten(),
+            )
             .cloned()
             .collect();
         let mut merged = base;

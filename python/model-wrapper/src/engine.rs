@@ -87,10 +87,7 @@ pub trait Engine: Send + Sync {
 pub struct Adapter<M>(pub M);
 
 /// A state array of `M` from a slice of the same length.
-pub fn state<M: Model>(x: &[f64]) -> M::State
-where
-    M: Model<Float = f64>,
-{
+pub fn state<M: Model<Float = f64>>(x: &[f64]) -> M::State {
     let mut s = M::State::zeros();
     s.as_mut().copy_from_slice(x);
     s
@@ -175,10 +172,14 @@ impl<M: Generated> Engine for Adapter<M> {
             let row = &mut out[k * width..(k + 1) * width];
             let done = if outputs {
                 let mut o = M::Outputs::zeros();
-                self.0.outputs(tk, &xk, &mut o).map(|()| row.copy_from_slice(o.as_ref()))
+                self.0
+                    .outputs(tk, &xk, &mut o)
+                    .map(|()| row.copy_from_slice(o.as_ref()))
             } else {
                 let mut d = M::State::zeros();
-                self.0.derivatives(tk, &xk, &mut d).map(|()| row.copy_from_slice(d.as_ref()))
+                self.0
+                    .derivatives(tk, &xk, &mut d)
+                    .map(|()| row.copy_from_slice(d.as_ref()))
             };
             if let Err(e) = done {
                 result = Err((k, e));

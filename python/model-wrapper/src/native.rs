@@ -5,13 +5,15 @@
 //! object users see (`autosim.Model`: names, units, dicts, pandas) is
 //! Python code on top of this one.
 
+use crate::Generated;
 use crate::engine::{Adapter, Engine, RowError, Sizes};
 use crate::inputs::{Held, InputSource, Table};
 use crate::simulate::{Request, Trajectory};
-use crate::Generated;
 use autosim_runtime::ModelError;
 use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{
+    IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -61,7 +63,11 @@ fn row_error(py: Python<'_>, (row, e): RowError) -> PyErr {
 }
 
 /// The values of a 1-D array of `len` entries named `what`.
-fn vector<'a>(a: &'a PyReadonlyArray1<'_, f64>, len: usize, what: &str) -> PyResult<Cow<'a, [f64]>> {
+fn vector<'a>(
+    a: &'a PyReadonlyArray1<'_, f64>,
+    len: usize,
+    what: &str,
+) -> PyResult<Cow<'a, [f64]>> {
     if a.len() != len {
         return Err(PyValueError::new_err(format!(
             "{what} has {} entries; the model needs {len}",
@@ -75,7 +81,11 @@ fn vector<'a>(a: &'a PyReadonlyArray1<'_, f64>, len: usize, what: &str) -> PyRes
 }
 
 /// The rows of a 2-D array of `width` columns named `what`.
-fn matrix<'a>(a: &'a PyReadonlyArray2<'_, f64>, width: usize, what: &str) -> PyResult<Cow<'a, [f64]>> {
+fn matrix<'a>(
+    a: &'a PyReadonlyArray2<'_, f64>,
+    width: usize,
+    what: &str,
+) -> PyResult<Cow<'a, [f64]>> {
     let shape = a.shape();
     if shape[1] != width {
         return Err(PyValueError::new_err(format!(
@@ -167,7 +177,10 @@ impl NativeModel {
     fn set_parameters(&mut self, values: PyReadonlyArray1<'_, f64>) -> PyResult<()> {
         let v = vector(&values, self.sizes.parameters, "parameters")?;
         if let Some(k) = v.iter().position(|p| !p.is_finite()) {
-            return Err(PyValueError::new_err(format!("parameter #{k} is not finite: {}", v[k])));
+            return Err(PyValueError::new_err(format!(
+                "parameter #{k} is not finite: {}",
+                v[k]
+            )));
         }
         self.engine.set_parameters(&v);
         Ok(())
@@ -253,7 +266,11 @@ impl NativeModel {
             }
             None => None,
         };
-        let width = if outputs { self.sizes.outputs } else { self.sizes.states };
+        let width = if outputs {
+            self.sizes.outputs
+        } else {
+            self.sizes.states
+        };
         let mut out = vec![0.0; n * width];
         let engine = &mut self.engine;
         py.detach(|| engine.many(outputs, &ts, &xs, us.as_deref(), &mut out))
@@ -299,19 +316,24 @@ impl NativeModel {
     ) -> PyResult<Option<Vec<Bound<'py, PyArray2<f64>>>>> {
         let x = vector(&x, self.sizes.states, "x")?;
         let (ni, ny) = (self.sizes.inputs, self.sizes.outputs);
-        let (mut a, mut b, mut c, mut d) =
-            (vec![0.0; nx * nx], vec![0.0; nx * ni], vec![0.0; ny * nx], vec![0.0; ny * ni]);
-        match self.engine.linearize(t, &x, [&mut a, &mut b, &mut c, &mut d]) {
+        let (mut a, mut b, mut c, mut d) = (
+            vec![0.0; nx * nx],
+            vec![0.0; nx * ni],
+            vec![0.0; ny * nx],
+            vec![0.0; ny * ni],
+        );
+        match self
+            .engine
+            .linearize(t, &x, [&mut a, &mut b, &mut c, &mut d])
+        {
             None => Ok(None),
             Some(Err(e)) => Err(model_error(py, e)),
-            Some(Ok(())) => {
-                Ok(Some(vec![
-                    rows(py, a, nx, nx)?,
-                    rows(py, b, nx, ni)?,
-                    rows(py, c, ny, nx)?,
-                    rows(py, d, ny, ni)?,
-                ]))
-            }
+            Some(Ok(())) => Ok(Some(vec![
+                rows(py, a, nx, nx)?,
+                rows(py, b, nx, ni)?,
+                rows(py, c, ny, nx)?,
+                rows(py, d, ny, ni)?,
+            ])),
         }
     }
 

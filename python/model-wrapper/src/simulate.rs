@@ -5,8 +5,8 @@
 use crate::Generated;
 use crate::inputs::{Driven, InputSource};
 use autosim_runtime::integrate::{
-    AbmOrder, AdamsBashforthMoulton, DopriSettings, DormandPrince, Euler, Heun, Rk4,
-    SdirkSettings, Stepper,
+    AbmOrder, AdamsBashforthMoulton, DopriSettings, DormandPrince, Euler, Heun, Rk4, SdirkSettings,
+    Stepper,
 };
 use autosim_runtime::{Model, Observer, RunSettings, StateArray, run_at};
 use core::convert::Infallible;
@@ -84,8 +84,13 @@ pub fn simulate<M: Generated>(
     let mut driven = Driven::new(model.clone(), source);
     let mut x = M::State::zeros();
     x.as_mut().copy_from_slice(&request.x0);
-    let settings = RunSettings::new(request.t0, request.t_end, request.h, request.t_end - request.t0)
-        .with_max_steps(request.max_steps);
+    let settings = RunSettings::new(
+        request.t0,
+        request.t_end,
+        request.h,
+        request.t_end - request.t0,
+    )
+    .with_max_steps(request.max_steps);
     let mut out = Trajectory::default();
     let summary = run_at(
         &mut driven,

@@ -51,7 +51,13 @@ impl Options {
     /// Reads the options from keyword arguments, refusing unknown ones.
     fn from_dict(dict: &Bound<'_, pyo3::types::PyDict>) -> PyResult<Options> {
         const KNOWN: [&str; 7] = [
-            "name", "linearize", "formulation", "small", "lock", "outputs", "threshold",
+            "name",
+            "linearize",
+            "formulation",
+            "small",
+            "lock",
+            "outputs",
+            "threshold",
         ];
         for key in dict.keys() {
             let key: String = key.extract()?;
@@ -84,7 +90,10 @@ impl Options {
 
     fn scene(self) -> Result<Scene, String> {
         let names = |v: Option<Vec<String>>| -> Vec<_> {
-            v.unwrap_or_default().iter().map(|n| Scene::name(n)).collect()
+            v.unwrap_or_default()
+                .iter()
+                .map(|n| Scene::name(n))
+                .collect()
         };
         let formulation = match self.formulation.as_deref() {
             None => None,

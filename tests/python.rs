@@ -10,8 +10,9 @@
 //! so later runs rebuild only what changed. Without Python, or without
 //! the Python or crate registries, the test prints a `SKIPPED: ...` line.
 
-use autosim_test_support::python::{PythonEnv, python_env, skip, target_dir, workspace_root};
-use std::fs::OpenOptions;
+use autosim_test_support::python::{
+    PythonEnv, lock_environment, python_env, skip, target_dir, workspace_root,
+};
 use std::process::Output;
 
 const WHAT: &str = "the Python package's tests (python/tests)";
@@ -38,29 +39,12 @@ fn text(output: &Output) -> String {
 /// `pip install ./python` into `env` (maturin from the environment, no
 /// build isolation), holding the environment's lock.
 fn install(env: &PythonEnv) -> Result<(), String> {
-    let target = target_dir();
-    let lock = OpenOptions::new()
-        .create(true)
-        .truncate(false)
-        .write(true)
-        .open(target.join("python-env.lock"))
-        .map_err(|e| format!("cannot open the environment's lock: {e}"))?;
-    lock.lock()
-        .map_err(|e| format!("cannot lock the environment: {e}"))?;
+    let _lock = lock_environment()?;
     let out = env
-        .command()
-        .args([
-            "-m",
-            "pip",
-            "install",
-            "--quiet",
-            "--disable-pip-version-check",
-            "--no-build-isolation",
-            "--no-deps",
-            "--force-reinstall",
-        ])
+        .pip_install()
+        .args(["--no-build-isolation", "--no-deps", "--force-reinstall"])
         .arg(workspace_root().join("python"))
-        .env("CARGO_TARGET_DIR", target.join("python-build"))
+        .env("CARGO_TARGET_DIR", target_dir().join("python-build"))
         .output()
         .map_err(|e| format!("pip could not run: {e}"))?;
     if out.status.success() {

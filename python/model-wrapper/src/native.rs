@@ -152,6 +152,32 @@ impl InputSource for Callable {
     }
 }
 
+impl NativeModel {
+    /// `dx/dt` (or the outputs, `outputs = true`) at `(t, x)`.
+    fn evaluate<'py>(
+        &mut self,
+        py: Python<'py>,
+        t: f64,
+        x: PyReadonlyArray1<'_, f64>,
+        outputs: bool,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let x = vector(&x, self.sizes.states, "x")?;
+        let width = if outputs {
+            self.sizes.outputs
+        } else {
+            self.sizes.states
+        };
+        let mut out = vec![0.0; width];
+        let done = if outputs {
+            self.engine.outputs(t, &x, &mut out)
+        } else {
+            self.engine.derivatives(t, &x, &mut out)
+        };
+        done.map_err(|e| model_error(py, e))?;
+        Ok(PyArray1::from_vec(py, out))
+    }
+}
+
 #[pymethods]
 impl NativeModel {
     /// A copy with the same parameters and inputs.
@@ -210,12 +236,7 @@ impl NativeModel {
         t: f64,
         x: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let x = vector(&x, self.sizes.states, "x")?;
-        let mut dx = vec![0.0; self.sizes.states];
-        self.engine
-            .derivatives(t, &x, &mut dx)
-            .map_err(|e| model_error(py, e))?;
-        Ok(PyArray1::from_vec(py, dx))
+        self.evaluate(py, t, x, false)
     }
 
     /// The outputs at `(t, x)` with the current inputs.
@@ -225,12 +246,7 @@ impl NativeModel {
         t: f64,
         x: PyReadonlyArray1<'_, f64>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let x = vector(&x, self.sizes.states, "x")?;
-        let mut y = vec![0.0; self.sizes.outputs];
-        self.engine
-            .outputs(t, &x, &mut y)
-            .map_err(|e| model_error(py, e))?;
-        Ok(PyArray1::from_vec(py, y))
+        self.evaluate(py, t, x, true)
     }
 
     /// `dx/dt` (or the outputs) for every row of `x`, at the times `t` (one

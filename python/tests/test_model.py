@@ -259,3 +259,21 @@ def test_copies_are_independent_and_threads_can_share_the_work(load_model: Load)
     whole = model.derivatives(0.0, xs)
     for k in range(4):
         assert np.array_equal(parts[k], whole[k::4])
+
+
+def test_trim_finds_the_static_equilibrium(load_model: Load) -> None:
+    model = load_model(PENDULUM)
+    model.inputs["torque"] = 2.0
+    found = model.trim(model.state(q=0.1), free_states=["q"], steady=["u"])
+    # torque = m g L sin q at rest
+    assert found.x[0] == pytest.approx(np.arcsin(2.0 / (1.3 * 9.81 * 0.7)), rel=1e-12)
+    assert found.residual <= 1e-10 and found.iterations > 0
+    assert np.max(np.abs(model.derivatives(0.0, found.x))) < 1e-10
+    # The torque that holds q = 0.5, found by freeing the input instead.
+    held = model.trim(model.state(q=0.5), free_states=[], free_inputs=["torque"], steady=["u"])
+    assert held.inputs["torque"] == pytest.approx(1.3 * 9.81 * 0.7 * np.sin(0.5), rel=1e-12)
+    assert model.inputs["torque"] == held.inputs["torque"]
+    with pytest.raises(KeyError, match="state 'qq'"):
+        model.trim(free_states=["qq"], steady=["u"])
+    with pytest.raises(autosim.SimulationError):
+        model.trim(model.state(q=0.0), free_states=["u"], steady=["u"])

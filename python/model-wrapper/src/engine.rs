@@ -6,6 +6,7 @@
 use crate::Generated;
 use crate::inputs::InputSource;
 use crate::simulate::{Request, Trajectory, simulate};
+use autosim_runtime::analysis::Trim;
 use autosim_runtime::{Model, ModelError, StateArray};
 
 /// Sizes of a model's vectors.
@@ -74,6 +75,10 @@ pub trait Engine: Send + Sync {
     ) -> Option<Result<(), ModelError>>;
     /// Solves the position constraints for the dependent coordinates.
     fn assemble(&mut self, t: f64, x: &mut [f64]) -> Result<(), ModelError>;
+    /// Trims `x` (and the model's free inputs) as `spec` says: the
+    /// iterations and the final residual, the error's message, or `None`
+    /// without a generated linearization.
+    fn trim(&mut self, t: f64, x: &mut [f64], spec: &Trim) -> Option<Result<(usize, f64), String>>;
     /// Integrates as `request` says with the inputs from `inputs`.
     fn simulate(
         &mut self,
@@ -212,6 +217,16 @@ impl<M: Generated> Engine for Adapter<M> {
         self.0.assemble(t, &mut s)?;
         x.copy_from_slice(s.as_ref());
         Ok(())
+    }
+
+    fn trim(&mut self, t: f64, x: &mut [f64], spec: &Trim) -> Option<Result<(usize, f64), String>> {
+        let mut s = state::<M>(x);
+        let done = self.0.trim_with(t, &mut s, spec)?;
+        x.copy_from_slice(s.as_ref());
+        Some(
+            done.map(|r| (r.iterations, r.residual))
+                .map_err(|e| e.to_string()),
+        )
     }
 
     fn simulate(

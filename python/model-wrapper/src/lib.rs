@@ -53,6 +53,15 @@ pub trait Generated: Model<Float = f64> + Clone + Send + Sync + 'static {
         x: &Self::State,
         abcd: [&mut [f64]; 4],
     ) -> Option<Result<(), ModelError>>;
+    /// Trims as `spec` says (the runtime's `analysis::trim`: damped
+    /// Newton on the linearization), or `None` without a generated
+    /// linearization.
+    fn trim_with(
+        &mut self,
+        t: f64,
+        x: &mut Self::State,
+        spec: &autosim_runtime::analysis::Trim,
+    ) -> Option<Result<autosim_runtime::analysis::TrimReport, autosim_runtime::analysis::TrimError>>;
     /// Alexander's SDIRK3 for this model's state size, stepping `W` (the
     /// model with its input schedule).
     fn sdirk3<W: Model<Float = f64, State = Self::State> + 'static>(
@@ -90,6 +99,19 @@ macro_rules! export_model {
             ) -> Option<Result<(), $crate::autosim_runtime::ModelError>> {
                 $crate::export_model!(@linearize self, t, x, abcd $(, $linearize)?)
             }
+            fn trim_with(
+                &mut self,
+                t: f64,
+                x: &mut Self::State,
+                spec: &$crate::autosim_runtime::analysis::Trim,
+            ) -> Option<
+                Result<
+                    $crate::autosim_runtime::analysis::TrimReport,
+                    $crate::autosim_runtime::analysis::TrimError,
+                >,
+            > {
+                $crate::export_model!(@trim self, t, x, spec $(, $linearize)?)
+            }
             fn sdirk3<W>(
                 settings: $crate::autosim_runtime::integrate::SdirkSettings<f64>,
             ) -> Box<dyn $crate::autosim_runtime::integrate::Stepper<W>>
@@ -114,6 +136,13 @@ macro_rules! export_model {
     }};
     (@linearize $self:ident, $t:ident, $x:ident, $abcd:ident) => {{
         let _ = ($self, $t, $x, $abcd);
+        None
+    }};
+    (@trim $self:ident, $t:ident, $x:ident, $spec:ident, linearize) => {
+        Some($crate::autosim_runtime::analysis::trim($self, $t, $x, $spec))
+    };
+    (@trim $self:ident, $t:ident, $x:ident, $spec:ident) => {{
+        let _ = ($self, $t, $x, $spec);
         None
     }};
 }

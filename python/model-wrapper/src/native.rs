@@ -10,6 +10,7 @@ use crate::engine::{Adapter, Engine, RowError, Sizes};
 use crate::inputs::{Held, InputSource, Table};
 use crate::simulate::{Request, Trajectory};
 use autosim_runtime::ModelError;
+use autosim_runtime::analysis::Trim;
 use numpy::ndarray::Array2;
 use numpy::{
     IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
@@ -19,6 +20,9 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::borrow::Cow;
 use std::sync::{Arc, Mutex};
+
+/// A trimmed state, the Newton iterations and the final residual.
+type Trimmed<'py> = (Bound<'py, PyArray1<f64>>, usize, f64);
 
 /// A compiled model: the low-level object behind `autosim.Model`.
 #[pyclass(module = "autosim")]
@@ -366,6 +370,41 @@ impl NativeModel {
             .assemble(t, &mut x)
             .map_err(|e| model_error(py, e))?;
         Ok(PyArray1::from_vec(py, x))
+    }
+
+    /// Trims from `x`: the states in `free_states` and inputs in
+    /// `free_inputs` change until the derivatives of the `steady` states
+    /// vanish (the runtime's damped Newton). Returns the state, the
+    /// iterations and the residual; the model keeps the trimmed inputs.
+    /// `None` without a generated linearization.
+    #[pyo3(signature = (t, x, free_states, free_inputs, steady, tolerance, max_iterations))]
+    #[allow(clippy::too_many_arguments)]
+    fn trim<'py>(
+        &mut self,
+        py: Python<'py>,
+        t: f64,
+        x: PyReadonlyArray1<'_, f64>,
+        free_states: Vec<String>,
+        free_inputs: Vec<String>,
+        steady: Vec<String>,
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> PyResult<Option<Trimmed<'py>>> {
+        let mut x = vector(&x, self.sizes.states, "x")?.into_owned();
+        let spec = Trim {
+            free_states,
+            free_inputs,
+            steady,
+            tolerance,
+            max_iterations,
+        };
+        match self.engine.trim(t, &mut x, &spec) {
+            None => Ok(None),
+            Some(Err(message)) => Err(simulation_error(py, message)),
+            Some(Ok((iterations, residual))) => {
+                Ok(Some((PyArray1::from_vec(py, x), iterations, residual)))
+            }
+        }
     }
 
     /// Integrates from `x0` at `t0` to `t_end` with `method`, reporting at

@@ -21,7 +21,7 @@ from typing import Any, Optional, Sequence, Union
 from ._build import cache_dir, find_cargo
 from ._interface import Constraint, Interface, Quantity
 from ._linear import LinearModel
-from ._model import Model
+from ._model import Model, TrimResult
 from ._simulation import METHODS, Simulation
 from .errors import AutosimError, BuildError, CompileError, SimulationError
 
@@ -39,6 +39,7 @@ __all__ = [
     "Quantity",
     "Simulation",
     "SimulationError",
+    "TrimResult",
     "cache_dir",
     "find_cargo",
     "load",

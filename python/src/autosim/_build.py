@@ -145,7 +145,7 @@ crate-type = ["cdylib"]
 path = "src/lib.rs"
 
 [dependencies]
-autosim-runtime = {{ path = {path("autosim-runtime")}, default-features = false, features = ["std"] }}
+autosim-runtime = {{ path = {path("autosim-runtime")}, default-features = false, features = ["std", "analysis"] }}
 autosim-python-model = {{ path = {path("autosim-python-model")} }}
 
 [profile.release]

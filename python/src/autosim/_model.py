@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 from types import ModuleType
-from typing import Any, Callable, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -12,6 +12,19 @@ from ._interface import Interface, Quantity
 from ._linear import LinearModel
 from ._simulation import Simulation, simulate
 from ._values import ArrayLike, NamedValues, as_vector, unknown_name
+
+class TrimResult(NamedTuple):
+    """What :meth:`Model.trim` found."""
+
+    #: The trimmed state.
+    x: np.ndarray
+    #: The inputs after the trim (by name).
+    inputs: Dict[str, float]
+    #: Newton iterations.
+    iterations: int
+    #: The largest steady derivative at the end.
+    residual: float
+
 
 Inputs = Union[None, float, ArrayLike, Mapping[str, float], Tuple[ArrayLike, ArrayLike], Callable[[float], Any]]
 
@@ -248,6 +261,41 @@ class Model:
         """Eigenvalues and eigenvectors of ``A`` at ``(t, x, u)``
         (:meth:`LinearModel.modes`)."""
         return self.linearize(t, x, u).modes()
+
+    def trim(
+        self,
+        x: Optional[ArrayLike] = None,
+        *,
+        free_states: Sequence[str],
+        steady: Sequence[str],
+        free_inputs: Sequence[str] = (),
+        t: float = 0.0,
+        tolerance: float = 1e-10,
+        max_iterations: int = 50,
+    ) -> TrimResult:
+        """Trims the model (the runtime's damped Newton on the symbolic
+        linearization, as SD/FAST's ``sdstatic``/``sdsteady``): from ``x``
+        (default: the initial state) and the current inputs, changes the
+        states named in ``free_states`` and the inputs in ``free_inputs``
+        until the time derivatives of the states in ``steady`` vanish
+        (to ``tolerance``); everything else is held. Static equilibrium:
+        the coordinates free, the speeds steady. The model keeps the trimmed
+        inputs. Raises :class:`autosim.errors.SimulationError` naming the
+        residuals when Newton's method does not converge or the free
+        variables do not control the steady derivatives."""
+        xv = self.initial_state() if x is None else as_vector(x, self._nx, "x")
+        for name in list(free_states) + list(steady):
+            self.state_index(name)
+        for name in free_inputs:
+            if name not in self.input_names:
+                raise unknown_name("input", name, self.input_names)
+        done = self._native.trim(
+            float(t), xv, list(free_states), list(free_inputs), list(steady), float(tolerance), int(max_iterations)
+        )
+        if done is None:
+            raise ValueError(f"{self.name} was loaded without its linearization: load it with linearize=True")
+        trimmed, iterations, residual = done
+        return TrimResult(trimmed, dict(self.inputs), int(iterations), float(residual))
 
     def assemble(self, x: Optional[ArrayLike] = None, t: float = 0.0) -> np.ndarray:
         """``x`` (default: the initial state) with its dependent coordinates

@@ -277,3 +277,25 @@ def test_trim_finds_the_static_equilibrium(load_model: Load) -> None:
         model.trim(free_states=["qq"], steady=["u"])
     with pytest.raises(autosim.SimulationError):
         model.trim(model.state(q=0.0), free_states=["u"], steady=["u"])
+
+
+def test_a_pickled_model_is_the_same_model_in_another_process(load_model: Load, tmp_path) -> None:  # type: ignore[no-untyped-def]
+    import pickle
+    import subprocess
+    import sys
+
+    model = load_model(PENDULUM)
+    model.parameters["L"] = 1.7
+    model.inputs["torque"] = 0.25
+    x = model.state(q=0.8, u=-0.3)
+    (tmp_path / "model.pickle").write_bytes(pickle.dumps(model))
+    script = (
+        "import pickle, sys\n"
+        "model = pickle.loads(open(sys.argv[1], 'rb').read())\n"
+        "print(model.parameters['L'], model.inputs['torque'], *model.derivatives(0.0, [0.8, -0.3]))\n"
+    )
+    run = subprocess.run([sys.executable, "-c", script, str(tmp_path / "model.pickle")], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    values = [float(v) for v in run.stdout.split()]
+    assert values[:2] == [1.7, 0.25]
+    assert values[2:] == list(model.derivatives(0.0, x))

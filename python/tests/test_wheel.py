@@ -36,6 +36,8 @@ def test_a_model_wheel_works_without_cargo_or_cache(repo: Path, tmp_path: Path) 
         "import autosim_model_pendulum as p, numpy as np\n"
         "m = p.load()\n"
         "m.parameters['L'] = 1.0\n"
+        "import pickle\n"
+        "m = pickle.loads(pickle.dumps(m))\n"
         "print(repr(float(m.derivatives(0.0, [0.5, 0.0])[1])))\n"
     )
     run = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True)

@@ -103,7 +103,7 @@ def loads(
 
     options = _options(name, linearize, formulation, small, lock, outputs, threshold)
     module, _ = build(text, path, options, quiet=quiet)
-    return Model._from_module(module)
+    return Model._from_module(module, origin=("text", text, path, options))
 
 
 def load(path: Union[str, Path], **options: Any) -> Model:

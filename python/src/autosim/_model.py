@@ -43,8 +43,17 @@ class Model:
     (:meth:`copy`). The vectorized calls release the GIL.
     """
 
-    def __init__(self, native: Any, interface: Interface, source: Optional[Path] = None) -> None:
+    def __init__(
+        self,
+        native: Any,
+        interface: Interface,
+        source: Optional[Path] = None,
+        origin: Optional[Tuple[Any, ...]] = None,
+    ) -> None:
         self._native = native
+        #: How to make this model again in another process (pickling):
+        #: ``("text", text, path, options)`` or ``("module", module_name)``.
+        self._origin = origin
         self.interface = interface
         #: The file the model was loaded from (``None`` for text).
         self.source = source
@@ -56,11 +65,26 @@ class Model:
         self._state_index = {s.name: k for k, s in enumerate(interface.states)}
 
     @classmethod
-    def _from_module(cls, module: ModuleType, source: Optional[Path] = None) -> "Model":
+    def _from_module(
+        cls, module: ModuleType, source: Optional[Path] = None, origin: Optional[Tuple[Any, ...]] = None
+    ) -> "Model":
         interface = Interface.from_json(module.INTERFACE)
         doc = _model_doc(interface)
         kind = type(interface.name, (cls,), {"__doc__": doc, "__module__": "autosim.models"})
-        return kind(module.prototype.copy(), interface, source)
+        if origin is None:
+            package = module.__name__.rpartition(".")[0]
+            origin = ("module", package) if package else None
+        return kind(module.prototype.copy(), interface, source, origin)
+
+    def __reduce__(self) -> Tuple[Any, ...]:
+        """Pickles as the recipe to make the model again (its text and load
+        options, or the package of its wheel) with its parameters and
+        inputs: a process that unpickles it loads the model from its cache
+        (building it if the cache lacks it) or imports the wheel, so Dask
+        or multiprocessing workers get the same model."""
+        if self._origin is None:
+            raise TypeError(f"{self.name} cannot be pickled: it was not made by autosim.load, loads or a model wheel")
+        return (_rebuild, (self._origin, self.parameters.vector, self.inputs.vector, self.source))
 
     # ----- names ---------------------------------------------------------
 
@@ -140,7 +164,7 @@ class Model:
     def copy(self) -> "Model":
         """An independent copy (same parameters and inputs), e.g. for another
         thread."""
-        return type(self)(self._native.copy(), self.interface, self.source)
+        return type(self)(self._native.copy(), self.interface, self.source, self._origin)
 
     # ----- evaluation ----------------------------------------------------
 
@@ -366,6 +390,23 @@ class Model:
             f"{len(self.parameter_names)} parameters, {len(self.input_names)} inputs, "
             f"{len(self.output_names)} outputs>"
         )
+
+
+def _rebuild(origin: Tuple[Any, ...], parameters: np.ndarray, inputs: np.ndarray, source: Optional[Path]) -> Model:
+    """A pickled model made again (see :meth:`Model.__reduce__`)."""
+    if origin[0] == "text":
+        from . import loads
+
+        _, text, path, options = origin
+        model = loads(text, path=path, quiet=True, **options)
+    else:
+        import importlib
+
+        model = importlib.import_module(origin[1]).load()
+    model.parameters.vector = parameters
+    model.inputs.vector = inputs
+    model.source = source
+    return model
 
 
 def _model_doc(interface: Interface) -> str:

@@ -34,12 +34,11 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
-from scipy.integrate import solve_ivp
-
 import autosim
+import numpy as np
 from pydy.codegen.ode_function_generators import generate_ode_function
 from pydy.models import n_link_pendulum_on_cart
+from scipy.integrate import solve_ivp
 
 REPO = Path(__file__).resolve().parents[2]
 ROUNDS = 7
@@ -57,7 +56,9 @@ def median_time(function, repeat: int) -> float:
 
 
 def main() -> None:
-    print(f"python {platform.python_version()}, numpy {np.__version__}, {platform.processor() or platform.machine()}, autosim {autosim.__version__}")
+    print(
+        f"python {platform.python_version()}, numpy {np.__version__}, {platform.processor() or platform.machine()}, autosim {autosim.__version__}"
+    )
     rows = []
     for n in (1, 3, 5):
         system = n_link_pendulum_on_cart(n, cart_force=True, joint_torques=False)
@@ -68,8 +69,14 @@ def main() -> None:
         for generator in ("cython", "lambdify"):
             start = time.perf_counter()
             pydy[generator] = generate_ode_function(
-                kane.forcing_full, kane.q, kane.u, constants,
-                mass_matrix=kane.mass_matrix_full, specifieds=specified, generator=generator)
+                kane.forcing_full,
+                kane.q,
+                kane.u,
+                constants,
+                mass_matrix=kane.mass_matrix_full,
+                specifieds=specified,
+                generator=generator,
+            )
             pydy[generator + " build"] = time.perf_counter() - start
         model = autosim.load(REPO / f"python/tests/models/n_link_pendulum_on_cart_{n}.sim", quiet=True)
         rng = np.random.default_rng(n)
@@ -104,8 +111,12 @@ def main() -> None:
         tol = dict(rtol=1e-8, atol=1e-10)
         sim = {
             "autosim simulate": median_time(lambda: model.simulate(10.0, x0, t_eval=t_eval, **tol), 3),
-            "solve_ivp(autosim rhs)": median_time(lambda: solve_ivp(model.rhs, (0, 10), x0, t_eval=t_eval, **tol), 1),
-            "solve_ivp(PyDy cython)": median_time(lambda: solve_ivp(lambda t, y: cy(y, t, r, p), (0, 10), x0, t_eval=t_eval, **tol), 1),
+            "solve_ivp(autosim rhs)": median_time(
+                lambda: solve_ivp(model.rhs, (0, 10), x0, t_eval=t_eval, **tol), 1
+            ),
+            "solve_ivp(PyDy cython)": median_time(
+                lambda: solve_ivp(lambda t, y: cy(y, t, r, p), (0, 10), x0, t_eval=t_eval, **tol), 1
+            ),
         }
         rows.append((n, nx, call, per_state, sim, pydy["cython build"], pydy["lambdify build"]))
 
@@ -113,33 +124,65 @@ def main() -> None:
     path = REPO / "python/tests/models/n_link_pendulum_on_cart_5.sim"
     for _ in range(ROUNDS):
         out = subprocess.run(
-            [sys.executable, "-c",
-             "import time, autosim, sys\n"
-             "t = time.perf_counter(); autosim.load(sys.argv[1], quiet=True); print(time.perf_counter() - t)",
-             str(path)],
-            capture_output=True, text=True, check=True, env=dict(os.environ))
+            [
+                sys.executable,
+                "-c",
+                "import time, autosim, sys\n"
+                "t = time.perf_counter(); autosim.load(sys.argv[1], quiet=True); print(time.perf_counter() - t)",
+                str(path),
+            ],
+            capture_output=True,
+            text=True,
+            check=True,
+            env=dict(os.environ),
+        )
         cached.append(float(out.stdout))
     import_time = []
     for _ in range(ROUNDS):
-        out = subprocess.run([sys.executable, "-c", "import time; t = time.perf_counter(); import autosim; print(time.perf_counter() - t)"],
-                             capture_output=True, text=True, check=True)
+        out = subprocess.run(
+            [
+                sys.executable,
+                "-c",
+                "import time; t = time.perf_counter(); import autosim; print(time.perf_counter() - t)",
+            ],
+            capture_output=True,
+            text=True,
+            check=True,
+        )
         import_time.append(float(out.stdout))
 
-    print("\n| n | states | per call: autosim rhs / derivatives | PyDy Cython | PyDy lambdify | ratio Cython/rhs |")
+    print(
+        "\n| n | states | per call: autosim rhs / derivatives | PyDy Cython | PyDy lambdify | ratio Cython/rhs |"
+    )
     print("| --- | --- | --- | --- | --- | --- |")
     for n, nx, call, _, _, _, _ in rows:
-        print(f"| {n} | {nx} | {call['autosim rhs']*1e6:.2f} / {call['autosim derivatives']*1e6:.2f} µs | {call['PyDy cython']*1e6:.2f} µs | {call['PyDy lambdify']*1e6:.1f} µs | {call['PyDy cython']/call['autosim rhs']:.1f}× |")
-    print("\n| n | 10^5 states: autosim, one call | PyDy Cython, loop | PyDy lambdify, loop | ratio Cython/autosim |")
+        print(
+            f"| {n} | {nx} | {call['autosim rhs'] * 1e6:.2f} / {call['autosim derivatives'] * 1e6:.2f} µs | {call['PyDy cython'] * 1e6:.2f} µs | {call['PyDy lambdify'] * 1e6:.1f} µs | {call['PyDy cython'] / call['autosim rhs']:.1f}× |"
+        )
+    print(
+        "\n| n | 10^5 states: autosim, one call | PyDy Cython, loop | PyDy lambdify, loop | ratio Cython/autosim |"
+    )
     print("| --- | --- | --- | --- | --- |")
-    for n, nx, _, ps, _, _, _ in rows:
-        print(f"| {n} | {ps['autosim vectorized']*1e9:.1f} ns/state | {ps['PyDy cython loop']*1e9:.0f} ns/state | {ps['PyDy lambdify loop']*1e9:.0f} ns/state | {ps['PyDy cython loop']/ps['autosim vectorized']:.0f}× |")
-    print("\n| n | 10 s, RK45/DP5(4) rtol 1e-8: autosim simulate | solve_ivp(autosim rhs) | solve_ivp(PyDy Cython) | ratio PyDy/simulate |")
+    for n, _nx, _, ps, _, _, _ in rows:
+        print(
+            f"| {n} | {ps['autosim vectorized'] * 1e9:.1f} ns/state | {ps['PyDy cython loop'] * 1e9:.0f} ns/state | {ps['PyDy lambdify loop'] * 1e9:.0f} ns/state | {ps['PyDy cython loop'] / ps['autosim vectorized']:.0f}× |"
+        )
+    print(
+        "\n| n | 10 s, RK45/DP5(4) rtol 1e-8: autosim simulate | solve_ivp(autosim rhs) | solve_ivp(PyDy Cython) | ratio PyDy/simulate |"
+    )
     print("| --- | --- | --- | --- | --- |")
-    for n, nx, _, _, s, _, _ in rows:
-        print(f"| {n} | {s['autosim simulate']*1e3:.2f} ms | {s['solve_ivp(autosim rhs)']*1e3:.1f} ms | {s['solve_ivp(PyDy cython)']*1e3:.1f} ms | {s['solve_ivp(PyDy cython)']/s['autosim simulate']:.0f}× |")
-    print("\nPyDy code generation (s): " + ", ".join(f"n={n}: Cython {cb:.1f}, lambdify {lb:.2f}" for n, _, _, _, _, cb, lb in rows))
-    print(f"cached autosim.load of n_link_pendulum_on_cart_5.sim in a fresh process: median {statistics.median(cached)*1e3:.1f} ms "
-          f"(rounds {', '.join(f'{c*1e3:.1f}' for c in cached)}); import autosim itself: median {statistics.median(import_time)*1e3:.0f} ms")
+    for n, _nx, _, _, s, _, _ in rows:
+        print(
+            f"| {n} | {s['autosim simulate'] * 1e3:.2f} ms | {s['solve_ivp(autosim rhs)'] * 1e3:.1f} ms | {s['solve_ivp(PyDy cython)'] * 1e3:.1f} ms | {s['solve_ivp(PyDy cython)'] / s['autosim simulate']:.0f}× |"
+        )
+    print(
+        "\nPyDy code generation (s): "
+        + ", ".join(f"n={n}: Cython {cb:.1f}, lambdify {lb:.2f}" for n, _, _, _, _, cb, lb in rows)
+    )
+    print(
+        f"cached autosim.load of n_link_pendulum_on_cart_5.sim in a fresh process: median {statistics.median(cached) * 1e3:.1f} ms "
+        f"(rounds {', '.join(f'{c * 1e3:.1f}' for c in cached)}); import autosim itself: median {statistics.median(import_time) * 1e3:.0f} ms"
+    )
 
 
 if __name__ == "__main__":

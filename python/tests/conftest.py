@@ -5,11 +5,10 @@ the Rust test that runs this suite points into ``target/``)."""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Callable, Dict
-
-import pytest
+from typing import Callable
 
 import autosim
+import pytest
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent.parent
@@ -25,7 +24,7 @@ def repo() -> Path:
 def load_model() -> Callable[..., autosim.Model]:
     """``load_model(relative_path, **options)``: a fresh copy of a model of
     the repository (each file is loaded once per session)."""
-    loaded: Dict[tuple, autosim.Model] = {}
+    loaded: dict[tuple, autosim.Model] = {}
 
     def load(relative: str, **options: object) -> autosim.Model:
         key = (relative, tuple(sorted(options.items())))

@@ -8,11 +8,10 @@ import json
 import pydoc
 from typing import Callable
 
+import autosim
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-
-import autosim
 
 PENDULUM = "examples/models/pendulum.sim"
 FOUR_BAR = "examples/models/four_bar.sim"
@@ -121,7 +120,9 @@ def test_simulate_methods_agree_and_match_solve_ivp(load_model: Load) -> None:
         sim = model.simulate(3.0, x0, method=method, h=1e-3, t_eval=times)
         assert sim.t.shape == (31,) and sim.x.shape == (31, 2) and sim.y.shape == (31, 1)
         assert np.max(np.abs(sim.x - ref.y.T)) < tol, method
-    radau = solve_ivp(model.rhs, (0, 3), x0, method="Radau", jac=model.jacobian, rtol=1e-10, atol=1e-12, t_eval=times)
+    radau = solve_ivp(
+        model.rhs, (0, 3), x0, method="Radau", jac=model.jacobian, rtol=1e-10, atol=1e-12, t_eval=times
+    )
     assert np.max(np.abs(radau.y - ref.y)) < 1e-7
     sim = model.simulate(3.0, x0)
     assert sim.t[0] == 0.0 and sim.t[-1] == 3.0 and len(sim.t) == 1001
@@ -165,7 +166,9 @@ def test_constrained_model_assembles_and_keeps_its_constraints(load_model: Load)
     assert model.independent_states == ("q1", "u1")
     assert [c.name for c in model.interface.constraints] == ["loop_n2", "loop_n3"]
     x = model.assemble(model.initial_state())
-    residuals = model.outputs(0.0, x)[[model.output_names.index("loop_n2"), model.output_names.index("loop_n3")]]
+    residuals = model.outputs(0.0, x)[
+        [model.output_names.index("loop_n2"), model.output_names.index("loop_n3")]
+    ]
     assert np.max(np.abs(residuals)) < 1e-12
     sim = model.simulate(2.0, x, rtol=1e-10, atol=1e-12)
     assert np.max(np.abs(sim["loop_n2"])) < 1e-9
@@ -294,7 +297,9 @@ def test_a_pickled_model_is_the_same_model_in_another_process(load_model: Load, 
         "model = pickle.loads(open(sys.argv[1], 'rb').read())\n"
         "print(model.parameters['L'], model.inputs['torque'], *model.derivatives(0.0, [0.8, -0.3]))\n"
     )
-    run = subprocess.run([sys.executable, "-c", script, str(tmp_path / "model.pickle")], capture_output=True, text=True)
+    run = subprocess.run(
+        [sys.executable, "-c", script, str(tmp_path / "model.pickle")], capture_output=True, text=True
+    )
     assert run.returncode == 0, run.stderr
     values = [float(v) for v in run.stdout.split()]
     assert values[:2] == [1.7, 0.25]

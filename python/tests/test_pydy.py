@@ -14,13 +14,12 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Callable, Tuple
+from typing import Callable
 
+import autosim
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-
-import autosim
 
 CASES = {
     "n-link-pendulum-on-cart-1": "python/tests/models/n_link_pendulum_on_cart_1.sim",
@@ -47,7 +46,9 @@ def coordinates_map(name: str, n_states: int) -> np.ndarray:
     return s
 
 
-def setup(repo: Path, load_model: Callable[..., autosim.Model], name: str) -> Tuple[autosim.Model, dict, np.ndarray]:
+def setup(
+    repo: Path, load_model: Callable[..., autosim.Model], name: str
+) -> tuple[autosim.Model, dict, np.ndarray]:
     ref = reference(repo, name)
     model = load_model(CASES[name])
     model.parameters.set(ref["parameters"])
@@ -56,7 +57,9 @@ def setup(repo: Path, load_model: Callable[..., autosim.Model], name: str) -> Tu
 
 
 @pytest.mark.parametrize("name", CASES)
-def test_right_hand_side_matches_pydy(repo: Path, load_model: Callable[..., autosim.Model], name: str) -> None:
+def test_right_hand_side_matches_pydy(
+    repo: Path, load_model: Callable[..., autosim.Model], name: str
+) -> None:
     model, ref, s = setup(repo, load_model, name)
     s_inv = np.linalg.inv(s)
     worst = 0.0
@@ -103,7 +106,9 @@ def test_linearization_matches_sympy_linearizer(
     b_pydy = s @ b
     want_a, want_b = np.array(lin_ref["A"]), np.array(lin_ref["B"]).reshape(b_pydy.shape)
     err_a = float(np.max(np.abs(a_pydy - want_a)) / np.max(np.abs(want_a)))
-    err_b = float(np.max(np.abs(b_pydy - want_b)) / max(np.max(np.abs(want_b)), 1e-300)) if want_b.size else 0.0
+    err_b = (
+        float(np.max(np.abs(b_pydy - want_b)) / max(np.max(np.abs(want_b)), 1e-300)) if want_b.size else 0.0
+    )
     print(f"{name}: A {err_a:.1e}, B {err_b:.1e} (relative to the largest entry)")
     assert err_a < 1e-10
     assert err_b < 1e-10

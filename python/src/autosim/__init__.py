@@ -15,8 +15,9 @@ a millisecond. The result is a :class:`Model`.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, Optional, Sequence, Union
+from typing import Any
 
 from ._build import cache_dir, find_cargo
 from ._interface import Constraint, Interface, Quantity
@@ -48,13 +49,13 @@ __all__ = [
 
 
 def _options(
-    name: Optional[str],
-    linearize: Optional[bool],
-    formulation: Optional[str],
-    small: Optional[Sequence[str]],
-    lock: Optional[Sequence[str]],
-    outputs: Optional[Sequence[str]],
-    threshold: Optional[int],
+    name: str | None,
+    linearize: bool | None,
+    formulation: str | None,
+    small: Sequence[str] | None,
+    lock: Sequence[str] | None,
+    outputs: Sequence[str] | None,
+    threshold: int | None,
 ) -> dict[str, Any]:
     options: dict[str, Any] = {}
     for key, value in (
@@ -75,13 +76,13 @@ def loads(
     text: str,
     *,
     path: str = "<string>",
-    name: Optional[str] = None,
-    linearize: Optional[bool] = True,
-    formulation: Optional[str] = None,
-    small: Optional[Sequence[str]] = None,
-    lock: Optional[Sequence[str]] = None,
-    outputs: Optional[Sequence[str]] = None,
-    threshold: Optional[int] = None,
+    name: str | None = None,
+    linearize: bool | None = True,
+    formulation: str | None = None,
+    small: Sequence[str] | None = None,
+    lock: Sequence[str] | None = None,
+    outputs: Sequence[str] | None = None,
+    threshold: int | None = None,
     quiet: bool = False,
 ) -> Model:
     """Compiles model ``text`` (named ``path`` in diagnostics) and returns
@@ -106,7 +107,7 @@ def loads(
     return Model._from_module(module, origin=("text", text, path, options))
 
 
-def load(path: Union[str, Path], **options: Any) -> Model:
+def load(path: str | Path, **options: Any) -> Model:
     """Compiles the model file at ``path`` (the options as in
     :func:`loads`) and returns it as a :class:`Model`; a file loaded before
     with the same text and options comes from the cache."""

@@ -14,13 +14,13 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
-from typing import Any, Dict, List, Optional
+from typing import Any
 
 
-def _options(args: argparse.Namespace) -> Dict[str, Any]:
+def _options(args: argparse.Namespace) -> dict[str, Any]:
     from . import _options
 
-    def names(text: Optional[str]) -> Optional[List[str]]:
+    def names(text: str | None) -> list[str] | None:
         return None if text is None else [n for n in text.split(",") if n]
 
     return _options(
@@ -34,7 +34,7 @@ def _options(args: argparse.Namespace) -> Dict[str, Any]:
     )
 
 
-def main(argv: Optional[List[str]] = None) -> int:
+def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m autosim", description=__doc__.split("\n\n")[0])
     commands = parser.add_subparsers(dest="command", required=True)
     for command in ("build", "wheel"):

@@ -25,10 +25,11 @@ import shutil
 import subprocess
 import sys
 import time
+from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
 from types import ModuleType
-from typing import Any, Iterator, Mapping, Optional
+from typing import Any
 
 from .errors import BuildError, CompileError
 
@@ -181,9 +182,7 @@ def _built_library(target: Path, crate: str) -> Path:
     return release / f"lib{crate}.so"
 
 
-def build(
-    text: str, path: str, options: Mapping[str, Any], quiet: bool = False
-) -> tuple[ModuleType, Path]:
+def build(text: str, path: str, options: Mapping[str, Any], quiet: bool = False) -> tuple[ModuleType, Path]:
     """The native module of model ``text`` (shown in diagnostics as
     ``path``) with ``options``, from the cache or built now, and its
     folder."""
@@ -289,7 +288,7 @@ def _import(module: str, library: Path) -> ModuleType:
     return native
 
 
-def library_for(text: str, options: Mapping[str, Any]) -> Optional[Path]:
+def library_for(text: str, options: Mapping[str, Any]) -> Path | None:
     """The cached library of ``text`` with ``options``, if built."""
     key = cache_key(text, options)
     library = cache_dir() / "models" / key / f"{_module_name(key)}{_ABI3_SUFFIX}"

@@ -4,8 +4,9 @@ and docs of its states, parameters, inputs and outputs; its constraints)."""
 from __future__ import annotations
 
 import json
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Optional, Sequence, Tuple
+from typing import Any
 
 
 @dataclass(frozen=True)
@@ -39,7 +40,7 @@ class Constraint:
     name: str
     kind: str
     dependent_speed: str
-    dependent_coordinate: Optional[str]
+    dependent_coordinate: str | None
     doc: str = ""
 
 
@@ -49,31 +50,28 @@ class Interface:
 
     name: str
     doc: str
-    states: Tuple[Quantity, ...]
+    states: tuple[Quantity, ...]
     n_speeds: int
-    parameters: Tuple[Quantity, ...]
-    inputs: Tuple[Quantity, ...]
-    outputs: Tuple[Quantity, ...]
-    user_code: Tuple[str, ...]
-    constraints: Tuple[Constraint, ...]
-    dependent_coordinates: Tuple[int, ...]
-    linear_states: Optional[Tuple[int, ...]]
-    cautions: Tuple[str, ...]
+    parameters: tuple[Quantity, ...]
+    inputs: tuple[Quantity, ...]
+    outputs: tuple[Quantity, ...]
+    user_code: tuple[str, ...]
+    constraints: tuple[Constraint, ...]
+    dependent_coordinates: tuple[int, ...]
+    linear_states: tuple[int, ...] | None
+    cautions: tuple[str, ...]
 
     @staticmethod
-    def from_json(text: str) -> "Interface":
+    def from_json(text: str) -> Interface:
         """Reads the JSON the compiler writes."""
         data: dict[str, Any] = json.loads(text)
 
-        def quantities(items: Sequence[dict[str, Any]], kind: str) -> Tuple[Quantity, ...]:
+        def quantities(items: Sequence[dict[str, Any]], kind: str) -> tuple[Quantity, ...]:
             return tuple(
-                Quantity(q["name"], q["unit"], float(q["default"]), q.get("doc", ""), kind)
-                for q in items
+                Quantity(q["name"], q["unit"], float(q["default"]), q.get("doc", ""), kind) for q in items
             )
 
-        states = tuple(
-            Quantity(s["name"], s["unit"], 0.0, "", s["kind"]) for s in data["states"]
-        )
+        states = tuple(Quantity(s["name"], s["unit"], 0.0, "", s["kind"]) for s in data["states"])
         constraints = tuple(
             Constraint(
                 c["name"],

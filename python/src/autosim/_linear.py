@@ -4,7 +4,7 @@ returns them."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Tuple
+from typing import Any
 
 import numpy as np
 
@@ -22,19 +22,19 @@ class LinearModel:
     #: ``∂y/∂u`` (outputs × inputs).
     D: np.ndarray
     #: The linear states (all states but dependent coordinates).
-    state_names: Tuple[str, ...]
+    state_names: tuple[str, ...]
     #: Their units.
-    state_units: Tuple[str, ...]
+    state_units: tuple[str, ...]
     #: The inputs.
-    input_names: Tuple[str, ...]
+    input_names: tuple[str, ...]
     #: The outputs.
-    output_names: Tuple[str, ...]
+    output_names: tuple[str, ...]
 
     def __iter__(self) -> Any:
         """Unpacks as ``A, B, C, D = model.linearize(...)``."""
         return iter((self.A, self.B, self.C, self.D))
 
-    def modes(self) -> Tuple[np.ndarray, np.ndarray]:
+    def modes(self) -> tuple[np.ndarray, np.ndarray]:
         """Eigenvalues of ``A`` (sorted by real part, then imaginary) and
         the eigenvectors as columns, rows in :attr:`state_names` order."""
         values, vectors = np.linalg.eig(self.A)
@@ -48,9 +48,7 @@ class LinearModel:
         try:
             import control
         except ImportError:
-            raise ImportError(
-                "to_control needs python-control: pip install control"
-            ) from None
+            raise ImportError("to_control needs python-control: pip install control") from None
         return control.ss(
             self.A,
             self.B,

@@ -2,9 +2,10 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from types import ModuleType
-from typing import Any, Callable, Dict, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, NamedTuple, Union
 
 import numpy as np
 
@@ -13,20 +14,23 @@ from ._linear import LinearModel
 from ._simulation import Simulation, simulate
 from ._values import ArrayLike, NamedValues, as_vector, unknown_name
 
+
 class TrimResult(NamedTuple):
     """What :meth:`Model.trim` found."""
 
     #: The trimmed state.
     x: np.ndarray
     #: The inputs after the trim (by name).
-    inputs: Dict[str, float]
+    inputs: dict[str, float]
     #: Newton iterations.
     iterations: int
     #: The largest steady derivative at the end.
     residual: float
 
 
-Inputs = Union[None, float, ArrayLike, Mapping[str, float], Tuple[ArrayLike, ArrayLike], Callable[[float], Any]]
+Inputs = Union[
+    None, float, ArrayLike, Mapping[str, float], tuple[ArrayLike, ArrayLike], Callable[[float], Any]
+]
 
 
 class Model:
@@ -47,8 +51,8 @@ class Model:
         self,
         native: Any,
         interface: Interface,
-        source: Optional[Path] = None,
-        origin: Optional[Tuple[Any, ...]] = None,
+        source: Path | None = None,
+        origin: tuple[Any, ...] | None = None,
     ) -> None:
         self._native = native
         #: How to make this model again in another process (pickling):
@@ -66,8 +70,8 @@ class Model:
 
     @classmethod
     def _from_module(
-        cls, module: ModuleType, source: Optional[Path] = None, origin: Optional[Tuple[Any, ...]] = None
-    ) -> "Model":
+        cls, module: ModuleType, source: Path | None = None, origin: tuple[Any, ...] | None = None
+    ) -> Model:
         interface = Interface.from_json(module.INTERFACE)
         doc = _model_doc(interface)
         kind = type(interface.name, (cls,), {"__doc__": doc, "__module__": "autosim.models"})
@@ -76,14 +80,16 @@ class Model:
             origin = ("module", package) if package else None
         return kind(module.prototype.copy(), interface, source, origin)
 
-    def __reduce__(self) -> Tuple[Any, ...]:
+    def __reduce__(self) -> tuple[Any, ...]:
         """Pickles as the recipe to make the model again (its text and load
         options, or the package of its wheel) with its parameters and
         inputs: a process that unpickles it loads the model from its cache
         (building it if the cache lacks it) or imports the wheel, so Dask
         or multiprocessing workers get the same model."""
         if self._origin is None:
-            raise TypeError(f"{self.name} cannot be pickled: it was not made by autosim.load, loads or a model wheel")
+            raise TypeError(
+                f"{self.name} cannot be pickled: it was not made by autosim.load, loads or a model wheel"
+            )
         return (_rebuild, (self._origin, self.parameters.vector, self.inputs.vector, self.source))
 
     # ----- names ---------------------------------------------------------
@@ -94,42 +100,42 @@ class Model:
         return self.interface.name
 
     @property
-    def states(self) -> Tuple[Quantity, ...]:
+    def states(self) -> tuple[Quantity, ...]:
         """The states (name, unit, kind) in state-vector order."""
         return self.interface.states
 
     @property
-    def state_names(self) -> Tuple[str, ...]:
+    def state_names(self) -> tuple[str, ...]:
         """Names of the states, in state-vector order."""
         return tuple(s.name for s in self.interface.states)
 
     @property
-    def state_units(self) -> Tuple[str, ...]:
+    def state_units(self) -> tuple[str, ...]:
         """Units of the states."""
         return tuple(s.unit for s in self.interface.states)
 
     @property
-    def outputs_info(self) -> Tuple[Quantity, ...]:
+    def outputs_info(self) -> tuple[Quantity, ...]:
         """The outputs (name, unit, doc)."""
         return self.interface.outputs
 
     @property
-    def output_names(self) -> Tuple[str, ...]:
+    def output_names(self) -> tuple[str, ...]:
         """Names of the outputs."""
         return tuple(o.name for o in self.interface.outputs)
 
     @property
-    def output_units(self) -> Tuple[str, ...]:
+    def output_units(self) -> tuple[str, ...]:
         """Units of the outputs."""
         return tuple(o.unit for o in self.interface.outputs)
 
     @property
-    def parameter_names(self) -> Tuple[str, ...]:
+    def parameter_names(self) -> tuple[str, ...]:
         """Names of the parameters, in declaration order."""
         return self.parameters.names
 
     @property
-    def input_names(self) -> Tuple[str, ...]:
+    def input_names(self) -> tuple[str, ...]:
         """Names of the inputs, in declaration order."""
         return self.inputs.names
 
@@ -149,7 +155,7 @@ class Model:
             raise unknown_name("state", name, self.state_names)
         return self._state_index[name]
 
-    def state(self, values: Optional[Mapping[str, float]] = None, **by_name: float) -> np.ndarray:
+    def state(self, values: Mapping[str, float] | None = None, **by_name: float) -> np.ndarray:
         """A state vector: the model's initial state with the named entries
         replaced (``model.state(q=0.3)``)."""
         x = self.initial_state()
@@ -161,7 +167,7 @@ class Model:
         """The initial state written in the model (zeros where none)."""
         return np.array(self._native.initial_state())
 
-    def copy(self) -> "Model":
+    def copy(self) -> Model:
         """An independent copy (same parameters and inputs), e.g. for another
         thread."""
         return type(self)(self._native.copy(), self.interface, self.source, self._origin)
@@ -193,7 +199,7 @@ class Model:
                 raise ValueError(f"u must have shape (n, {len(self.input_names)})")
         return self._native.many(ts, xs, us, outputs)
 
-    def derivatives(self, t: Union[float, ArrayLike], x: ArrayLike, u: Any = None) -> np.ndarray:
+    def derivatives(self, t: float | ArrayLike, x: ArrayLike, u: Any = None) -> np.ndarray:
         """``dx/dt`` at time ``t`` and state ``x``.
 
         ``x`` of shape ``(n_states,)`` gives one derivative; of shape
@@ -208,9 +214,9 @@ class Model:
             return self._rows(t, xs, u, False)
         if u is not None:
             self.set_inputs(u)
-        return self._native.derivatives(float(t), as_vector(xs, self._nx, "x"))
+        return self._native.derivatives(float(t), as_vector(xs, self._nx, "x"))  # type: ignore[arg-type]
 
-    def outputs(self, t: Union[float, ArrayLike], x: ArrayLike, u: Any = None) -> np.ndarray:
+    def outputs(self, t: float | ArrayLike, x: ArrayLike, u: Any = None) -> np.ndarray:
         """The outputs at ``(t, x)`` (rows of a 2-D ``x`` as in
         :meth:`derivatives`)."""
         xs = np.asarray(x, dtype=np.float64)
@@ -218,7 +224,7 @@ class Model:
             return self._rows(t, xs, u, True)
         if u is not None:
             self.set_inputs(u)
-        return self._native.outputs(float(t), as_vector(xs, self._nx, "x"))
+        return self._native.outputs(float(t), as_vector(xs, self._nx, "x"))  # type: ignore[arg-type]
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """``dx/dt`` with the signature of :func:`scipy.integrate.solve_ivp`'s
@@ -253,7 +259,7 @@ class Model:
             self.set_inputs(u)
         return self._native.forcing(float(t), as_vector(x, self._nx, "x"))
 
-    def linearize(self, t: float = 0.0, x: Optional[ArrayLike] = None, u: Any = None) -> LinearModel:
+    def linearize(self, t: float = 0.0, x: ArrayLike | None = None, u: Any = None) -> LinearModel:
         """The linear model ``dx/dt ≈ A δx + B δu``, ``y ≈ C δx + D δu`` about
         ``(t, x, u)`` (defaults: time 0, the initial state, the current
         inputs), from symbolic derivatives of the equations. For models with
@@ -264,9 +270,7 @@ class Model:
             self.set_inputs(u)
         linear = self.interface.linear_states
         if linear is None:
-            raise ValueError(
-                f"{self.name} was loaded without its linearization: load it with linearize=True"
-            )
+            raise ValueError(f"{self.name} was loaded without its linearization: load it with linearize=True")
         xv = self.initial_state() if x is None else as_vector(x, self._nx, "x")
         a, b, c, d = self._native.linearize(float(t), xv, len(linear))
         names = self.state_names
@@ -281,14 +285,14 @@ class Model:
             self.output_names,
         )
 
-    def modes(self, t: float = 0.0, x: Optional[ArrayLike] = None, u: Any = None) -> Any:
+    def modes(self, t: float = 0.0, x: ArrayLike | None = None, u: Any = None) -> Any:
         """Eigenvalues and eigenvectors of ``A`` at ``(t, x, u)``
         (:meth:`LinearModel.modes`)."""
         return self.linearize(t, x, u).modes()
 
     def trim(
         self,
-        x: Optional[ArrayLike] = None,
+        x: ArrayLike | None = None,
         *,
         free_states: Sequence[str],
         steady: Sequence[str],
@@ -314,14 +318,20 @@ class Model:
             if name not in self.input_names:
                 raise unknown_name("input", name, self.input_names)
         done = self._native.trim(
-            float(t), xv, list(free_states), list(free_inputs), list(steady), float(tolerance), int(max_iterations)
+            float(t),
+            xv,
+            list(free_states),
+            list(free_inputs),
+            list(steady),
+            float(tolerance),
+            int(max_iterations),
         )
         if done is None:
             raise ValueError(f"{self.name} was loaded without its linearization: load it with linearize=True")
         trimmed, iterations, residual = done
         return TrimResult(trimmed, dict(self.inputs), int(iterations), float(residual))
 
-    def assemble(self, x: Optional[ArrayLike] = None, t: float = 0.0) -> np.ndarray:
+    def assemble(self, x: ArrayLike | None = None, t: float = 0.0) -> np.ndarray:
         """``x`` (default: the initial state) with its dependent coordinates
         solved from the position constraints, the others held; unchanged for
         models without position constraints."""
@@ -329,12 +339,12 @@ class Model:
         return self._native.assemble(float(t), xv)
 
     @property
-    def dependent_coordinates(self) -> Tuple[str, ...]:
+    def dependent_coordinates(self) -> tuple[str, ...]:
         """States solved from the position constraints (empty for trees)."""
         return tuple(self.state_names[k] for k in self.interface.dependent_coordinates)
 
     @property
-    def independent_states(self) -> Tuple[str, ...]:
+    def independent_states(self) -> tuple[str, ...]:
         """States the integrators and the linear model carry freely: all but
         the dependent coordinates."""
         dep = set(self.interface.dependent_coordinates)
@@ -343,14 +353,14 @@ class Model:
     def simulate(
         self,
         t_end: float,
-        x0: Optional[ArrayLike] = None,
+        x0: ArrayLike | None = None,
         *,
         t0: float = 0.0,
         method: str = "dopri",
         rtol: float = 1e-9,
         atol: float = 1e-12,
-        h: Optional[float] = None,
-        t_eval: Optional[ArrayLike] = None,
+        h: float | None = None,
+        t_eval: ArrayLike | None = None,
         inputs: Inputs = None,
         max_steps: int = 10_000_000,
     ) -> Simulation:
@@ -375,11 +385,9 @@ class Model:
         Raises :class:`autosim.errors.SimulationError` when the model or the
         integrator fails (the message names the time and the state).
         """
-        return simulate(
-            self, t_end, x0, t0, method, rtol, atol, h, t_eval, inputs, max_steps
-        )
+        return simulate(self, t_end, x0, t0, method, rtol, atol, h, t_eval, inputs, max_steps)
 
-    def to_control(self, t: float = 0.0, x: Optional[ArrayLike] = None, u: Any = None) -> Any:
+    def to_control(self, t: float = 0.0, x: ArrayLike | None = None, u: Any = None) -> Any:
         """The linear model as a python-control ``StateSpace`` (needs the
         ``control`` package)."""
         return self.linearize(t, x, u).to_control()
@@ -392,7 +400,9 @@ class Model:
         )
 
 
-def _rebuild(origin: Tuple[Any, ...], parameters: np.ndarray, inputs: np.ndarray, source: Optional[Path]) -> Model:
+def _rebuild(
+    origin: tuple[Any, ...], parameters: np.ndarray, inputs: np.ndarray, source: Path | None
+) -> Model:
     """A pickled model made again (see :meth:`Model.__reduce__`)."""
     if origin[0] == "text":
         from . import loads

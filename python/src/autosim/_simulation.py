@@ -3,8 +3,9 @@ pandas DataFrame when pandas is installed."""
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Mapping, Optional, Tuple
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -27,9 +28,9 @@ class Simulation:
     x: np.ndarray
     y: np.ndarray
     u: np.ndarray
-    state_names: Tuple[str, ...]
-    output_names: Tuple[str, ...]
-    input_names: Tuple[str, ...]
+    state_names: tuple[str, ...]
+    output_names: tuple[str, ...]
+    input_names: tuple[str, ...]
     method: str
     #: Accepted steps.
     steps: int
@@ -86,16 +87,16 @@ def _output_times(t0: float, t_end: float, t_eval: Any) -> np.ndarray:
 
 
 def simulate(
-    model: "Model",
+    model: Model,
     t_end: float,
     x0: Any,
     t0: float,
     method: str,
     rtol: float,
     atol: float,
-    h: Optional[float],
+    h: float | None,
     t_eval: Any,
-    inputs: "Inputs",
+    inputs: Inputs,
     max_steps: int,
 ) -> Simulation:
     """:meth:`Model.simulate` (see there)."""

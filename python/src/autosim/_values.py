@@ -4,7 +4,8 @@ name, as a dict, or as a vector, with checks that name what is wrong."""
 from __future__ import annotations
 
 import difflib
-from typing import Callable, Dict, Iterator, Mapping, MutableMapping, Sequence, Tuple, Union
+from collections.abc import Iterator, Mapping, MutableMapping, Sequence
+from typing import Callable, Union
 
 import numpy as np
 
@@ -41,7 +42,7 @@ class NamedValues(MutableMapping[str, float]):
     def __init__(
         self,
         kind: str,
-        quantities: Tuple[Quantity, ...],
+        quantities: tuple[Quantity, ...],
         read: Callable[[], np.ndarray],
         write: Callable[[np.ndarray], None],
         finite: bool,
@@ -55,17 +56,17 @@ class NamedValues(MutableMapping[str, float]):
         self._finite = finite
 
     @property
-    def names(self) -> Tuple[str, ...]:
+    def names(self) -> tuple[str, ...]:
         """The names, in declaration order."""
         return self._names
 
     @property
-    def units(self) -> Tuple[str, ...]:
+    def units(self) -> tuple[str, ...]:
         """The units, in declaration order."""
         return tuple(q.unit for q in self._quantities)
 
     @property
-    def defaults(self) -> Dict[str, float]:
+    def defaults(self) -> dict[str, float]:
         """The values the model declares."""
         return {q.name: q.default for q in self._quantities}
 
@@ -80,7 +81,7 @@ class NamedValues(MutableMapping[str, float]):
         self._check(v)
         self._write(v)
 
-    def set(self, values: Union[Mapping[str, float], ArrayLike, None] = None, **by_name: float) -> None:
+    def set(self, values: Mapping[str, float] | ArrayLike | None = None, **by_name: float) -> None:
         """Sets values from a mapping or keywords (by name; the others keep
         theirs) or a whole vector."""
         if values is not None and not isinstance(values, Mapping):

@@ -19,8 +19,9 @@ import json
 import re
 import sysconfig
 import zipfile
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, Dict, List, Mapping, Tuple
+from typing import Any
 
 from . import __version__
 from ._build import _ABI3_SUFFIX, build
@@ -70,14 +71,14 @@ def build_wheel(path: Path, out_dir: Path, options: Mapping[str, Any], quiet: bo
     key = folder.name
     version = f"{__version__}+{key}"
     native = module.__name__
-    files: List[Tuple[str, bytes]] = [
+    files: list[tuple[str, bytes]] = [
         (f"{package}/__init__.py", _init_py(native, model, path.name).replace("{package}", package).encode()),
         (f"{package}/{native}{_ABI3_SUFFIX}", (folder / f"{native}{_ABI3_SUFFIX}").read_bytes()),
         (f"{package}/{path.name}", text.encode()),
         (f"{package}/options.json", json.dumps(dict(options), sort_keys=True).encode()),
     ]
     info = f"{distribution}-{version}.dist-info"
-    metadata: Dict[str, str] = {
+    metadata: dict[str, str] = {
         "Metadata-Version": "2.1",
         "Name": distribution,
         "Version": version,

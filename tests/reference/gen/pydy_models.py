@@ -29,14 +29,13 @@ import platform
 import time
 
 import numpy as np
+import pydy
 import scipy
 import sympy as sp
 import sympy.physics.mechanics as me
-from scipy.integrate import solve_ivp
-
-import pydy
 from pydy.codegen.ode_function_generators import generate_ode_function
 from pydy.models import n_link_pendulum_on_cart
+from scipy.integrate import solve_ivp
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "pydy")
@@ -50,9 +49,9 @@ def chain_spatial(n):
     k, c, g = sp.symbols("k c g")
     values = {k: 2.0, c: 0.1, g: 9.81}
     N = me.ReferenceFrame("N")
-    O = me.Point("O")
-    O.set_vel(N, 0)
-    parent, joint = N, O
+    origin = me.Point("O")
+    origin.set_vel(N, 0)
+    parent, joint = N, origin
     bodies, loads = [], []
     P = sp.Symbol("P")
     values[P] = 0.0005
@@ -60,8 +59,7 @@ def chain_spatial(n):
         m, L, Ixx, Iyy, Izz = sp.symbols(f"m{i} L{i} Ixx{i} Iyy{i} Izz{i}")
         mi = 1 + 0.1 * (i % 5)
         Li = 0.4 + 0.05 * (i % 3)
-        values |= {m: mi, L: Li, Ixx: mi * Li**2 / 12, Iyy: mi * Li**2 / 12 + 0.001,
-                   Izz: 0.002 + 0.0001 * i}
+        values |= {m: mi, L: Li, Ixx: mi * Li**2 / 12, Iyy: mi * Li**2 / 12 + 0.001, Izz: 0.002 + 0.0001 * i}
         axis = [parent.x, parent.y, parent.z][(i - 1) % 3]
         B = parent.orientnew(f"B{i}", "Axis", [q[i - 1], axis])
         B.set_ang_vel(parent, u[i - 1] * axis)
@@ -106,9 +104,14 @@ def ode_function(kane, values, inputs):
     for generator in ("cython", "lambdify"):
         try:
             f = generate_ode_function(
-                kane.forcing_full, kane.q, kane.u, constants,
-                mass_matrix=kane.mass_matrix_full, specifieds=inputs or None,
-                generator=generator)
+                kane.forcing_full,
+                kane.q,
+                kane.u,
+                constants,
+                mass_matrix=kane.mass_matrix_full,
+                specifieds=inputs or None,
+                generator=generator,
+            )
             return f, generator, constants
         except Exception as e:  # a missing C compiler or Cython
             print(f"  {generator} generator failed: {e}")
@@ -120,9 +123,9 @@ def linearized(kane, q, u, values, inputs, x_op, r_op, dx_op):
     equilibrium: the derivatives of the coordinates and speeds there,
     ``dx_op``, are part of it)."""
     linearizer = kane.to_linearizer()
-    op = dict(zip(q, x_op[: len(q)])) | dict(zip(u, x_op[len(q):]))
+    op = dict(zip(q, x_op[: len(q)])) | dict(zip(u, x_op[len(q) :]))
     op |= {qi.diff(): v for qi, v in zip(q, dx_op[: len(q)])}
-    op |= {ui.diff(): v for ui, v in zip(u, dx_op[len(q):])}
+    op |= {ui.diff(): v for ui, v in zip(u, dx_op[len(q) :])}
     op |= dict(zip(inputs, r_op))
     op |= values
     A, B = linearizer.linearize(op_point=op, A_and_B=True, simplify=False)
@@ -147,8 +150,7 @@ def main():
             x = rng.uniform(-1.5, 1.5, nx)
             r = rng.uniform(-3.0, 3.0, ni)
             args = (x, 0.0, r, p) if ni else (x, 0.0, p)
-            samples.append({"x": x.tolist(), "inputs": r.tolist(),
-                            "dxdt": np.asarray(f(*args)).tolist()})
+            samples.append({"x": x.tolist(), "inputs": r.tolist(), "dxdt": np.asarray(f(*args)).tolist()})
         x0 = rng.uniform(-0.8, 0.8, nx)
         r0 = rng.uniform(-2.0, 2.0, ni)
         times = np.linspace(0.0, 2.0, 21)
@@ -156,8 +158,7 @@ def main():
         def rhs(t, x):
             return f(x, t, r0, p) if ni else f(x, t, p)
 
-        traj = solve_ivp(rhs, (0.0, 2.0), x0, method="DOP853", t_eval=times,
-                         rtol=1e-13, atol=1e-14)
+        traj = solve_ivp(rhs, (0.0, 2.0), x0, method="DOP853", t_eval=times, rtol=1e-13, atol=1e-14)
         x_op = rng.uniform(-1.0, 1.0, nx)
         r_op = rng.uniform(-2.0, 2.0, ni)
         dx_op = np.asarray(f(x_op, 0.0, r_op, p) if ni else f(x_op, 0.0, p))
@@ -166,17 +167,31 @@ def main():
             "model": name,
             "generator": "tests/reference/gen/pydy_models.py",
             "ode_generator": generator,
-            "versions": {"python": platform.python_version(), "sympy": sp.__version__,
-                         "pydy": pydy.__version__, "numpy": np.__version__,
-                         "scipy": scipy.__version__},
+            "versions": {
+                "python": platform.python_version(),
+                "sympy": sp.__version__,
+                "pydy": pydy.__version__,
+                "numpy": np.__version__,
+                "scipy": scipy.__version__,
+            },
             "states": [str(s).replace("(t)", "") for s in list(q) + list(u)],
             "inputs": [str(s).replace("(t)", "") for s in inputs],
             "parameters": {str(c): float(values[c]) for c in constants},
             "samples": samples,
-            "trajectory": {"x0": x0.tolist(), "inputs": r0.tolist(), "t": times.tolist(),
-                           "x": traj.y.T.tolist(), "method": "solve_ivp DOP853 rtol 1e-13 atol 1e-14"},
-            "linear": {"x": x_op.tolist(), "inputs": r_op.tolist(), "input_order": r_names,
-                       "A": A.tolist(), "B": B.tolist()},
+            "trajectory": {
+                "x0": x0.tolist(),
+                "inputs": r0.tolist(),
+                "t": times.tolist(),
+                "x": traj.y.T.tolist(),
+                "method": "solve_ivp DOP853 rtol 1e-13 atol 1e-14",
+            },
+            "linear": {
+                "x": x_op.tolist(),
+                "inputs": r_op.tolist(),
+                "input_order": r_names,
+                "A": A.tolist(),
+                "B": B.tolist(),
+            },
         }
         with open(os.path.join(OUT, f"{name}.json"), "w") as out:
             json.dump(data, out, indent=1)

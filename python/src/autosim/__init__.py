@@ -8,9 +8,9 @@
 :func:`load` and :func:`loads` run the autosim compiler in process, then
 build the model's native module with cargo into the cache folder
 (:func:`cache_dir`; ``AUTOSIM_CACHE`` overrides it) unless it is there
-already: the first model of a cache takes 20 s to a minute (PyO3 is
-compiled once), a new model about a second, a model loaded before about
-a millisecond. The result is a :class:`Model`.
+already: the first model of a cache takes under a minute (PyO3 is
+compiled once), a new small model about a second, a model loaded before
+about a millisecond. The result is a :class:`Model`.
 """
 
 from __future__ import annotations

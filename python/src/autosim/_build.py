@@ -239,7 +239,7 @@ def _build_crate(
     if not quiet:
         print(
             f"autosim: building the native module of {data['name']} ({path}); "
-            "the first model of a cache also compiles PyO3 (20 s to a minute)",
+            "the first model of a cache also compiles PyO3 and nalgebra (under a minute)",
             file=sys.stderr,
             flush=True,
         )

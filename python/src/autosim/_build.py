@@ -8,7 +8,7 @@ builds it into an extension module in a target folder every model shares
 (so only the first build compiles PyO3 and NumPy's bindings), and the
 module is copied next to the crate with the model's interface.
 
-The cache key hashes the model text, the load options and the compiler's
+The cache key hashes the model text, the load options, the crate layout and the compiler's
 fingerprint (its version and a hash of the compiler, runtime and wrapper
 sources): a second load of the same text is an import; a changed file,
 option or compiler builds again.
@@ -57,10 +57,13 @@ def _compiler() -> ModuleType:
 
 
 def cache_key(text: str, options: Mapping[str, Any]) -> str:
-    """The cache key of model ``text`` loaded with ``options``."""
+    """The cache key of model ``text`` loaded with ``options``: a hash of
+    them, the compiler's version and fingerprint, and the crate layout."""
     version, fingerprint = _compiler().version()
+    # The crate this module writes is part of the build too.
+    layout = _manifest("m", Path("crates")) + _BUILD_RS + _lib_rs("m", "M", True)
     digest = hashlib.sha256()
-    for part in (version, fingerprint, json.dumps(options, sort_keys=True), text):
+    for part in (version, fingerprint, layout, json.dumps(options, sort_keys=True), text):
         digest.update(part.encode())
         digest.update(b"\0")
     return digest.hexdigest()[:20]
@@ -141,9 +144,14 @@ version = "0.1.0"
 edition = "2024"
 publish = false
 
+build = "build.rs"
+
 [lib]
 crate-type = ["cdylib"]
 path = "src/lib.rs"
+
+[build-dependencies]
+pyo3-build-config = "0.30"
 
 [dependencies]
 autosim-runtime = {{ path = {path("autosim-runtime")}, default-features = false, features = ["std", "analysis"] }}
@@ -154,6 +162,11 @@ debug = false
 
 [workspace]
 """
+
+
+#: The model crate's build script: the linker arguments of an extension
+#: module (on macOS, symbols resolved by the interpreter at load time).
+_BUILD_RS = "fn main() {\n    pyo3_build_config::add_extension_module_link_args();\n}\n"
 
 
 def _lib_rs(module: str, model: str, linearize: bool) -> str:
@@ -229,6 +242,7 @@ def _build_crate(
     src = folder / "src"
     _write_if_changed(folder / "Cargo.toml", _manifest(module, crates))
     _write_if_changed(src / "generated.rs", rust)
+    _write_if_changed(folder / "build.rs", _BUILD_RS)
     linearize = data.get("linear_states") is not None
     _write_if_changed(src / "interface.json", interface)
     _write_if_changed(src / "lib.rs", _lib_rs(module, data["name"], linearize))

@@ -58,6 +58,21 @@ fn simulation_error(py: Python<'_>, message: String) -> PyErr {
     }
 }
 
+/// Runs `f` (a loop over the model or an integration, on a detached
+/// thread), turning a Rust panic — a bug, never a user's mistake — into
+/// the message of a `SimulationError` rather than PyO3's
+/// `PanicException` (a `BaseException`, which `except Exception` misses).
+fn unpanicked<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|payload| {
+        let text = payload
+            .downcast_ref::<&str>()
+            .map(|s| s.to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_default();
+        format!("internal error, a bug in autosim (please report it): {text}")
+    })
+}
+
 fn model_error(py: Python<'_>, e: ModelError) -> PyErr {
     simulation_error(py, e.to_string())
 }
@@ -293,7 +308,8 @@ impl NativeModel {
         };
         let mut out = vec![0.0; n * width];
         let engine = &mut self.engine;
-        py.detach(|| engine.many(outputs, &ts, &xs, us.as_deref(), &mut out))
+        py.detach(|| unpanicked(|| engine.many(outputs, &ts, &xs, us.as_deref(), &mut out)))
+            .map_err(|message| simulation_error(py, message))?
             .map_err(|e| row_error(py, e))?;
         rows(py, out, n, width)
     }
@@ -398,7 +414,11 @@ impl NativeModel {
             tolerance,
             max_iterations,
         };
-        match self.engine.trim(t, &mut x, &spec) {
+        let engine = &mut self.engine;
+        let done = py
+            .detach(|| unpanicked(|| engine.trim(t, &mut x, &spec)))
+            .map_err(|message| simulation_error(py, message))?;
+        match done {
             None => Ok(None),
             Some(Err(message)) => Err(simulation_error(py, message)),
             Some(Ok((iterations, residual))) => {
@@ -458,7 +478,9 @@ impl NativeModel {
             max_steps,
         };
         let engine = &mut self.engine;
-        let result = py.detach(|| engine.simulate(&request, source));
+        let result = py
+            .detach(|| unpanicked(|| engine.simulate(&request, source)))
+            .and_then(|r| r);
         if let Some(e) = failure.lock().unwrap_or_else(|p| p.into_inner()).take() {
             return Err(e);
         }

@@ -139,6 +139,7 @@ def test_inputs_constant_table_and_callable(load_model: Load) -> None:
     assert np.max(np.abs(table.x - constant.x)) < 1e-12
     assert np.max(np.abs(function.x - constant.x)) < 1e-12
     assert np.all(constant["torque"] == 0.5)
+    assert model.inputs["torque"] == 0.0, "the run's inputs do not stay"
     ramp = model.simulate(2.0, t_eval=times, inputs=([0.0, 2.0], [0.0, 1.0]), method="rk4", h=1e-3)
     assert np.allclose(ramp["torque"], times / 2, rtol=0, atol=1e-15)
     by_function = model.simulate(2.0, t_eval=times, inputs=lambda t: t / 2, method="rk4", h=1e-3)

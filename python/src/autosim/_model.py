@@ -375,7 +375,8 @@ class Model:
         interval between output times). ``t_eval``: the output times
         (default: 1001 evenly spaced from ``t0`` to ``t_end``).
         ``inputs``: ``None`` holds the current inputs; a number, vector or
-        mapping sets them for the run; a pair ``(times, values)`` with
+        mapping sets them for the run (the model's inputs are restored
+        afterwards, as for the other forms); a pair ``(times, values)`` with
         ``values`` of shape ``(len(times), n_inputs)`` interpolates linearly
         in time (held beyond the ends); a callable ``u(t)`` returning the
         input vector is called at every evaluation (slow: it runs Python

@@ -134,7 +134,7 @@ def simulate(
             method, t0, t_end, step, float(rtol), float(atol), times, xv, int(max_steps), table, function
         )
     finally:
-        if inputs is not None and not isinstance(inputs, Mapping) and (function or table):
+        if inputs is not None:
             native.set_inputs(saved)
     u = run["u"]
     if u.shape[1] != len(model.input_names):

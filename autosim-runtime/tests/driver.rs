@@ -289,3 +289,79 @@ fn f32_models_run_too() {
     run_unobserved(&mut DecayF32, &mut dp, &mut x, &settings).unwrap();
     assert!((x[0] - (-5.0f32).exp()).abs() < 1e-5, "{}", x[0]);
 }
+
+/// `run_at` reports exactly at uneven times (the oscillator's exact
+/// solution there), ends at the stop time, equals `run` on an even grid,
+/// and refuses times out of order or outside the run.
+#[test]
+fn run_at_reports_at_the_given_times() {
+    use autosim_runtime::run_at;
+    let times = [0.0, 0.013, 0.25, 0.25, 0.9, 1.7];
+    let mut model = Oscillator::default();
+    let mut x = model.initial_state();
+    let mut dopri = DormandPrince::new(DopriSettings::new(1e-11, 1e-13)).unwrap();
+    let mut seen: Vec<(f64, [f64; 2])> = Vec::new();
+    let settings = RunSettings::new(0.0, 2.0, 1e-3, 1.0);
+    let summary = run_at(
+        &mut model,
+        &mut dopri,
+        &mut x,
+        &settings,
+        &times,
+        &mut |t, x: &[f64; 2], _: &[f64; 1]| {
+            seen.push((t, *x));
+        },
+    )
+    .unwrap();
+    assert_eq!(summary.end_time, 2.0);
+    assert_eq!(seen.iter().map(|s| s.0).collect::<Vec<_>>(), times);
+    for (t, x) in &seen {
+        assert!(max_diff(x, &model.exact(*t)) < 1e-9, "t = {t}: {x:?}");
+    }
+    assert!(max_diff(&x, &model.exact(2.0)) < 1e-9);
+
+    // On an even grid with a fixed-step method: the same bits as `run`.
+    let grid: Vec<f64> = (0..=10).map(|k| k as f64 * 0.1).collect();
+    let settings = RunSettings::new(0.0, 1.0, 0.01, 0.1);
+    let (mut at, mut even) = (Vec::new(), Vec::new());
+    let mut x = model.initial_state();
+    run_at(
+        &mut model,
+        &mut Rk4::new(),
+        &mut x,
+        &settings,
+        &grid,
+        &mut |_t, x: &[f64; 2], _: &[f64; 1]| at.push(*x),
+    )
+    .unwrap();
+    let mut x = model.initial_state();
+    run(
+        &mut model,
+        &mut Rk4::new(),
+        &mut x,
+        &settings,
+        &mut |_t, x: &[f64; 2], _: &[f64; 1]| even.push(*x),
+    )
+    .unwrap();
+    assert_eq!(at, even);
+
+    for bad in [&[0.5, 0.4][..], &[-0.1][..], &[1.5][..]] {
+        let mut x = model.initial_state();
+        let err = run_at(
+            &mut model,
+            &mut Rk4::new(),
+            &mut x,
+            &settings,
+            bad,
+            &mut |_t, _: &[f64; 2], _: &[f64; 1]| {},
+        )
+        .unwrap_err();
+        assert!(
+            matches!(
+                err,
+                RunError::Integration(IntegrationError::InvalidSettings { .. })
+            ),
+            "{bad:?}: {err:?}"
+        );
+    }
+}

@@ -6,8 +6,10 @@ use core::fmt;
 
 mod driver;
 mod sampled;
+mod times;
 
 pub use sampled::{Controller, run_sampled};
+pub use times::run_at;
 
 use crate::integrate::Stepper;
 use crate::{Float, IntegrationError, Model};

@@ -42,6 +42,21 @@ impl PythonEnv {
         command
     }
 
+    /// `python -m pip install --quiet` in the environment: add the
+    /// requirements (or paths) and run it. Hold [`lock_environment`] while
+    /// it runs.
+    pub fn pip_install(&self) -> Command {
+        let mut command = self.command();
+        command.args([
+            "-m",
+            "pip",
+            "install",
+            "--quiet",
+            "--disable-pip-version-check",
+        ]);
+        command
+    }
+
     /// Runs the interpreter with `args`, returning its output.
     pub fn run(&self, args: &[&str]) -> std::io::Result<Output> {
         self.command().args(args).output()
@@ -98,14 +113,7 @@ pub fn python_env(requirements: &[&str]) -> Result<PythonEnv, String> {
         .collect();
     if !missing.is_empty() {
         let out = env
-            .command()
-            .args([
-                "-m",
-                "pip",
-                "install",
-                "--quiet",
-                "--disable-pip-version-check",
-            ])
+            .pip_install()
             .args(&missing)
             .output()
             .map_err(|e| format!("pip could not run ({e})"))?;
@@ -122,6 +130,18 @@ pub fn python_env(requirements: &[&str]) -> Result<PythonEnv, String> {
     }
     drop(lock);
     Ok(env)
+}
+
+/// The shared environment's lock (what [`python_env`] holds while it
+/// installs), held until the file is dropped: for tests that install more
+/// into the environment themselves.
+///
+/// # Errors
+/// A sentence when the lock file cannot be opened or locked.
+pub fn lock_environment() -> Result<File, String> {
+    let target = target_dir();
+    std::fs::create_dir_all(&target).map_err(|e| format!("cannot create {target:?}: {e}"))?;
+    lock_file(&target.join("python-env.lock"))
 }
 
 /// Prints the `SKIPPED: ...` line a test prints when it cannot run.

@@ -1,0 +1,239 @@
+//! The model behind the Python object, as an object-safe trait on slices:
+//! [`Engine`], implemented for every generated model by [`Adapter`]. Loops
+//! over many states live here, inside the generic code, so a vectorized
+//! call is one virtual call, not one per state.
+
+use crate::Generated;
+use crate::inputs::InputSource;
+use crate::simulate::{Request, Trajectory, simulate};
+use autosim_runtime::analysis::Trim;
+use autosim_runtime::{Model, ModelError, StateArray};
+
+/// Sizes of a model's vectors.
+#[derive(Clone, Copy, Debug)]
+pub struct Sizes {
+    /// States.
+    pub states: usize,
+    /// Independent generalized speeds.
+    pub speeds: usize,
+    /// Inputs.
+    pub inputs: usize,
+    /// Outputs.
+    pub outputs: usize,
+    /// Parameters.
+    pub parameters: usize,
+}
+
+/// Why a call on many states failed: the row and the model's error.
+pub type RowError = (usize, ModelError);
+
+/// A model as the Python object uses it: every vector a slice of the
+/// length [`Engine::sizes`] gives (checked by the caller).
+pub trait Engine: Send + Sync {
+    /// The vector sizes.
+    fn sizes(&self) -> Sizes;
+    /// The interface JSON.
+    fn interface(&self) -> &'static str;
+    /// A copy (same parameters and inputs).
+    fn boxed_clone(&self) -> Box<dyn Engine>;
+    /// Parameter values in declaration order.
+    fn parameters(&self) -> Vec<f64>;
+    /// Sets every parameter value (recomputing the constants).
+    fn set_parameters(&mut self, values: &[f64]);
+    /// Input values in declaration order.
+    fn inputs(&self) -> Vec<f64>;
+    /// Sets every input value.
+    fn set_inputs(&mut self, values: &[f64]);
+    /// The model's default initial state.
+    fn initial_state(&self) -> Vec<f64>;
+    /// `dx/dt` at `(t, x)` with the current inputs.
+    fn derivatives(&mut self, t: f64, x: &[f64], dx: &mut [f64]) -> Result<(), ModelError>;
+    /// Outputs at `(t, x)` with the current inputs.
+    fn outputs(&mut self, t: f64, x: &[f64], y: &mut [f64]) -> Result<(), ModelError>;
+    /// `dx/dt` (or the outputs, `outputs = true`) for each row of `x`
+    /// (row-major, `sizes().states` columns) at the times `t` (one, or one
+    /// per row), with the inputs `u` (one row per state row) or the
+    /// current inputs; restores the current inputs afterwards.
+    fn many(
+        &mut self,
+        outputs: bool,
+        t: &[f64],
+        x: &[f64],
+        u: Option<&[f64]>,
+        out: &mut [f64],
+    ) -> Result<(), RowError>;
+    /// The mass matrix, row-major.
+    fn mass_matrix(&mut self, t: f64, x: &[f64], m: &mut [f64]);
+    /// The forcing vector.
+    fn forcing(&mut self, t: f64, x: &[f64], f: &mut [f64]);
+    /// `A, B, C, D` (`None` without a generated linearization).
+    fn linearize(
+        &mut self,
+        t: f64,
+        x: &[f64],
+        abcd: [&mut [f64]; 4],
+    ) -> Option<Result<(), ModelError>>;
+    /// Solves the position constraints for the dependent coordinates.
+    fn assemble(&mut self, t: f64, x: &mut [f64]) -> Result<(), ModelError>;
+    /// Trims `x` (and the model's free inputs) as `spec` says: the
+    /// iterations and the final residual, the error's message, or `None`
+    /// without a generated linearization.
+    fn trim(&mut self, t: f64, x: &mut [f64], spec: &Trim) -> Option<Result<(usize, f64), String>>;
+    /// Integrates as `request` says with the inputs from `inputs`.
+    fn simulate(
+        &mut self,
+        request: &Request,
+        inputs: Box<dyn InputSource>,
+    ) -> Result<Trajectory, String>;
+}
+
+/// A generated model as an [`Engine`].
+#[derive(Clone)]
+pub struct Adapter<M>(pub M);
+
+/// A state array of `M` from a slice of the same length.
+pub fn state<M: Model<Float = f64>>(x: &[f64]) -> M::State {
+    let mut s = M::State::zeros();
+    s.as_mut().copy_from_slice(x);
+    s
+}
+
+impl<M: Generated> Engine for Adapter<M> {
+    fn sizes(&self) -> Sizes {
+        Sizes {
+            states: M::STATE_NAMES.len(),
+            speeds: M::N_SPEEDS,
+            inputs: M::INPUT_NAMES.len(),
+            outputs: M::OUTPUT_NAMES.len(),
+            parameters: M::PARAMETER_NAMES.len(),
+        }
+    }
+
+    fn interface(&self) -> &'static str {
+        M::INTERFACE
+    }
+
+    fn boxed_clone(&self) -> Box<dyn Engine> {
+        Box::new(self.clone())
+    }
+
+    fn parameters(&self) -> Vec<f64> {
+        let mut v = vec![0.0; M::PARAMETER_NAMES.len()];
+        self.0.parameter_values(&mut v);
+        v
+    }
+
+    fn set_parameters(&mut self, values: &[f64]) {
+        self.0.set_parameter_values(values);
+    }
+
+    fn inputs(&self) -> Vec<f64> {
+        let mut v = vec![0.0; M::INPUT_NAMES.len()];
+        self.0.input_values(&mut v);
+        v
+    }
+
+    fn set_inputs(&mut self, values: &[f64]) {
+        self.0.set_input_values(values);
+    }
+
+    fn initial_state(&self) -> Vec<f64> {
+        self.0.initial_state().as_ref().to_vec()
+    }
+
+    fn derivatives(&mut self, t: f64, x: &[f64], dx: &mut [f64]) -> Result<(), ModelError> {
+        let mut d = M::State::zeros();
+        self.0.derivatives(t, &state::<M>(x), &mut d)?;
+        dx.copy_from_slice(d.as_ref());
+        Ok(())
+    }
+
+    fn outputs(&mut self, t: f64, x: &[f64], y: &mut [f64]) -> Result<(), ModelError> {
+        let mut o = M::Outputs::zeros();
+        self.0.outputs(t, &state::<M>(x), &mut o)?;
+        y.copy_from_slice(o.as_ref());
+        Ok(())
+    }
+
+    fn many(
+        &mut self,
+        outputs: bool,
+        t: &[f64],
+        x: &[f64],
+        u: Option<&[f64]>,
+        out: &mut [f64],
+    ) -> Result<(), RowError> {
+        let (ns, ni) = (M::STATE_NAMES.len(), M::INPUT_NAMES.len());
+        let width = if outputs { M::OUTPUT_NAMES.len() } else { ns };
+        let saved = self.inputs();
+        let rows = x.len().checked_div(ns).unwrap_or(0);
+        let mut result = Ok(());
+        for k in 0..rows {
+            let tk = if t.len() == 1 { t[0] } else { t[k] };
+            if let Some(u) = u {
+                self.0.set_input_values(&u[k * ni..(k + 1) * ni]);
+            }
+            let xk = state::<M>(&x[k * ns..(k + 1) * ns]);
+            let row = &mut out[k * width..(k + 1) * width];
+            let done = if outputs {
+                let mut o = M::Outputs::zeros();
+                self.0
+                    .outputs(tk, &xk, &mut o)
+                    .map(|()| row.copy_from_slice(o.as_ref()))
+            } else {
+                let mut d = M::State::zeros();
+                self.0
+                    .derivatives(tk, &xk, &mut d)
+                    .map(|()| row.copy_from_slice(d.as_ref()))
+            };
+            if let Err(e) = done {
+                result = Err((k, e));
+                break;
+            }
+        }
+        self.0.set_input_values(&saved);
+        result
+    }
+
+    fn mass_matrix(&mut self, t: f64, x: &[f64], m: &mut [f64]) {
+        self.0.mass_matrix_into(t, &state::<M>(x), m);
+    }
+
+    fn forcing(&mut self, t: f64, x: &[f64], f: &mut [f64]) {
+        self.0.forcing_into(t, &state::<M>(x), f);
+    }
+
+    fn linearize(
+        &mut self,
+        t: f64,
+        x: &[f64],
+        abcd: [&mut [f64]; 4],
+    ) -> Option<Result<(), ModelError>> {
+        self.0.linearize_rows(t, &state::<M>(x), abcd)
+    }
+
+    fn assemble(&mut self, t: f64, x: &mut [f64]) -> Result<(), ModelError> {
+        let mut s = state::<M>(x);
+        self.0.assemble(t, &mut s)?;
+        x.copy_from_slice(s.as_ref());
+        Ok(())
+    }
+
+    fn trim(&mut self, t: f64, x: &mut [f64], spec: &Trim) -> Option<Result<(usize, f64), String>> {
+        let mut s = state::<M>(x);
+        let done = self.0.trim_with(t, &mut s, spec)?;
+        x.copy_from_slice(s.as_ref());
+        Some(
+            done.map(|r| (r.iterations, r.residual))
+                .map_err(|e| e.to_string()),
+        )
+    }
+
+    fn simulate(
+        &mut self,
+        request: &Request,
+        inputs: Box<dyn InputSource>,
+    ) -> Result<Trajectory, String> {
+        simulate(&self.0, request, inputs)
+    }
+}

@@ -1,0 +1,132 @@
+//! One simulation: the integrator the caller names, the runtime's
+//! `run_at` driver reporting at the requested times, and the time history
+//! collected into flat vectors for NumPy.
+
+use crate::Generated;
+use crate::inputs::{Driven, InputSource};
+use autosim_runtime::integrate::{
+    AbmOrder, AdamsBashforthMoulton, DopriSettings, DormandPrince, Euler, Heun, Rk4, SdirkSettings,
+    Stepper,
+};
+use autosim_runtime::{Model, Observer, RunSettings, StateArray, run_at};
+use core::convert::Infallible;
+
+/// The integrators, by the names Python uses.
+pub const METHODS: [&str; 7] = ["dopri", "rk4", "sdirk3", "abm4", "abm2", "heun", "euler"];
+
+/// What to simulate.
+pub struct Request {
+    /// An entry of [`METHODS`].
+    pub method: String,
+    /// Start time.
+    pub t0: f64,
+    /// Stop time.
+    pub t_end: f64,
+    /// Fixed step, or the first trial step of `dopri`.
+    pub h: f64,
+    /// Relative tolerance (`dopri`).
+    pub rtol: f64,
+    /// Absolute tolerance (`dopri`).
+    pub atol: f64,
+    /// Output times (non-decreasing, within `[t0, t_end]`).
+    pub times: Vec<f64>,
+    /// Initial state.
+    pub x0: Vec<f64>,
+    /// Step limit.
+    pub max_steps: u64,
+}
+
+/// A finished simulation, row-major.
+#[derive(Default)]
+pub struct Trajectory {
+    /// Output times.
+    pub t: Vec<f64>,
+    /// States, one row per time.
+    pub x: Vec<f64>,
+    /// Outputs, one row per time.
+    pub y: Vec<f64>,
+    /// Inputs, one row per time.
+    pub u: Vec<f64>,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Rejected trial steps.
+    pub rejected_steps: u64,
+    /// Derivative evaluations.
+    pub evaluations: u64,
+}
+
+impl<M: Model<Float = f64>> Observer<M> for Trajectory {
+    type Error = Infallible;
+    fn observe(&mut self, t: f64, x: &M::State, y: &M::Outputs) -> Result<(), Infallible> {
+        self.t.push(t);
+        self.x.extend_from_slice(x.as_ref());
+        self.y.extend_from_slice(y.as_ref());
+        Ok(())
+    }
+    fn observe_inputs(&mut self, inputs: &[f64]) -> Result<(), Infallible> {
+        self.u.extend_from_slice(inputs);
+        Ok(())
+    }
+}
+
+/// Runs `model` (a copy: its inputs end where the source left them) as
+/// `request` says, its inputs from `source`.
+///
+/// # Errors
+/// The integration error's message (it names the time, and the state or
+/// speed at fault), or an unknown method.
+pub fn simulate<M: Generated>(
+    model: &M,
+    request: &Request,
+    source: Box<dyn InputSource>,
+) -> Result<Trajectory, String> {
+    let mut stepper = stepper::<M>(request)?;
+    let mut driven = Driven::new(model.clone(), source);
+    let mut x = M::State::zeros();
+    x.as_mut().copy_from_slice(&request.x0);
+    let settings = RunSettings::new(
+        request.t0,
+        request.t_end,
+        request.h,
+        request.t_end - request.t0,
+    )
+    .with_max_steps(request.max_steps);
+    let mut out = Trajectory::default();
+    let summary = run_at(
+        &mut driven,
+        &mut *stepper,
+        &mut x,
+        &settings,
+        &request.times,
+        &mut out,
+    )
+    .map_err(|e| e.to_string())?;
+    if M::INPUT_NAMES.len() > autosim_runtime::run::MAX_RECORDED_INPUTS {
+        out.u.clear();
+    }
+    out.steps = summary.steps;
+    out.rejected_steps = summary.rejected_steps;
+    out.evaluations = summary.evaluations;
+    Ok(out)
+}
+
+fn stepper<M: Generated>(request: &Request) -> Result<Box<dyn Stepper<Driven<M>>>, String> {
+    Ok(match request.method.as_str() {
+        "dopri" => Box::new(
+            DormandPrince::new(DopriSettings::new(request.rtol, request.atol))
+                .map_err(|e| e.to_string())?,
+        ),
+        "rk4" => Box::new(Rk4::new()),
+        "heun" => Box::new(Heun::new()),
+        "euler" => Box::new(Euler::new()),
+        "abm4" => Box::new(AdamsBashforthMoulton::new(AbmOrder::Four)),
+        "abm2" => Box::new(AdamsBashforthMoulton::new(AbmOrder::Two)),
+        "sdirk3" => M::sdirk3::<Driven<M>>(SdirkSettings::default()),
+        other => {
+            return Err(format!(
+                "unknown method {other:?}: use one of {}",
+                METHODS.join(", ")
+            ));
+        }
+    })
+}

@@ -1,0 +1,154 @@
+"""Simulation results: the time history as NumPy arrays with names, and a
+pandas DataFrame when pandas is installed."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ._values import as_vector
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ._model import Inputs, Model
+
+METHODS = ("dopri", "rk4", "sdirk3", "abm4", "abm2", "heun", "euler")
+
+
+@dataclass(frozen=True)
+class Simulation:
+    """The time history of one run: ``t`` (n,), states ``x`` (n, n_states),
+    outputs ``y`` (n, n_outputs) and inputs ``u`` (n, n_inputs), plus the
+    integrator's counts. ``sim["name"]`` is the column of a state, output or
+    input by name."""
+
+    t: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    u: np.ndarray
+    state_names: tuple[str, ...]
+    output_names: tuple[str, ...]
+    input_names: tuple[str, ...]
+    method: str
+    #: Accepted steps.
+    steps: int
+    #: Trial steps rejected by error control (``dopri``).
+    rejected_steps: int
+    #: Derivative evaluations.
+    evaluations: int
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        for names, values in (
+            (self.state_names, self.x),
+            (self.output_names, self.y),
+            (self.input_names, self.u),
+        ):
+            if name in names:
+                return values[:, names.index(name)]
+        known = list(self.state_names + self.output_names + self.input_names)
+        from ._values import unknown_name
+
+        raise unknown_name("column", name, known)
+
+    @property
+    def final_state(self) -> np.ndarray:
+        """The state at the last output time."""
+        return self.x[-1].copy()
+
+    def to_pandas(self) -> Any:
+        """A pandas DataFrame indexed by time ``t`` with a column per state,
+        output and input (needs pandas)."""
+        try:
+            import pandas as pd
+        except ImportError:
+            raise ImportError("to_pandas needs pandas: pip install pandas") from None
+        columns: dict[str, np.ndarray] = {}
+        for names, values in (
+            (self.state_names, self.x),
+            (self.output_names, self.y),
+            (self.input_names, self.u),
+        ):
+            for k, n in enumerate(names):
+                columns.setdefault(n, values[:, k])
+        return pd.DataFrame(columns, index=pd.Index(self.t, name="t"))
+
+
+def _output_times(t0: float, t_end: float, t_eval: Any) -> np.ndarray:
+    if t_eval is None:
+        return np.linspace(t0, t_end, 1001)
+    times = np.ascontiguousarray(np.atleast_1d(np.asarray(t_eval, dtype=np.float64)))
+    if times.ndim != 1:
+        raise ValueError("t_eval must be one-dimensional")
+    if times.size and (np.any(np.diff(times) < 0) or times[0] < t0 or times[-1] > t_end):
+        raise ValueError(f"t_eval must be sorted and within [t0, t_end] = [{t0}, {t_end}]")
+    return times
+
+
+def simulate(
+    model: Model,
+    t_end: float,
+    x0: Any,
+    t0: float,
+    method: str,
+    rtol: float,
+    atol: float,
+    h: float | None,
+    t_eval: Any,
+    inputs: Inputs,
+    max_steps: int,
+) -> Simulation:
+    """:meth:`Model.simulate` (see there)."""
+    if method not in METHODS:
+        raise ValueError(f"method {method!r} is not one of {', '.join(METHODS)}")
+    t0, t_end = float(t0), float(t_end)
+    if not (np.isfinite(t0) and np.isfinite(t_end)) or t_end < t0:
+        raise ValueError(f"t_end ({t_end}) must be finite and not before t0 ({t0})")
+    step = 1e-3 if h is None else float(h)
+    if not (step > 0 and np.isfinite(step)):
+        raise ValueError(f"h must be positive and finite, not {h}")
+    if not (rtol > 0 and atol >= 0):
+        raise ValueError("rtol must be positive and atol not negative")
+    xv = model.initial_state() if x0 is None else as_vector(x0, model.n_states, "x0")
+    if not np.all(np.isfinite(xv)):
+        bad = [n for n, v in zip(model.state_names, xv) if not np.isfinite(v)]
+        raise ValueError(f"x0 is not finite in {', '.join(bad)}")
+    times = _output_times(t0, t_end, t_eval)
+    table = None
+    function = None
+    native = model._native
+    saved = native.inputs()
+    if callable(inputs):
+        function = inputs
+    elif isinstance(inputs, tuple) and len(inputs) == 2:
+        tt = np.ascontiguousarray(inputs[0], dtype=np.float64)
+        uu = np.ascontiguousarray(inputs[1], dtype=np.float64)
+        if uu.ndim == 1:
+            uu = uu.reshape(-1, 1)
+        table = (tt, uu)
+    elif inputs is not None:
+        model.set_inputs(inputs if isinstance(inputs, Mapping) else np.atleast_1d(inputs))
+    try:
+        run = native.simulate(
+            method, t0, t_end, step, float(rtol), float(atol), times, xv, int(max_steps), table, function
+        )
+    finally:
+        if inputs is not None:
+            native.set_inputs(saved)
+    u = run["u"]
+    if u.shape[1] != len(model.input_names):
+        u = np.full((len(run["t"]), len(model.input_names)), np.nan)
+    return Simulation(
+        t=run["t"],
+        x=run["x"],
+        y=run["y"],
+        u=u,
+        state_names=model.state_names,
+        output_names=model.output_names,
+        input_names=model.input_names,
+        method=method,
+        steps=int(run["steps"]),
+        rejected_steps=int(run["rejected_steps"]),
+        evaluations=int(run["evaluations"]),
+    )

@@ -162,6 +162,11 @@ where
         self
     }
 
+    /// Changes where the cases run (see [`Study::parallelism`]).
+    pub fn set_parallelism(&mut self, parallelism: Parallelism) {
+        self.parallelism = parallelism;
+    }
+
     /// Whether to show a progress bar (cases, cases per second, ETA) on
     /// standard error. On by default; never drawn when standard error is
     /// not a terminal.

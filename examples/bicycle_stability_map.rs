@@ -57,7 +57,12 @@ fn main() -> Result<(), Box<dyn Error>> {
         Ok(())
     });
     let results = study.run_cases(0..study.cases().len())?;
-    assert_eq!(results.failures(), 0, "{:?}", results.errors().iter().flatten().next());
+    assert_eq!(
+        results.failures(),
+        0,
+        "{:?}",
+        results.errors().iter().flatten().next()
+    );
     // The largest real part of each case's eigenvalues (4 per case).
     let max_re: Vec<f64> = results
         .field("re")
@@ -78,7 +83,10 @@ fn main() -> Result<(), Box<dyn Error>> {
         let capsize = last.map(|k| crossing(speeds[k], speeds[k + 1], row[k], row[k + 1]));
         band.push((*m, weave, capsize));
     }
-    let at_benchmark = band.iter().find(|b| b.0 == BENCHMARK_MASS).ok_or("no band at 85 kg")?;
+    let at_benchmark = band
+        .iter()
+        .find(|b| b.0 == BENCHMARK_MASS)
+        .ok_or("no band at 85 kg")?;
     println!(
         "{} linearizations; at mB = 85 kg the grid (0.05 m/s) gives weave {:.3} m/s (published {WEAVE:.3}), capsize {:.3} m/s (published {CAPSIZE:.3})",
         results.len(),
@@ -86,7 +94,10 @@ fn main() -> Result<(), Box<dyn Error>> {
         at_benchmark.2.unwrap_or(f64::NAN)
     );
     for (m, weave, capsize) in band.iter().step_by(8) {
-        println!("  mB = {m:5.1} kg: stable from {weave:.3} to {:.3} m/s", capsize.unwrap_or(f64::NAN));
+        println!(
+            "  mB = {m:5.1} kg: stable from {weave:.3} to {:.3} m/s",
+            capsize.unwrap_or(f64::NAN)
+        );
     }
     let path = folder.join("bicycle-stability-map.svg");
     let mut svg = String::new();
@@ -104,7 +115,11 @@ fn shade(max_re: f64) -> RGBColor {
     }
     let s = (max_re / 4.0).clamp(0.0, 1.0);
     let level = (s * 4.0).round() / 4.0;
-    RGBColor(255, (235.0 - 150.0 * level) as u8, (220.0 - 150.0 * level) as u8)
+    RGBColor(
+        255,
+        (235.0 - 150.0 * level) as u8,
+        (220.0 - 150.0 * level) as u8,
+    )
 }
 
 /// The map: cells colored by the largest real part (green where stable),
@@ -120,11 +135,17 @@ fn draw(
     root.fill(&WHITE)?;
     let (dv, dm) = (speeds[1] - speeds[0], masses[1] - masses[0]);
     let mut chart = ChartBuilder::on(&root)
-        .caption("Whipple bicycle: self-stable region (all Re λ < 0)", ("sans-serif", 22))
+        .caption(
+            "Whipple bicycle: self-stable region (all Re λ < 0)",
+            ("sans-serif", 22),
+        )
         .margin(16)
         .x_label_area_size(48)
         .y_label_area_size(64)
-        .build_cartesian_2d(0.0..speeds[speeds.len() - 1] + dv / 2.0, masses[0] - dm / 2.0..masses[masses.len() - 1] + dm / 2.0)?;
+        .build_cartesian_2d(
+            0.0..speeds[speeds.len() - 1] + dv / 2.0,
+            masses[0] - dm / 2.0..masses[masses.len() - 1] + dm / 2.0,
+        )?;
     chart
         .configure_mesh()
         .x_desc("forward speed v [m/s]")
@@ -141,7 +162,10 @@ fn draw(
             if j == row.len() || shade(row[j]) != shade(row[start]) {
                 let (v0, v1) = (speeds[start] - dv / 2.0, speeds[j - 1] + dv / 2.0);
                 let color = shade(row[start]);
-                cells.push(Rectangle::new([(v0, m - dm / 2.0), (v1, m + dm / 2.0)], color.filled()));
+                cells.push(Rectangle::new(
+                    [(v0, m - dm / 2.0), (v1, m + dm / 2.0)],
+                    color.filled(),
+                ));
                 start = j;
             }
         }
@@ -159,11 +183,19 @@ fn draw(
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
     let published = [(WEAVE, "weave 4.292 m/s"), (CAPSIZE, "capsize 6.024 m/s")];
     chart
-        .draw_series(published.iter().map(|(v, _)| Cross::new((*v, BENCHMARK_MASS), 7, RED.stroke_width(3))))?
+        .draw_series(
+            published
+                .iter()
+                .map(|(v, _)| Cross::new((*v, BENCHMARK_MASS), 7, RED.stroke_width(3))),
+        )?
         .label("published, benchmark (mB = 85 kg)")
         .legend(|(x, y)| Cross::new((x + 10, y), 5, RED.stroke_width(3)));
     chart.draw_series(published.iter().map(|(v, label)| {
-        Text::new(label.to_string(), (*v + 0.1, BENCHMARK_MASS + 3.0), ("sans-serif", 14))
+        Text::new(
+            label.to_string(),
+            (*v + 0.1, BENCHMARK_MASS + 3.0),
+            ("sans-serif", 14),
+        )
     }))?;
     chart
         .configure_series_labels()

@@ -25,13 +25,26 @@ use pendulum::Pendulum;
 
 fn main() -> Result<(), Box<dyn Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    match args.iter().map(String::as_str).collect::<Vec<_>>().as_slice() {
+    match args
+        .iter()
+        .map(String::as_str)
+        .collect::<Vec<_>>()
+        .as_slice()
+    {
         ["run", folder, rest @ ..] => {
             let number = |k: usize, default: u64| rest.get(k).map_or(Ok(default), |s| s.parse());
-            run(folder, number(0, 1_000_000)?, number(1, 10_000)?, number(2, 0)?)
+            run(
+                folder,
+                number(0, 1_000_000)?,
+                number(1, 10_000)?,
+                number(2, 0)?,
+            )
         }
         ["compare", a, b] => compare(a, b),
-        _ => Err("usage: study_scale run FOLDER [CASES [SHARD [THREADS]]] | compare FOLDER_A FOLDER_B".into()),
+        _ => Err(
+            "usage: study_scale run FOLDER [CASES [SHARD [THREADS]]] | compare FOLDER_A FOLDER_B"
+                .into(),
+        ),
     }
 }
 
@@ -40,12 +53,26 @@ fn run(folder: &str, cases: u64, shard: u64, threads: u64) -> Result<(), Box<dyn
         cases,
         1,
         &[
-            ("q", Distribution::Uniform { low: -3.0, high: 3.0 }),
-            ("m", Distribution::Uniform { low: 0.5, high: 2.0 }),
+            (
+                "q",
+                Distribution::Uniform {
+                    low: -3.0,
+                    high: 3.0,
+                },
+            ),
+            (
+                "m",
+                Distribution::Uniform {
+                    low: 0.5,
+                    high: 2.0,
+                },
+            ),
         ],
     )?;
     let settings = RunSettings::new(0.0, 1.0, 0.01, 0.1);
-    let keep = Keep::new().final_state().statistic("height", Statistic::Max);
+    let keep = Keep::new()
+        .final_state()
+        .statistic("height", Statistic::Max);
     let task = Simulate::new(settings, Method::Rk4, keep)?;
     let parallelism = match threads {
         0 => Parallelism::AllCores,
@@ -75,6 +102,10 @@ fn compare(a: &str, b: &str) -> Result<(), Box<dyn Error>> {
             return Err(format!("shard {k} differs").into());
         }
     }
-    println!("{} cases in {} shards: identical, bit for bit", a.cases(), a.shard_count());
+    println!(
+        "{} cases in {} shards: identical, bit for bit",
+        a.cases(),
+        a.shard_count()
+    );
     Ok(())
 }

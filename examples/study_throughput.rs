@@ -31,8 +31,20 @@ fn main() -> Result<(), Box<dyn Error>> {
         count,
         3,
         &[
-            ("q", Distribution::Uniform { low: -2.0, high: 2.0 }),
-            ("m", Distribution::Uniform { low: 0.5, high: 2.0 }),
+            (
+                "q",
+                Distribution::Uniform {
+                    low: -2.0,
+                    high: 2.0,
+                },
+            ),
+            (
+                "m",
+                Distribution::Uniform {
+                    low: 0.5,
+                    high: 2.0,
+                },
+            ),
         ],
     )?;
     let settings = RunSettings::new(0.0, 2.0, 0.001, 0.1);
@@ -54,7 +66,9 @@ fn main() -> Result<(), Box<dyn Error>> {
         parallel.push(p);
     }
     let (s, p) = (median(&mut serial), median(&mut parallel));
-    println!("{count} pendulum runs (RK4, 2000 steps each), median of {rounds} interleaved rounds:");
+    println!(
+        "{count} pendulum runs (RK4, 2000 steps each), median of {rounds} interleaved rounds:"
+    );
     println!("  serial:     {s:>9.0} cases/s");
     println!("  {threads} threads:  {p:>9.0} cases/s");
     println!(

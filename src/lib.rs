@@ -65,6 +65,9 @@ pub mod guide {
     pub mod generated_code {}
     #[doc = include_str!("../docs/guide/08_constraints_and_linearization.md")]
     pub mod constraints_and_linearization {}
+    #[doc = include_str!("../docs/guide/09_studies.md")]
+    #[cfg(feature = "study")]
+    pub mod studies {}
 }
 
 /// The README's example, compiled and run as a doctest.

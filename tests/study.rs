@@ -354,3 +354,62 @@ fn results_compare_bits_so_nan_equals_nan() {
     let b: Results = blowup_study(Method::Rk4).run_cases(16..18).unwrap();
     assert!(a != b);
 }
+
+mod bike {
+    autosim::model!(file = "examples/models/bicycle.sim", linearize = true);
+}
+use bike::bicycle::Bicycle;
+
+/// The modes task on the bicycle: each case's eigenvalues are those of
+/// `LinearSystem::of` by hand, bit for bit, and at the benchmark's
+/// parameters the largest real part changes sign between the grid speeds
+/// that bracket the published weave and capsize speeds.
+#[test]
+fn modes_of_the_bicycle_bracket_the_published_weave_and_capsize_speeds() {
+    use autosim::runtime::analysis::LinearSystem;
+    use autosim::runtime::study::Modes;
+    const ROLL_STEER: [&str; 4] = ["phi", "delta", "u_phi", "u_delta"];
+    let wheel = Bicycle::STATE_NAMES
+        .iter()
+        .position(|n| *n == "u_thetaR")
+        .unwrap();
+    // Published: weave 4.29238253634111, capsize 6.02426201538837 m/s.
+    let speeds = [4.2, 4.29, 4.295, 6.02, 6.03, 7.0];
+    let cases = Cases::new().grid("v", &speeds).unwrap();
+    let modes = Modes::<Bicycle>::new(Some(&ROLL_STEER), None).unwrap();
+    let study = Study::new(Bicycle::new, cases, modes)
+        .setup(&["v"], move |v, _, x| {
+            x[wheel] = v[0] / 0.3;
+            Ok(())
+        })
+        .progress(false);
+    let results = study.run_cases(0..6).unwrap();
+    let (re, im) = (results.field("re").unwrap(), results.field("im").unwrap());
+    let mut max_re = vec![];
+    for (k, v) in speeds.iter().enumerate() {
+        let mut x = [0.0; 11];
+        x[wheel] = v / 0.3;
+        let by_hand = LinearSystem::of(&mut Bicycle::new(), 0.0, &x)
+            .unwrap()
+            .restricted(&ROLL_STEER)
+            .unwrap();
+        for (j, l) in by_hand.eigenvalues().iter().enumerate() {
+            assert_eq!(
+                (re[4 * k + j].to_bits(), im[4 * k + j].to_bits()),
+                (l.re.to_bits(), l.im.to_bits())
+            );
+        }
+        max_re.push(
+            re[4 * k..4 * k + 4]
+                .iter()
+                .copied()
+                .fold(f64::NEG_INFINITY, f64::max),
+        );
+    }
+    let stable: Vec<bool> = max_re.iter().map(|r| *r < 0.0).collect();
+    assert_eq!(
+        stable,
+        [false, false, true, true, false, false],
+        "max Re λ: {max_re:?}"
+    );
+}

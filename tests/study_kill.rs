@@ -11,7 +11,9 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use autosim::runtime::RunSettings;
-use autosim::runtime::study::{Cases, Distribution, Format, Keep, Method, Parallelism, Simulate, Study, StudyDir};
+use autosim::runtime::study::{
+    Cases, Distribution, Format, Keep, Method, Parallelism, Simulate, Study, StudyDir,
+};
 
 autosim::model!(file = "examples/models/pendulum.sim");
 use pendulum::Pendulum;
@@ -26,14 +28,34 @@ fn study() -> Study<Pendulum, fn() -> Pendulum, Simulate<Pendulum>> {
             CASES,
             7,
             &[
-                ("q", Distribution::Uniform { low: -2.0, high: 2.0 }),
-                ("m", Distribution::Uniform { low: 0.5, high: 3.0 }),
+                (
+                    "q",
+                    Distribution::Uniform {
+                        low: -2.0,
+                        high: 2.0,
+                    },
+                ),
+                (
+                    "m",
+                    Distribution::Uniform {
+                        low: 0.5,
+                        high: 3.0,
+                    },
+                ),
             ],
         )
         .unwrap();
     let settings = RunSettings::new(0.0, 1.0, 0.01, 0.5);
     let keep = Keep::new().final_state().at(&[0.5], &["height"]);
-    let task = Simulate::new(settings, Method::DormandPrince { rtol: 1e-8, atol: 1e-10 }, keep).unwrap();
+    let task = Simulate::new(
+        settings,
+        Method::DormandPrince {
+            rtol: 1e-8,
+            atol: 1e-10,
+        },
+        keep,
+    )
+    .unwrap();
     Study::new(Pendulum::new as fn() -> Pendulum, cases, task)
         .progress(false)
         .parallelism(Parallelism::Threads(2))
@@ -59,7 +81,12 @@ fn killed_study_resumes_to_the_uninterrupted_table() {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("study-killed");
     let _ = std::fs::remove_dir_all(&dir);
     let mut child = Command::new(std::env::current_exe().unwrap())
-        .args(["--exact", "child_runs_a_slow_study", "--ignored", "--nocapture"])
+        .args([
+            "--exact",
+            "child_runs_a_slow_study",
+            "--ignored",
+            "--nocapture",
+        ])
         .env(CHILD_DIR, &dir)
         .stdout(Stdio::null())
         .spawn()
@@ -76,16 +103,27 @@ fn killed_study_resumes_to_the_uninterrupted_table() {
         })
     };
     while shards(&dir) < 3 {
-        assert!(Instant::now() < deadline, "the child wrote no shards in 2 minutes");
-        assert!(child.try_wait().unwrap().is_none(), "the child ended before it was killed");
+        assert!(
+            Instant::now() < deadline,
+            "the child wrote no shards in 2 minutes"
+        );
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the child ended before it was killed"
+        );
         std::thread::sleep(Duration::from_millis(2));
     }
     child.kill().unwrap(); // SIGKILL
     let status = child.wait().unwrap();
     assert!(!status.success());
     let on_disk = StudyDir::open(&dir).unwrap();
-    let written = (0..on_disk.shard_count()).filter(|k| on_disk.has_shard(*k)).count();
-    assert!(written < on_disk.shard_count() as usize, "the child finished before the kill");
+    let written = (0..on_disk.shard_count())
+        .filter(|k| on_disk.has_shard(*k))
+        .count();
+    assert!(
+        written < on_disk.shard_count() as usize,
+        "the child finished before the kill"
+    );
     println!("killed after {written} of {} shards", on_disk.shard_count());
 
     let study = study();
@@ -93,5 +131,8 @@ fn killed_study_resumes_to_the_uninterrupted_table() {
     assert_eq!(summary.skipped, written as u64 * SHARD);
     assert_eq!(summary.ran + summary.skipped, CASES);
     let resumed = StudyDir::open(&dir).unwrap().read_all().unwrap();
-    assert!(resumed == study.run_cases(0..CASES).unwrap(), "the resumed table differs");
+    assert!(
+        resumed == study.run_cases(0..CASES).unwrap(),
+        "the resumed table differs"
+    );
 }

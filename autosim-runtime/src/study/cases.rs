@@ -217,7 +217,7 @@ impl Cases {
     /// not a whole number of rows, no rows, or a value that is not finite.
     pub fn rows(self, names: &[&str], rows: &[f64]) -> Result<Cases, StudyError> {
         let width = names.len();
-        if width == 0 || rows.len() % width != 0 {
+        if width == 0 || !rows.len().is_multiple_of(width) {
             return Err(StudyError::InvalidCases(format!(
                 "{} values are not whole rows of {width} columns",
                 rows.len()

@@ -37,9 +37,13 @@ pub(super) fn resolve<M: Model>(
     columns.iter().map(|c| resolve_one::<M>(c, setup)).collect()
 }
 
+/// A kind of model value: its name, the model's names of that kind, and
+/// the target for an index.
+type Kind = (&'static str, &'static [&'static str], fn(usize) -> Target);
+
 fn resolve_one<M: Model>(column: &str, setup: &[String]) -> Result<Target, StudyError> {
     let find = |names: &[&str], name: &str| names.iter().position(|n| *n == name);
-    let kinds: [(&str, &[&str], fn(usize) -> Target); 3] = [
+    let kinds: [Kind; 3] = [
         ("parameter", M::PARAMETER_NAMES, Target::Parameter),
         ("input", M::INPUT_NAMES, Target::Input),
         ("state", M::STATE_NAMES, Target::State),

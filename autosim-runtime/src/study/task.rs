@@ -86,23 +86,42 @@ pub trait Task<M: Model>: Sync {
 }
 
 /// A task written as a closure `|model, x, out| -> Result<(), CaseError>`
-/// that writes `fields` into `out`.
+/// that writes `fields` into `out` (for stiff models, runs with events
+/// of your own, anything [`Simulate`](super::Simulate) does not do).
 ///
 /// ```
-/// use autosim_runtime::study::{Custom, Field};
-/// # use autosim_runtime::Model;
-/// # struct Two;
-/// # impl Model for Two {
-/// #     type Float = f64; type State = [f64; 1]; type Outputs = [f64; 0];
-/// #     const NAME: &'static str = "Two"; const STATE_NAMES: &'static [&'static str] = &["x"];
-/// #     const STATE_UNITS: &'static [&'static str] = &[""];
-/// #     fn derivatives(&mut self, _: f64, _: &[f64; 1], d: &mut [f64; 1]) -> Result<(), autosim_runtime::ModelError> { d[0] = 0.0; Ok(()) }
-/// # }
-/// // Keep twice the initial state.
-/// let double = Custom::new("double v1", &[Field::new("twice_x", 1)], |_m: &mut Two, x: &mut [f64; 1], out: &mut [f64]| {
-///     out[0] = 2.0 * x[0];
-///     Ok(())
-/// });
+/// use autosim_runtime::study::{Cases, Custom, Field, Study};
+/// use autosim_runtime::{Model, ModelError};
+///
+/// struct Decay { k: f64 }
+/// impl Model for Decay {
+///     type Float = f64;
+///     type State = [f64; 1];
+///     type Outputs = [f64; 0];
+///     const NAME: &'static str = "Decay";
+///     const STATE_NAMES: &'static [&'static str] = &["x"];
+///     const STATE_UNITS: &'static [&'static str] = &["1"];
+///     const PARAMETER_NAMES: &'static [&'static str] = &["k"];
+///     fn derivatives(&mut self, _: f64, x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
+///         dx[0] = -self.k * x[0];
+///         Ok(())
+///     }
+///     fn parameter_values(&self, p: &mut [f64]) { p[0] = self.k; }
+///     fn set_parameter_values(&mut self, p: &[f64]) { self.k = p[0]; }
+/// }
+///
+/// // Keep the initial slope dx/dt and the time constant.
+/// let task = Custom::new("slope and time constant v1", &[Field::new("slope", 1), Field::new("tau", 1)],
+///     |model: &mut Decay, x: &mut [f64; 1], out: &mut [f64]| {
+///         let mut dx = [0.0];
+///         model.derivatives(0.0, x, &mut dx)?;
+///         out[0] = dx[0];
+///         out[1] = 1.0 / model.k;
+///         Ok(())
+///     });
+/// let cases = Cases::new().grid("k", &[1.0, 4.0]).unwrap().grid("x", &[2.0]).unwrap();
+/// let results = Study::new(|| Decay { k: 0.0 }, cases, task).run_cases(0..2).unwrap();
+/// assert_eq!(results.values(), [-2.0, 1.0, -8.0, 0.25]);
 /// ```
 pub struct Custom<C> {
     name: String,
@@ -114,7 +133,11 @@ impl<C> Custom<C> {
     /// A task named `name` (its description in the manifest: change the
     /// name when the closure changes, or a resumed study mixes old and new
     /// results) keeping `fields`, computed by `run`.
-    pub fn new(name: &str, fields: &[Field], run: C) -> Custom<C> {
+    pub fn new<M>(name: &str, fields: &[Field], run: C) -> Custom<C>
+    where
+        M: Model,
+        C: Fn(&mut M, &mut M::State, &mut [f64]) -> Result<(), CaseError>,
+    {
         Custom {
             name: name.to_string(),
             fields: fields.to_vec(),

@@ -53,20 +53,8 @@ fn run(folder: &str, cases: u64, shard: u64, threads: u64) -> Result<(), Box<dyn
         cases,
         1,
         &[
-            (
-                "q",
-                Distribution::Uniform {
-                    low: -3.0,
-                    high: 3.0,
-                },
-            ),
-            (
-                "m",
-                Distribution::Uniform {
-                    low: 0.5,
-                    high: 2.0,
-                },
-            ),
+            ("q", Distribution::uniform(-3.0, 3.0)),
+            ("m", Distribution::uniform(0.5, 2.0)),
         ],
     )?;
     let settings = RunSettings::new(0.0, 1.0, 0.01, 0.1);

@@ -31,20 +31,8 @@ fn main() -> Result<(), Box<dyn Error>> {
         count,
         3,
         &[
-            (
-                "q",
-                Distribution::Uniform {
-                    low: -2.0,
-                    high: 2.0,
-                },
-            ),
-            (
-                "m",
-                Distribution::Uniform {
-                    low: 0.5,
-                    high: 2.0,
-                },
-            ),
+            ("q", Distribution::uniform(-2.0, 2.0)),
+            ("m", Distribution::uniform(0.5, 2.0)),
         ],
     )?;
     let settings = RunSettings::new(0.0, 2.0, 0.001, 0.1);

@@ -53,7 +53,7 @@ impl Model for Blowup {
 /// Pendulum cases: random mass, length and initial angle, a grid of
 /// torques (an input).
 fn pendulum_cases(draws: u64) -> Cases {
-    let u = |low, high| Distribution::Uniform { low, high };
+    let u = Distribution::uniform;
     Cases::new()
         .grid("torque", &[0.0, 0.5])
         .unwrap()
@@ -62,13 +62,7 @@ fn pendulum_cases(draws: u64) -> Cases {
             2026,
             &[
                 ("m", u(0.5, 2.0)),
-                (
-                    "L",
-                    Distribution::Normal {
-                        mean: 0.7,
-                        std_dev: 0.05,
-                    },
-                ),
+                ("L", Distribution::normal(0.7, 0.05)),
                 ("q", u(-1.0, 1.0)),
             ],
         )

@@ -20,17 +20,7 @@ fn a_study_allocates_per_chunk_not_per_case() {
     let cases = Cases::new()
         .grid("torque", &[0.0, 0.1])
         .unwrap()
-        .random(
-            500,
-            9,
-            &[(
-                "q",
-                Distribution::Uniform {
-                    low: -1.0,
-                    high: 1.0,
-                },
-            )],
-        )
+        .random(500, 9, &[("q", Distribution::uniform(-1.0, 1.0))])
         .unwrap();
     let keep = Keep::new()
         .final_state()

@@ -28,20 +28,8 @@ fn study() -> Study<Pendulum, fn() -> Pendulum, Simulate<Pendulum>> {
             CASES,
             7,
             &[
-                (
-                    "q",
-                    Distribution::Uniform {
-                        low: -2.0,
-                        high: 2.0,
-                    },
-                ),
-                (
-                    "m",
-                    Distribution::Uniform {
-                        low: 0.5,
-                        high: 3.0,
-                    },
-                ),
+                ("q", Distribution::uniform(-2.0, 2.0)),
+                ("m", Distribution::uniform(0.5, 3.0)),
             ],
         )
         .unwrap();

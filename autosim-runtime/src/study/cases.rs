@@ -32,6 +32,16 @@ pub enum Distribution {
 }
 
 impl Distribution {
+    /// [`Distribution::Uniform`] on `[low, high)`.
+    pub fn uniform(low: f64, high: f64) -> Distribution {
+        Distribution::Uniform { low, high }
+    }
+
+    /// [`Distribution::Normal`] with this mean and standard deviation.
+    pub fn normal(mean: f64, std_dev: f64) -> Distribution {
+        Distribution::Normal { mean, std_dev }
+    }
+
     fn check(&self, name: &str) -> Result<(), StudyError> {
         let ok = match *self {
             Distribution::Uniform { low, high } => {
@@ -167,7 +177,7 @@ fn hash(values: &[f64]) -> u64 {
 /// let cases = Cases::new()
 ///     .grid("v", &[1.0, 2.0, 3.0])
 ///     .unwrap()
-///     .random(100, 7, &[("m", Distribution::Normal { mean: 80.0, std_dev: 5.0 })])
+///     .random(100, 7, &[("m", Distribution::normal(80.0, 5.0))])
 ///     .unwrap();
 /// assert_eq!(cases.len(), 300);
 /// assert_eq!(cases.names(), ["v", "m"]);
@@ -367,20 +377,8 @@ mod tests {
     #[test]
     fn random_draws_depend_on_seed_and_draw_only() {
         let d = [
-            (
-                "u",
-                Distribution::Uniform {
-                    low: 2.0,
-                    high: 3.0,
-                },
-            ),
-            (
-                "n",
-                Distribution::Normal {
-                    mean: 0.0,
-                    std_dev: 1.0,
-                },
-            ),
+            ("u", Distribution::uniform(2.0, 3.0)),
+            ("n", Distribution::normal(0.0, 1.0)),
         ];
         let alone = Cases::new().random(1000, 42, &d).unwrap();
         let gridded = Cases::new()
@@ -424,10 +422,7 @@ mod tests {
         assert!(Cases::new().grid("a", &[]).is_err());
         assert!(Cases::new().grid("a", &[f64::NAN]).is_err());
         assert!(Cases::new().rows(&["a", "b"], &[1.0, 2.0, 3.0]).is_err());
-        let bad = Distribution::Uniform {
-            low: 1.0,
-            high: 1.0,
-        };
+        let bad = Distribution::uniform(1.0, 1.0);
         assert!(Cases::new().random(3, 0, &[("a", bad)]).is_err());
     }
 }

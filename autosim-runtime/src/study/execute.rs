@@ -1,6 +1,6 @@
 //! Running a range of cases into [`Results`]: one case after the other, or
-//! on rayon's workers (each with its own scratch space, reused from case
-//! to case).
+//! on rayon's workers (each with its own scratch space for setting a
+//! case, reused from case to case).
 
 use core::ops::Range;
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -13,12 +13,6 @@ use rayon::prelude::*;
 use super::targets::{Setter, Target, resolve};
 use super::{CaseError, Parallelism, Results, Study, StudyError, Task, progress};
 use crate::Model;
-
-/// A worker's scratch space.
-struct Worker<M: Model, W> {
-    setter: Setter<M::Float>,
-    task: W,
-}
 
 /// Where cases run during one call: the pool, if any, and the bar.
 pub(super) struct Runner {
@@ -97,15 +91,13 @@ where
             .map_err(|_| StudyError::InvalidCases("too many cases for one chunk".into()))?;
         let mut results = Results::blank(self.layout(), range.start, count);
         let rows = results.rows_mut();
-        let worker = || Worker::<M, T::Workspace> {
-            setter: Setter::new::<M>(self.setup_columns.len()),
-            task: self.task.workspace(),
-        };
+        // A worker's scratch space: the parameter, input and setup vectors.
+        let worker = || Setter::<M::Float>::new::<M>(self.setup_columns.len());
         type Row<'a> = (
             usize,
             (&'a mut [f64], &'a mut [f64], &'a mut Option<String>),
         );
-        let one = |w: &mut Worker<M, T::Workspace>, (i, (case, out, error)): Row<'_>| {
+        let one = |w: &mut Setter<M::Float>, (i, (case, out, error)): Row<'_>| {
             *error = self.run_case(&targets, w, range.start + i as u64, case, out);
             runner.bar.inc(1);
         };
@@ -129,7 +121,7 @@ where
     fn run_case(
         &self,
         targets: &[Target],
-        worker: &mut Worker<M, T::Workspace>,
+        setter: &mut Setter<M::Float>,
         index: u64,
         case: &mut [f64],
         out: &mut [f64],
@@ -137,11 +129,11 @@ where
         self.cases.case(index, case);
         let attempt = catch_unwind(AssertUnwindSafe(|| -> Result<(), CaseError> {
             let mut model = (self.make_model)();
-            let mut x = worker.setter.apply(targets, case, &mut model);
+            let mut x = setter.apply(targets, case, &mut model);
             if let Some(setup) = &self.setup {
-                setup(&worker.setter.setup, &mut model, &mut x)?;
+                setup(&setter.setup, &mut model, &mut x)?;
             }
-            self.task.run(&mut model, &mut x, &mut worker.task, out)
+            self.task.run(&mut model, &mut x, out)
         }));
         let error = match attempt {
             Ok(Ok(())) => return None,

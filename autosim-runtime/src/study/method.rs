@@ -64,7 +64,7 @@ impl Method {
 }
 
 /// A stepper of any [`Method`]: one type for the run driver whatever the
-/// method (a `match` per step, no allocation).
+/// method (a `match` per call, static dispatch, no allocation).
 #[allow(clippy::large_enum_variant)] // lives on a worker's stack, once
 pub enum MethodStepper<M: Model> {
     /// [`Method::Euler`].
@@ -79,45 +79,36 @@ pub enum MethodStepper<M: Model> {
     DormandPrince(DormandPrince<M>),
 }
 
-impl<M: Model> MethodStepper<M> {
-    fn inner(&mut self) -> &mut dyn Stepper<M> {
-        match self {
-            MethodStepper::Euler(s) => s,
-            MethodStepper::Heun(s) => s,
-            MethodStepper::Rk4(s) => s,
-            MethodStepper::Abm(s) => s,
-            MethodStepper::DormandPrince(s) => s,
+/// `$body` with `$s` bound to the stepper inside, whatever the method.
+macro_rules! each_method {
+    ($stepper:expr, $s:ident => $body:expr) => {
+        match $stepper {
+            MethodStepper::Euler($s) => $body,
+            MethodStepper::Heun($s) => $body,
+            MethodStepper::Rk4($s) => $body,
+            MethodStepper::Abm($s) => $body,
+            MethodStepper::DormandPrince($s) => $body,
         }
-    }
-
-    fn inner_ref(&self) -> &dyn Stepper<M> {
-        match self {
-            MethodStepper::Euler(s) => s,
-            MethodStepper::Heun(s) => s,
-            MethodStepper::Rk4(s) => s,
-            MethodStepper::Abm(s) => s,
-            MethodStepper::DormandPrince(s) => s,
-        }
-    }
+    };
 }
 
 impl<M: Model> Stepper<M> for MethodStepper<M> {
     fn step(&mut self, model: &mut M, t: M::Float, x: &mut M::State, h: M::Float) -> StepResult<M> {
-        self.inner().step(model, t, x, h)
+        each_method!(self, s => s.step(model, t, x, h))
     }
     fn evaluations(&self) -> u64 {
-        self.inner_ref().evaluations()
+        each_method!(self, s => s.evaluations())
     }
     fn reset(&mut self) {
-        self.inner().reset()
+        each_method!(self, s => s.reset())
     }
     fn is_adaptive(&self) -> bool {
-        self.inner_ref().is_adaptive()
+        each_method!(self, s => s.is_adaptive())
     }
     fn name(&self) -> &'static str {
-        self.inner_ref().name()
+        each_method!(self, s => s.name())
     }
     fn order(&self) -> u32 {
-        self.inner_ref().order()
+        each_method!(self, s => s.order())
     }
 }

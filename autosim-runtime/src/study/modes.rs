@@ -60,21 +60,11 @@ impl<M: Linearize<Float = f64>> Modes<M> {
 }
 
 impl<M: Linearize<Float = f64>> Task<M> for Modes<M> {
-    type Workspace = ();
-
     fn fields(&self) -> Vec<Field> {
         Vec::from([Field::new("re", self.count), Field::new("im", self.count)])
     }
 
-    fn workspace(&self) {}
-
-    fn run(
-        &self,
-        model: &mut M,
-        x: &mut M::State,
-        _: &mut (),
-        out: &mut [f64],
-    ) -> Result<(), CaseError> {
+    fn run(&self, model: &mut M, x: &mut M::State, out: &mut [f64]) -> Result<(), CaseError> {
         match &self.trim {
             Some(spec) => {
                 trim(model, 0.0, x, spec).map_err(|e| CaseError::Other(format!("trim: {e}")))?;

@@ -299,21 +299,11 @@ impl<M: Model> Task<M> for Simulate<M>
 where
     M::Float: Sync,
 {
-    type Workspace = ();
-
     fn fields(&self) -> Vec<Field> {
         self.plan.fields.clone()
     }
 
-    fn workspace(&self) {}
-
-    fn run(
-        &self,
-        model: &mut M,
-        x: &mut M::State,
-        _: &mut (),
-        out: &mut [f64],
-    ) -> Result<(), CaseError> {
+    fn run(&self, model: &mut M, x: &mut M::State, out: &mut [f64]) -> Result<(), CaseError> {
         let plan = &self.plan;
         for (_, s, slot) in &plan.statistics {
             out[*slot] = match s {

@@ -56,15 +56,8 @@ pub enum CaseError {
 /// A task must be deterministic: the same model, parameters and initial
 /// state give the same values, bit for bit (every task of this module is).
 pub trait Task<M: Model>: Sync {
-    /// Scratch space a worker reuses from case to case (allocated once
-    /// per worker, so a case allocates nothing).
-    type Workspace: Send;
-
     /// The quantities kept per case, in order.
     fn fields(&self) -> Vec<Field>;
-
-    /// A new workspace for one worker.
-    fn workspace(&self) -> Self::Workspace;
 
     /// Runs one case: `model` has the case's parameters and inputs, `x` its
     /// initial state. Writes the kept values into `out` (the sum of the
@@ -72,13 +65,7 @@ pub trait Task<M: Model>: Sync {
     ///
     /// # Errors
     /// Why the case failed; the study fills its values with NaN.
-    fn run(
-        &self,
-        model: &mut M,
-        x: &mut M::State,
-        workspace: &mut Self::Workspace,
-        out: &mut [f64],
-    ) -> Result<(), CaseError>;
+    fn run(&self, model: &mut M, x: &mut M::State, out: &mut [f64]) -> Result<(), CaseError>;
 
     /// Text that identifies the task in a study's manifest: a study
     /// resumed with a different description is refused.
@@ -151,21 +138,11 @@ where
     M: Model,
     C: Fn(&mut M, &mut M::State, &mut [f64]) -> Result<(), CaseError> + Sync,
 {
-    type Workspace = ();
-
     fn fields(&self) -> Vec<Field> {
         self.fields.clone()
     }
 
-    fn workspace(&self) {}
-
-    fn run(
-        &self,
-        model: &mut M,
-        x: &mut M::State,
-        _workspace: &mut (),
-        out: &mut [f64],
-    ) -> Result<(), CaseError> {
+    fn run(&self, model: &mut M, x: &mut M::State, out: &mut [f64]) -> Result<(), CaseError> {
         (self.run)(model, x, out)
     }
 

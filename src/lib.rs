@@ -74,6 +74,9 @@ pub mod guide {
     pub mod constraints_and_linearization {}
     #[doc = include_str!("../docs/guide/09_fmi.md")]
     pub mod fmi {}
+    #[doc = include_str!("../docs/guide/10_studies.md")]
+    #[cfg(feature = "study")]
+    pub mod studies {}
 }
 
 /// The README's example, compiled and run as a doctest.

@@ -11,9 +11,12 @@
 //!   states between orientations;
 //! - [`api`]: the reference models built through the core API, and their
 //!   equations evaluated and solved numerically;
+//! - [`alloc_count`]: a global allocator that counts allocations per
+//!   thread, for the tests that prove code does not allocate;
 //! - [`python`]: the one Python virtual environment of the tests that run
 //!   Python (`SKIPPED: ...` when it cannot be had).
 
+pub mod alloc_count;
 pub mod api;
 pub mod python;
 pub mod quaternion;

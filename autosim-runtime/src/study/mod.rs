@@ -1,0 +1,204 @@
+//! Studies (feature `study`): one model run over a table of cases on every
+//! core, results as a table in memory or in shards on disk.
+//!
+//! A study is fully determined by four things: a model (a function that
+//! makes one), a [`Cases`] table (grids, rows, random draws with a stream
+//! per draw), a [`Task`] run for each case ([`Simulate`], [`Modes`],
+//! [`Custom`]), and the range of case indices run. Each case starts from
+//! a freshly made model and a fresh stepper, so its values depend on its
+//! index alone: a study run serially, on any number of threads, or in
+//! chunks on different machines gives the same results bit for bit
+//! (chunks concatenated with [`Results::append`]).
+//!
+//! ```
+//! use autosim_runtime::study::{Cases, Keep, Method, Parallelism, Simulate, Study};
+//! use autosim_runtime::{Model, ModelError, RunSettings};
+//!
+//! /// x'' = -k x (with k a parameter).
+//! struct Spring { k: f64 }
+//! impl Model for Spring {
+//!     type Float = f64;
+//!     type State = [f64; 2];
+//!     type Outputs = [f64; 0];
+//!     const NAME: &'static str = "Spring";
+//!     const STATE_NAMES: &'static [&'static str] = &["x", "v"];
+//!     const STATE_UNITS: &'static [&'static str] = &["m", "m/s"];
+//!     const PARAMETER_NAMES: &'static [&'static str] = &["k"];
+//!     fn derivatives(&mut self, _t: f64, x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
+//!         *dx = [x[1], -self.k * x[0]];
+//!         Ok(())
+//!     }
+//!     fn parameter_values(&self, p: &mut [f64]) { p[0] = self.k; }
+//!     fn set_parameter_values(&mut self, p: &[f64]) { self.k = p[0]; }
+//! }
+//!
+//! # fn main() -> Result<(), autosim_runtime::study::StudyError> {
+//! // Stiffness 1, 4, 9 times initial displacement 0.1, 0.2: six cases.
+//! let cases = Cases::new().grid("k", &[1.0, 4.0, 9.0])?.grid("x", &[0.1, 0.2])?;
+//! let settings = RunSettings::new(0.0, 1.0, 0.001, 0.1);
+//! let task = Simulate::new(settings, Method::Rk4, Keep::new().final_state())?;
+//! let study = Study::new(|| Spring { k: 0.0 }, cases, task).parallelism(Parallelism::Threads(2));
+//! let results = study.run_cases(0..6)?;
+//! assert_eq!(results.failures(), 0);
+//! let x_end = results.field("final:x").unwrap();
+//! // x(1) = x0 cos(√k): case 5 is k = 9, x0 = 0.2.
+//! assert!((x_end[5] - 0.2 * 3f64.cos()).abs() < 1e-9);
+//! // The same study serially, bit for bit:
+//! assert_eq!(study.parallelism(Parallelism::Serial).run_cases(0..6)?, results);
+//! # Ok(())
+//! # }
+//! ```
+//!
+//! [`Study::run_in`] writes the results as shards in a folder (CSV, or
+//! Parquet with feature `parquet`), resumes an interrupted study, and
+//! [`StudyDir`] reads a finished one back.
+
+mod cases;
+mod csv_shard;
+mod error;
+mod execute;
+mod method;
+#[cfg(feature = "analysis")]
+mod modes;
+#[cfg(feature = "parquet")]
+mod parquet_shard;
+mod progress;
+mod results;
+mod simulate;
+mod store;
+mod targets;
+mod task;
+
+pub use cases::{Cases, Distribution};
+pub use error::StudyError;
+pub use method::{Method, MethodStepper};
+#[cfg(feature = "analysis")]
+pub use modes::Modes;
+pub use results::{Layout, Results};
+pub use simulate::{Keep, Simulate, Statistic};
+pub use store::{Format, StudyDir, StudySummary};
+pub use task::{CaseError, Custom, Field, Task};
+
+use std::boxed::Box;
+use std::string::{String, ToString};
+use std::vec::Vec;
+
+use crate::Model;
+
+/// A setup function: the values of the columns it reads, the model and
+/// the initial state, after the table's parameters, inputs and states are
+/// set.
+type SetupFn<M> =
+    Box<dyn Fn(&[f64], &mut M, &mut <M as Model>::State) -> Result<(), CaseError> + Send + Sync>;
+
+/// Where a study's cases run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Parallelism {
+    /// One case after the other on the calling thread.
+    Serial,
+    /// On a pool of this many threads (made for the call).
+    Threads(usize),
+    /// On rayon's global pool (every core, or `RAYON_NUM_THREADS`).
+    #[default]
+    AllCores,
+}
+
+/// A study: a model, a table of cases, and a task run for each case.
+///
+/// The columns of the table set the model's parameters, inputs and
+/// initial states by name (`parameter:NAME`, `input:NAME`, `state:NAME`
+/// when a name is ambiguous); columns read by a [`setup`](Study::setup)
+/// function can set anything else.
+pub struct Study<M: Model, F, T> {
+    make_model: F,
+    cases: Cases,
+    task: T,
+    setup_columns: Vec<String>,
+    setup: Option<SetupFn<M>>,
+    parallelism: Parallelism,
+    progress: bool,
+}
+
+impl<M, F, T> Study<M, F, T>
+where
+    M: Model,
+    F: Fn() -> M + Sync,
+    T: Task<M>,
+{
+    /// A study of the models `make_model` makes (one per case, so nothing
+    /// a model keeps leaks from one case into the next) over `cases`,
+    /// running `task` for each, on every core, with a progress bar on a
+    /// terminal.
+    pub fn new(make_model: F, cases: Cases, task: T) -> Study<M, F, T> {
+        Study {
+            make_model,
+            cases,
+            task,
+            setup_columns: Vec::new(),
+            setup: None,
+            parallelism: Parallelism::AllCores,
+            progress: true,
+        }
+    }
+
+    /// Runs `setup(values, model, x)` for every case after the table's
+    /// parameters, inputs and initial states are set, with `values` the
+    /// case's values of `columns` (in that order): for what a column
+    /// sets that is not a model value (a forward speed that sets a wheel's
+    /// rate; a trim).
+    pub fn setup(
+        mut self,
+        columns: &[&str],
+        setup: impl Fn(&[f64], &mut M, &mut M::State) -> Result<(), CaseError> + Send + Sync + 'static,
+    ) -> Study<M, F, T> {
+        self.setup_columns = columns.iter().map(|c| c.to_string()).collect();
+        self.setup = Some(Box::new(setup));
+        self
+    }
+
+    /// Where the cases run (all cores by default).
+    pub fn parallelism(mut self, parallelism: Parallelism) -> Study<M, F, T> {
+        self.parallelism = parallelism;
+        self
+    }
+
+    /// Changes where the cases run (see [`Study::parallelism`]).
+    pub fn set_parallelism(&mut self, parallelism: Parallelism) {
+        self.parallelism = parallelism;
+    }
+
+    /// Whether to show a progress bar (cases, cases per second, ETA) on
+    /// standard error. On by default; never drawn when standard error is
+    /// not a terminal.
+    pub fn progress(mut self, progress: bool) -> Study<M, F, T> {
+        self.progress = progress;
+        self
+    }
+
+    /// The case table.
+    pub fn cases(&self) -> &Cases {
+        &self.cases
+    }
+
+    /// The columns of the results.
+    pub fn layout(&self) -> Layout {
+        Layout {
+            case_columns: self.cases.names().to_vec(),
+            fields: self.task.fields(),
+        }
+    }
+
+    /// What identifies this study in a folder's manifest: the model's
+    /// name, the table, the columns' targets and the task (not the
+    /// functions that make the model or set up a case: a study resumed
+    /// after those change mixes old and new results).
+    pub fn describe(&self) -> String {
+        std::format!(
+            "model {}\n{}setup {:?}\n{}\n",
+            M::NAME,
+            self.cases.describe(),
+            self.setup_columns,
+            self.task.describe()
+        )
+    }
+}

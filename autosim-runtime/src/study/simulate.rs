@@ -1,0 +1,350 @@
+//! The simulation task: run each case from its initial state to the stop
+//! time and keep what [`Keep`] asks for.
+
+use core::marker::PhantomData;
+use std::format;
+use std::string::{String, ToString};
+use std::vec::Vec;
+
+use super::StudyError;
+use super::method::Method;
+use super::task::{CaseError, Field, Task};
+use crate::run::Observer;
+use crate::{Float, IntegrationError, Model, RunSettings, run};
+
+/// A summary statistic of a quantity over a run's output times (the
+/// samples the observer sees every `output_interval`, the start and the
+/// stop included; not every integration step).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Statistic {
+    /// The smallest sample.
+    Min,
+    /// The largest sample.
+    Max,
+    /// The mean of the samples.
+    Mean,
+    /// The root mean square of the samples.
+    Rms,
+    /// The largest absolute value.
+    MaxAbs,
+}
+
+impl Statistic {
+    fn label(self) -> &'static str {
+        match self {
+            Statistic::Min => "min",
+            Statistic::Max => "max",
+            Statistic::Mean => "mean",
+            Statistic::Rms => "rms",
+            Statistic::MaxAbs => "maxabs",
+        }
+    }
+}
+
+/// What a simulation study keeps of each run, by state or output name.
+/// Each item is one [`Field`] of the results, named as shown.
+///
+/// ```
+/// use autosim_runtime::study::{Keep, Statistic};
+/// let keep = Keep::new()
+///     .final_state()                      // `final:<state>` for every state
+///     .at(&[0.5, 1.0], &["energy"])       // `energy@0.5`, `energy@1`
+///     .statistic("energy", Statistic::Max) // `max:energy`
+///     .history(&["x"]);                   // `history:x`, one value per output time
+/// ```
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Keep {
+    final_state: bool,
+    at: Vec<(f64, String)>,
+    statistics: Vec<(String, Statistic)>,
+    history: Vec<String>,
+}
+
+impl Keep {
+    /// Nothing kept (add what you need).
+    pub fn new() -> Keep {
+        Keep::default()
+    }
+
+    /// Keep the final state: a field `final:<state>` per state.
+    pub fn final_state(mut self) -> Keep {
+        self.final_state = true;
+        self
+    }
+
+    /// Keep `quantities` (states or outputs) at each of `times`, which must
+    /// be output times of the run (the start, the stop, or
+    /// `start + k·output_interval`): a field `<quantity>@<time>` each.
+    pub fn at(mut self, times: &[f64], quantities: &[&str]) -> Keep {
+        for t in times {
+            for q in quantities {
+                self.at.push((*t, q.to_string()));
+            }
+        }
+        self
+    }
+
+    /// Keep a statistic of a state or output over the output times: a field
+    /// `<statistic>:<quantity>` (`min`, `max`, `mean`, `rms`, `maxabs`).
+    pub fn statistic(mut self, quantity: &str, statistic: Statistic) -> Keep {
+        self.statistics.push((quantity.to_string(), statistic));
+        self
+    }
+
+    /// Keep the whole time history of `quantities`: a field
+    /// `history:<quantity>` with one value per output time
+    /// ([`Simulate::output_times`]).
+    pub fn history(mut self, quantities: &[&str]) -> Keep {
+        self.history
+            .extend(quantities.iter().map(|q| q.to_string()));
+        self
+    }
+}
+
+/// A state or an output, by index.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Quantity {
+    State(usize),
+    Output(usize),
+}
+
+impl Quantity {
+    fn of<M: Model>(name: &str) -> Result<Quantity, StudyError> {
+        if let Some(k) = M::STATE_NAMES.iter().position(|n| *n == name) {
+            Ok(Quantity::State(k))
+        } else if let Some(k) = M::OUTPUT_NAMES.iter().position(|n| *n == name) {
+            Ok(Quantity::Output(k))
+        } else {
+            Err(StudyError::UnknownQuantity {
+                name: name.to_string(),
+                model: M::NAME,
+                known: M::STATE_NAMES
+                    .iter()
+                    .chain(M::OUTPUT_NAMES)
+                    .map(|s| s.to_string())
+                    .collect(),
+            })
+        }
+    }
+
+    fn value<M: Model>(self, x: &M::State, y: &M::Outputs) -> f64 {
+        match self {
+            Quantity::State(k) => x.as_ref()[k].to_f64(),
+            Quantity::Output(k) => y.as_ref()[k].to_f64(),
+        }
+    }
+}
+
+/// [`Keep`] resolved against a model: slots in a case's row.
+#[derive(Clone, Debug, PartialEq)]
+struct Plan {
+    fields: Vec<Field>,
+    /// Slot of the first final state, if kept.
+    final_state: Option<usize>,
+    /// (output index, quantity, slot), sorted by output index.
+    at: Vec<(u64, Quantity, usize)>,
+    /// (quantity, statistic, slot).
+    statistics: Vec<(Quantity, Statistic, usize)>,
+    /// (quantity, first slot).
+    history: Vec<(Quantity, usize)>,
+    samples: u64,
+}
+
+/// The simulation task: each case runs with [`run`] from `settings.start`
+/// to `settings.stop` with a fresh stepper of `method` (so no case
+/// inherits step sizes or derivative history from the one before), and
+/// the kept values are written as the run goes: no allocation per case.
+pub struct Simulate<M: Model> {
+    settings: RunSettings<M::Float>,
+    method: Method,
+    plan: Plan,
+    keep: Keep,
+    model: PhantomData<fn() -> M>,
+}
+
+impl<M: Model> Simulate<M> {
+    /// The task: `settings` (start, stop, step, output interval), the
+    /// integration `method`, and what to `keep`.
+    ///
+    /// # Errors
+    /// [`StudyError::InvalidSettings`] for bad settings or tolerances,
+    /// [`StudyError::UnknownQuantity`] for a name that is neither a state
+    /// nor an output, [`StudyError::NotAnOutputTime`] for a time of
+    /// [`Keep::at`] that the run does not report.
+    pub fn new(
+        settings: RunSettings<M::Float>,
+        method: Method,
+        keep: Keep,
+    ) -> Result<Simulate<M>, StudyError> {
+        settings.validate()?;
+        method.validate()?;
+        let plan = plan::<M>(&settings, &keep)?;
+        Ok(Simulate {
+            settings,
+            method,
+            plan,
+            keep,
+            model: PhantomData,
+        })
+    }
+
+    /// The output times of every run (the samples of a history).
+    pub fn output_times(&self) -> Vec<f64> {
+        (0..self.plan.samples)
+            .map(|k| output_time(&self.settings, k))
+            .collect()
+    }
+}
+
+/// Output `k` (0 is the start) of a run.
+fn output_time<F: Float>(settings: &RunSettings<F>, k: u64) -> f64 {
+    if k == 0 {
+        settings.start.to_f64()
+    } else {
+        settings.output_time(k).to_f64()
+    }
+}
+
+fn plan<M: Model>(settings: &RunSettings<M::Float>, keep: &Keep) -> Result<Plan, StudyError> {
+    let samples = settings.output_count() + 1;
+    let mut fields = Vec::new();
+    let add = |fields: &mut Vec<Field>, name: String, len: usize| {
+        let first: usize = fields.iter().map(|f: &Field| f.len).sum();
+        fields.push(Field { name, len });
+        first
+    };
+    let final_state = if keep.final_state {
+        let first: usize = fields.iter().map(|f: &Field| f.len).sum();
+        for name in M::STATE_NAMES {
+            add(&mut fields, format!("final:{name}"), 1);
+        }
+        Some(first)
+    } else {
+        None
+    };
+    let mut at = Vec::with_capacity(keep.at.len());
+    for (t, name) in &keep.at {
+        let q = Quantity::of::<M>(name)?;
+        let k = (0..samples)
+            .find(|k| output_time(settings, *k) == *t)
+            .ok_or(StudyError::NotAnOutputTime { t: *t })?;
+        at.push((k, q, add(&mut fields, format!("{name}@{t}"), 1)));
+    }
+    at.sort_by_key(|a| a.0);
+    let mut statistics = Vec::with_capacity(keep.statistics.len());
+    for (name, s) in &keep.statistics {
+        let q = Quantity::of::<M>(name)?;
+        statistics.push((q, *s, add(&mut fields, format!("{}:{name}", s.label()), 1)));
+    }
+    let mut history = Vec::with_capacity(keep.history.len());
+    for name in &keep.history {
+        let q = Quantity::of::<M>(name)?;
+        let len = usize::try_from(samples)
+            .map_err(|_| StudyError::InvalidCases("history too long".into()))?;
+        history.push((q, add(&mut fields, format!("history:{name}"), len)));
+    }
+    Ok(Plan {
+        fields,
+        final_state,
+        at,
+        statistics,
+        history,
+        samples,
+    })
+}
+
+/// The observer of one run: writes kept samples into the case's row.
+struct Recorder<'a, M> {
+    plan: &'a Plan,
+    out: &'a mut [f64],
+    /// Output index of the next call.
+    k: u64,
+    /// Next entry of `plan.at`.
+    next_at: usize,
+    model: PhantomData<fn() -> M>,
+}
+
+impl<M: Model> Observer<M> for Recorder<'_, M> {
+    type Error = core::convert::Infallible;
+
+    fn observe(&mut self, _t: M::Float, x: &M::State, y: &M::Outputs) -> Result<(), Self::Error> {
+        let k = self.k;
+        while let Some((at_k, q, slot)) = self.plan.at.get(self.next_at) {
+            if *at_k != k {
+                break;
+            }
+            self.out[*slot] = q.value::<M>(x, y);
+            self.next_at += 1;
+        }
+        for (q, s, slot) in &self.plan.statistics {
+            let v = q.value::<M>(x, y);
+            let o = &mut self.out[*slot];
+            *o = match s {
+                Statistic::Min => o.min(v),
+                Statistic::Max => o.max(v),
+                Statistic::MaxAbs => o.max(v.abs()),
+                Statistic::Mean => *o + v,
+                Statistic::Rms => *o + v * v,
+            };
+        }
+        for (q, first) in &self.plan.history {
+            self.out[*first + k as usize] = q.value::<M>(x, y);
+        }
+        self.k += 1;
+        Ok(())
+    }
+}
+
+impl<M: Model> Task<M> for Simulate<M>
+where
+    M::Float: Sync,
+{
+    fn fields(&self) -> Vec<Field> {
+        self.plan.fields.clone()
+    }
+
+    fn run(&self, model: &mut M, x: &mut M::State, out: &mut [f64]) -> Result<(), CaseError> {
+        let plan = &self.plan;
+        for (_, s, slot) in &plan.statistics {
+            out[*slot] = match s {
+                Statistic::Min => f64::INFINITY,
+                Statistic::Max => f64::NEG_INFINITY,
+                Statistic::MaxAbs | Statistic::Mean | Statistic::Rms => 0.0,
+            };
+        }
+        let mut stepper = self.method.stepper::<M>()?;
+        let mut recorder = Recorder {
+            plan,
+            out: &mut *out,
+            k: 0,
+            next_at: 0,
+            model: PhantomData,
+        };
+        run(model, &mut stepper, x, &self.settings, &mut recorder)
+            .map_err(|e| CaseError::Run(IntegrationError::from(e)))?;
+        let n = plan.samples as f64;
+        for (_, s, slot) in &plan.statistics {
+            match s {
+                Statistic::Mean => out[*slot] /= n,
+                Statistic::Rms => out[*slot] = (out[*slot] / n).sqrt(),
+                _ => {}
+            }
+        }
+        if let Some(first) = plan.final_state {
+            for (o, v) in out[first..].iter_mut().zip(x.as_ref()) {
+                *o = v.to_f64();
+            }
+        }
+        Ok(())
+    }
+
+    fn describe(&self) -> String {
+        format!(
+            "simulate {} {:?} {:?} {:?}",
+            M::NAME,
+            self.settings,
+            self.method,
+            self.keep
+        )
+    }
+}

@@ -1,0 +1,147 @@
+//! Which model value each column of the case table sets, and setting them
+//! for a case.
+
+use std::string::{String, ToString};
+use std::vec::Vec;
+
+use super::StudyError;
+use crate::{Float, Model};
+
+/// What a column of the case table sets.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Target {
+    Parameter(usize),
+    Input(usize),
+    State(usize),
+    /// The k-th value passed to the study's setup function.
+    Setup(usize),
+}
+
+/// Resolves every column: `parameter:NAME`, `input:NAME` or `state:NAME`
+/// name one kind; a bare name must be exactly one parameter, input, state
+/// or setup column.
+pub(super) fn resolve<M: Model>(
+    columns: &[String],
+    setup: &[String],
+) -> Result<Vec<Target>, StudyError> {
+    for name in setup {
+        if !columns.contains(name) {
+            return Err(StudyError::UnknownColumn {
+                name: name.clone(),
+                model: M::NAME,
+                why: "the setup function reads it, but the case table has no such column"
+                    .to_string(),
+            });
+        }
+    }
+    columns.iter().map(|c| resolve_one::<M>(c, setup)).collect()
+}
+
+/// A kind of model value: its name, the model's names of that kind, and
+/// the target for an index.
+type Kind = (&'static str, &'static [&'static str], fn(usize) -> Target);
+
+fn resolve_one<M: Model>(column: &str, setup: &[String]) -> Result<Target, StudyError> {
+    let find = |names: &[&str], name: &str| names.iter().position(|n| *n == name);
+    let kinds: [Kind; 3] = [
+        ("parameter", M::PARAMETER_NAMES, Target::Parameter),
+        ("input", M::INPUT_NAMES, Target::Input),
+        ("state", M::STATE_NAMES, Target::State),
+    ];
+    if let Some((kind, name)) = column.split_once(':') {
+        let Some((_, names, target)) = kinds.iter().find(|k| k.0 == kind) else {
+            return Err(unknown::<M>(
+                column,
+                "the prefix must be `parameter:`, `input:` or `state:`",
+            ));
+        };
+        return find(names, name).map(target).ok_or_else(|| {
+            unknown::<M>(column, &std::format!("the model has no {kind} `{name}`"))
+        });
+    }
+    let mut found: Vec<(&str, Target)> = kinds
+        .iter()
+        .filter_map(|(kind, names, target)| find(names, column).map(|k| (*kind, target(k))))
+        .collect();
+    if let Some(k) = setup.iter().position(|s| s == column) {
+        found.push(("setup", Target::Setup(k)));
+    }
+    match found.as_slice() {
+        [(_, target)] => Ok(*target),
+        [] => Err(unknown::<M>(
+            column,
+            "it is not a parameter, input or state of the model, nor a column the setup function reads",
+        )),
+        many => Err(StudyError::AmbiguousColumn {
+            name: column.to_string(),
+            kinds: many.iter().map(|f| f.0).collect(),
+        }),
+    }
+}
+
+fn unknown<M: Model>(name: &str, why: &str) -> StudyError {
+    StudyError::UnknownColumn {
+        name: name.to_string(),
+        model: M::NAME,
+        why: why.to_string(),
+    }
+}
+
+/// Scratch space for setting a case: the model's parameter and input
+/// vectors and the setup function's values.
+pub(super) struct Setter<F> {
+    parameters: Vec<F>,
+    inputs: Vec<F>,
+    pub(super) setup: Vec<f64>,
+}
+
+impl<F: Float> Setter<F> {
+    pub(super) fn new<M: Model<Float = F>>(setup_len: usize) -> Setter<F> {
+        Setter {
+            parameters: std::vec![F::ZERO; M::PARAMETER_NAMES.len()],
+            inputs: std::vec![F::ZERO; M::INPUT_NAMES.len()],
+            setup: std::vec![0.0; setup_len],
+        }
+    }
+
+    /// Sets the case's parameters and inputs on `model`, and returns the
+    /// model's initial state (with those parameters) with the case's
+    /// initial states set; collects the setup values.
+    pub(super) fn apply<M: Model<Float = F>>(
+        &mut self,
+        targets: &[Target],
+        values: &[f64],
+        model: &mut M,
+    ) -> M::State {
+        let has = |f: fn(&Target) -> bool| targets.iter().any(f);
+        let parameters = has(|t| matches!(t, Target::Parameter(_)));
+        let inputs = has(|t| matches!(t, Target::Input(_)));
+        if parameters {
+            model.parameter_values(&mut self.parameters);
+        }
+        if inputs {
+            model.input_values(&mut self.inputs);
+        }
+        for (t, v) in targets.iter().zip(values) {
+            match *t {
+                Target::Parameter(k) => self.parameters[k] = F::from_f64(*v),
+                Target::Input(k) => self.inputs[k] = F::from_f64(*v),
+                Target::Setup(k) => self.setup[k] = *v,
+                Target::State(_) => {}
+            }
+        }
+        if parameters {
+            model.set_parameter_values(&self.parameters);
+        }
+        if inputs {
+            model.set_input_values(&self.inputs);
+        }
+        let mut x = model.initial_state();
+        for (t, v) in targets.iter().zip(values) {
+            if let Target::State(k) = *t {
+                x.as_mut()[k] = F::from_f64(*v);
+            }
+        }
+        x
+    }
+}

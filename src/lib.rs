@@ -35,7 +35,7 @@ pub use autosim_runtime as runtime;
 /// `autosim::build::compile("models/pendulum.sim")?` in `build.rs` and
 /// `autosim::include_model!(pendulum);` where the module should appear.
 #[cfg(feature = "build")]
-pub use autosim_core::build;
+pub use autosim_core::build_script as build;
 
 /// Includes a model compiled by a build script (`autosim::build`): expands
 /// to the generated module `$name` from `OUT_DIR/$name.rs`.

@@ -3,35 +3,20 @@
 //! call order) and operation counts (the paper's Eqs. 12-23), with the
 //! interface generated code exposes, a text form and a verifier.
 
-mod articulated;
-mod axis_rotation;
-mod common;
-mod constrained;
-mod cost;
-mod elim;
-mod interface;
-mod interleave;
-mod interp;
 mod ir;
 mod linearize;
 mod lower;
-mod lowered;
-mod naming;
 mod program;
 mod schedule;
 mod solve;
 mod split;
-mod tangent;
-mod text;
-mod tree;
-mod verify;
 
-pub use interface::{
+pub use ir::{Ir, Leaf, Nid, Op};
+pub use lower::expr::{Lowering, UnboundSymbol};
+pub use program::interface::{
     Closure, ConstraintInfo, Interface, MotionInfo, Quantity, StateLayout, StateVar, UserCode,
 };
-pub use interp::{At, Interpreter, SolveError, UserCalls};
-pub use ir::{Ir, Leaf, Nid, Op};
-pub use lower::{Lowering, UnboundSymbol};
+pub use program::interp::{At, Interpreter, SolveError, UserCalls};
 pub use program::{BlockKind, MassLayout, Program, ProgramError, build};
 pub use schedule::{Block, Guard, Ops, Stmt, Task};
 pub use split::Split;

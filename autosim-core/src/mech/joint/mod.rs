@@ -10,16 +10,16 @@
 //! is a variant of [`Rotation`], its file, and its arms in this one.
 
 mod about;
-mod build;
 mod euler;
 mod lock;
 mod motion;
 mod quaternion;
 mod simple;
+mod symbols;
 pub(crate) mod translation;
 
-pub(crate) use build::{BuiltJoint, DofSymbols};
 pub use motion::UnitMotion;
+pub(crate) use symbols::{BuiltJoint, DofSymbols};
 
 use super::error::{BodyField, ModelError};
 use crate::expr::{Arena, ExprId};

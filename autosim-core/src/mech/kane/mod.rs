@@ -15,14 +15,14 @@
 //! an acceleration `-g` of N. The mass matrix is never inverted: the
 //! accelerations are solved numerically by the caller.
 
+mod body_kinetics;
 mod constraints;
 mod loads;
 mod mass;
 mod recursion;
-mod tree;
 
+pub use body_kinetics::{BodyKinetics, TreeKinetics};
 pub use constraints::{ConstraintEquations, ConstraintRow, Prescribed};
-pub use tree::{BodyKinetics, TreeKinetics};
 
 use super::error::{ItemRef, LocatedError, ModelError};
 use super::joint::UnitMotion;

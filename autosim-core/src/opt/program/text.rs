@@ -4,10 +4,10 @@
 //! text, and snapshot tests of it show optimizer changes apart from
 //! emitter changes.
 
-use super::ir::{Ir, Leaf, Nid, Op};
-use super::program::{BlockKind, MassLayout, Program};
-use super::schedule::{Guard, Stmt};
 use crate::expr::Func;
+use crate::opt::ir::{Ir, Leaf, Nid, Op};
+use crate::opt::program::{BlockKind, MassLayout, Program};
+use crate::opt::schedule::{Guard, Stmt};
 use rustc_hash::FxHashMap;
 use std::fmt::{self, Write};
 
@@ -120,7 +120,7 @@ impl fmt::Display for Program {
     /// The whole program: the state layout, then every block.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "program {}", self.interface.name)?;
-        let names = |v: &[super::interface::StateVar]| {
+        let names = |v: &[crate::opt::program::interface::StateVar]| {
             v.iter()
                 .map(|s| s.name.as_str())
                 .collect::<Vec<_>>()

@@ -6,8 +6,8 @@
 //! (`k·a + k·b` as `k·(a + b)`; constant factors first, which may add a
 //! sum to the constants block to save a product in every call).
 
-use super::ir::{Ir, Nid, Op};
 use crate::expr::{Arena, ExprId, Node, Number, SymId};
+use crate::opt::ir::{Ir, Nid, Op};
 use indexmap::IndexMap;
 use rustc_hash::FxHashMap;
 

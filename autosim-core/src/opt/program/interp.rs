@@ -2,10 +2,10 @@
 //! way generated code does, so the optimizer can be checked against the
 //! symbolic equations without compiling anything.
 
-use super::ir::{Leaf, Nid, Op};
-use super::program::{BlockKind, MassLayout, Program};
-use super::schedule::{Guard, Stmt};
 use crate::expr::Func;
+use crate::opt::ir::{Leaf, Nid, Op};
+use crate::opt::program::{BlockKind, MassLayout, Program};
+use crate::opt::schedule::{Guard, Stmt};
 use rustc_hash::FxHashMap;
 
 /// A pivot that failed its guard: the guard says which (the mass matrix's

@@ -5,8 +5,12 @@
 //! keeps the factor as sparse as the mass matrix for any tree: entries known
 //! to be zero at generation time, and their fill-in, are skipped.
 
-use super::articulated::{Articulated, TreeBody};
-use super::ir::{Ir, Nid};
+pub(super) mod articulated;
+pub(super) mod axis_rotation;
+pub(super) mod elim;
+
+use crate::opt::ir::{Ir, Nid};
+use crate::opt::solve::articulated::{Articulated, TreeBody};
 
 /// The IR of the solve of `M du = f`.
 pub struct Solve {
@@ -42,7 +46,7 @@ impl Solver {
 /// `M du = f` by the articulated-body recursion over `bodies`, `f` the
 /// projections of the bodies' bias forces plus `joint_forcing`; with `f`
 /// itself, summed by the same recursion.
-pub(super) fn recursive_solve(
+pub(crate) fn recursive_solve(
     ir: &mut Ir,
     bodies: Vec<TreeBody>,
     joint_forcing: &[Nid],

@@ -1,15 +1,15 @@
 //! Names for generated code: readable hints (`sin_q4`, `m2_1`, `u5_dot`)
 //! and the names generated ones must avoid.
 
-use super::interface::{Interface, StateLayout};
-use super::ir::{Ir, Leaf, Nid, Op};
-use super::lowered::Lowered;
 use crate::expr::Func;
+use crate::opt::ir::{Ir, Leaf, Nid, Op};
+use crate::opt::lower::equations::Lowered;
+use crate::opt::program::interface::{Interface, StateLayout};
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// Names for generated code: hints for readable values, and the names the
 /// generated ones must avoid.
-pub(super) struct Naming {
+pub(crate) struct Naming {
     pub hints: FxHashMap<Nid, String>,
     /// Names taken in every block.
     pub reserved: FxHashSet<String>,

@@ -10,18 +10,20 @@
 //! coordinates of the position constraints follow the independent ones,
 //! `∂q_d/∂q_j = −G_d⁻¹ G_j` (`G = ∂g/∂q`), and their rows are dropped.
 
-use super::elim::Elimination;
-use super::ir::{Ir, Leaf, Nid};
-use super::lowered::with_accelerations;
-use super::solve::Solver;
-use super::tangent::Tangent;
+pub(super) mod tangent;
+
+use crate::opt::ir::{Ir, Leaf, Nid};
+use crate::opt::linearize::tangent::Tangent;
+use crate::opt::lower::equations::with_accelerations;
+use crate::opt::solve::Solver;
+use crate::opt::solve::elim::Elimination;
 
 /// What the linearization differentiates: the program's derivatives and
 /// outputs and the pieces of their solve. Everything that reads the
 /// accelerations reads them as `Leaf::Accel` (leaves are never rewritten,
 /// so their derivatives can be seeded reliably); the accelerations' values
 /// are put in afterwards.
-pub(super) struct Linearizable<'a> {
+pub(crate) struct Linearizable<'a> {
     /// dq/dt of the state's coordinates.
     pub kinematics: &'a [Nid],
     /// d/dt of the extra states, reading `Leaf::Accel`.
@@ -45,7 +47,7 @@ pub(super) struct Linearizable<'a> {
 
 /// The linear model's entries: `A` (row-major over the linear states),
 /// then `B`, `C`, `D`, and the states it is in.
-pub(super) struct Linear {
+pub(crate) struct Linear {
     pub values: Vec<Nid>,
     pub states: Vec<usize>,
 }

@@ -12,16 +12,16 @@
 //! products; the double-angle terms are shared by every block the joint
 //! turns.
 
-use super::ir::{Ir, Nid, Op};
 use crate::expr::Func;
+use crate::opt::ir::{Ir, Nid, Op};
 
 /// Three by three matrices of IR nodes.
-pub(super) type M3 = [[Nid; 3]; 3];
+pub(crate) type M3 = [[Nid; 3]; 3];
 
 /// A rotation about coordinate axis `k`: `C[i][i] = C[j][j] = c`,
 /// `C[j][i] = s`, `C[i][j] = −s`, with `c` and `±s` the cosine and sine of
 /// one angle (so `c² + s² = 1`).
-pub(super) struct AxisRotation {
+pub(crate) struct AxisRotation {
     k: usize,
     i: usize,
     j: usize,

@@ -3,22 +3,22 @@
 //! leaves of the symbols, lowering with errors that name the item, user
 //! calls in model order, accelerations read as leaves).
 
-use super::elim::Elimination;
-use super::ir::{Ir, Leaf, Nid};
-use super::lower::{Lowering, UnboundSymbol};
-use super::program::ProgramError;
-use super::solve::Solve;
-use super::split::Split;
-use super::tangent::substitute;
 use crate::expr::{Arena, ExprId, SymId};
 use crate::mech::{Equations, ItemRef};
 use crate::model::ResolvedModel;
+use crate::opt::ir::{Ir, Leaf, Nid};
+use crate::opt::linearize::tangent::substitute;
+use crate::opt::lower::expr::{Lowering, UnboundSymbol};
+use crate::opt::program::ProgramError;
+use crate::opt::solve::Solve;
+use crate::opt::solve::elim::Elimination;
+use crate::opt::split::Split;
 use rustc_hash::FxHashMap;
 
 /// The leaf of every symbol with a value at run time (the state holds the
 /// coordinates but the prescribed, and the independent speeds), and the
 /// prescribed coordinates and speeds as functions of time.
-pub(super) fn leaves(
+pub(crate) fn leaves(
     model: &mut ResolvedModel,
     eqs: &Equations,
     split: &Split,
@@ -63,7 +63,7 @@ pub(super) fn leaves(
 }
 
 /// The equations lowered to IR nodes.
-pub(super) struct Lowered {
+pub(crate) struct Lowered {
     /// dq/dt of the state's coordinates.
     pub kinematics: Vec<Nid>,
     /// Lower triangle of the mass matrix of the independent speeds
@@ -94,7 +94,7 @@ pub(super) struct Lowered {
 }
 
 /// One Newton step of assembly.
-pub(super) struct Assembly {
+pub(crate) struct Assembly {
     /// The corrections of the dependent coordinates.
     pub step: Vec<Nid>,
     /// The residuals of the position constraints.
@@ -108,7 +108,7 @@ pub(super) struct Assembly {
 
 /// `env` with the symbol of each speed's rate (`du_k/dt`) bound to
 /// `rates[k]`.
-pub(super) fn binding_rates(
+pub(crate) fn binding_rates(
     env: &FxHashMap<SymId, Nid>,
     eqs: &Equations,
     rates: &[Nid],
@@ -123,7 +123,7 @@ pub(super) fn binding_rates(
 /// The added states' derivatives lowered with the rates bound as `env`
 /// says (the form the linearization differentiates), and the same with
 /// the solve's accelerations `du` in place of `Leaf::Accel`.
-pub(super) fn lower_extra(
+pub(crate) fn lower_extra(
     arena: &mut Arena,
     ir: &mut Ir,
     env: &FxHashMap<SymId, Nid>,
@@ -141,7 +141,7 @@ pub(super) fn lower_extra(
 }
 
 /// `nodes` with `Leaf::Accel(k)` replaced by `du[k]`.
-pub(super) fn with_accelerations(ir: &mut Ir, nodes: &[Nid], du: &[Nid]) -> Vec<Nid> {
+pub(crate) fn with_accelerations(ir: &mut Ir, nodes: &[Nid], du: &[Nid]) -> Vec<Nid> {
     let map: FxHashMap<Nid, Nid> = du
         .iter()
         .enumerate()
@@ -151,7 +151,7 @@ pub(super) fn with_accelerations(ir: &mut Ir, nodes: &[Nid], du: &[Nid]) -> Vec<
 }
 
 /// Lowers `e`, naming `item` on failure.
-pub(super) fn lower_one(
+pub(crate) fn lower_one(
     lw: &mut Lowering<'_>,
     e: ExprId,
     item: ItemRef,
@@ -161,7 +161,7 @@ pub(super) fn lower_one(
 }
 
 /// User-function calls in model order (their creation order), once each.
-pub(super) fn collect_calls(mut calls: Vec<(ExprId, Nid)>) -> Vec<Nid> {
+pub(crate) fn collect_calls(mut calls: Vec<(ExprId, Nid)>) -> Vec<Nid> {
     calls.sort();
     let mut order: Vec<Nid> = Vec::new();
     for (_, nid) in calls {
@@ -173,7 +173,7 @@ pub(super) fn collect_calls(mut calls: Vec<(ExprId, Nid)>) -> Vec<Nid> {
 }
 
 /// Lowers `exprs` of `item` (errors name the item).
-pub(super) fn lower_all(
+pub(crate) fn lower_all(
     lw: &mut Lowering<'_>,
     exprs: &[ExprId],
     item: impl Fn(usize) -> ItemRef,

@@ -5,7 +5,7 @@
 //! Entries known to be zero, and their fill-in, are skipped; literal
 //! pivots fold away. One factorization serves several right-hand sides.
 
-use super::ir::{Ir, Nid};
+use crate::opt::ir::{Ir, Nid};
 
 /// A factored square matrix.
 pub struct Elimination {

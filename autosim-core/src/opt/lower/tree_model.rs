@@ -3,21 +3,23 @@
 //! articulated-body recursion), extra states, outputs and initial values,
 //! in the order that numbers the IR.
 
-use super::articulated::TreeBody;
-use super::ir::{Ir, Leaf, Nid};
-use super::lower::Lowering;
-use super::lowered::{Lowered, binding_rates, collect_calls, lower_all, lower_extra, lower_one};
-use super::program::ProgramError;
-use super::solve::{ldlt_solve, recursive_solve};
 use crate::expr::{ExprId, SymId};
 use crate::mech::{BodyKinetics, Equations, ItemRef};
 use crate::model::ResolvedModel;
+use crate::opt::ir::{Ir, Leaf, Nid};
+use crate::opt::lower::equations::{
+    Lowered, binding_rates, collect_calls, lower_all, lower_extra, lower_one,
+};
+use crate::opt::lower::expr::Lowering;
+use crate::opt::program::ProgramError;
+use crate::opt::solve::articulated::TreeBody;
+use crate::opt::solve::{ldlt_solve, recursive_solve};
 use rustc_hash::FxHashMap;
 
 /// Lowers every equation, in the order that numbers the IR (and so the
 /// generated constants): kinematics, mass matrix, forcing, subroutine
 /// arguments, the solve, extra states, outputs, initial values.
-pub(super) fn lower(
+pub(crate) fn lower(
     model: &mut ResolvedModel,
     eqs: &Equations,
     ir: &mut Ir,

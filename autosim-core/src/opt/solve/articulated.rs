@@ -16,8 +16,8 @@
 //! The mass matrix is never formed; each `D`'s pivots are checked as the
 //! mass matrix's are.
 
-use super::axis_rotation::{AxisRotation, M3};
-use super::ir::{Ir, Nid};
+use crate::opt::ir::{Ir, Nid};
+use crate::opt::solve::axis_rotation::{AxisRotation, M3};
 
 /// Spatial vectors `[angular; linear]`.
 type V6 = [Nid; 6];
@@ -25,7 +25,7 @@ type V6 = [Nid; 6];
 type M6 = [[Nid; 6]; 6];
 
 /// One body as the recursion reads it (its data lowered to the IR).
-pub(super) struct TreeBody {
+pub(crate) struct TreeBody {
     /// Parent's position in the list (`None`: N).
     pub parent: Option<usize>,
     /// `C[i][j] = p_i · b_j`.
@@ -61,7 +61,7 @@ pub struct Articulated {
 
 impl Articulated {
     /// The inward pass over `bodies` (parent-first order), `n` speeds.
-    pub(super) fn new(ir: &mut Ir, bodies: Vec<TreeBody>, n: usize) -> Articulated {
+    pub(crate) fn new(ir: &mut Ir, bodies: Vec<TreeBody>, n: usize) -> Articulated {
         let mut ia: Vec<M6> = bodies.iter().map(|b| b.inertia).collect();
         let mut joints: Vec<Option<Joint>> = (0..bodies.len()).map(|_| None).collect();
         let mut pivots = Vec::new();

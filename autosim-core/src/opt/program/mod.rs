@@ -3,20 +3,25 @@
 //! unrolled solve of the mass matrix; outputs; the mass matrix and forcing
 //! alone; the initial state), plus the interface generated code exposes.
 
-use super::common;
-use super::constrained;
-use super::cost;
-use super::interface::{Interface, StateLayout};
-use super::ir::{Ir, Leaf, Nid};
-use super::linearize::{Linear, Linearizable};
-use super::lowered::{Lowered, leaves};
-use super::naming::Naming;
-use super::schedule::{Block, Guard, Options, Task, schedule};
-use super::solve::Solver;
-use super::split::Split;
-use super::tree;
+pub(super) mod interface;
+pub(super) mod interp;
+pub(super) mod text;
+pub(super) mod verify;
+
 use crate::mech::{Equations, ItemRef};
 use crate::model::{Formulation, ResolvedModel};
+use crate::opt::ir::{Ir, Leaf, Nid};
+use crate::opt::linearize::{Linear, Linearizable};
+use crate::opt::lower::constrained;
+use crate::opt::lower::equations::{Lowered, leaves};
+use crate::opt::lower::tree_model;
+use crate::opt::program::interface::{Interface, StateLayout};
+use crate::opt::schedule::common;
+use crate::opt::schedule::cost;
+use crate::opt::schedule::naming::Naming;
+use crate::opt::schedule::{Block, Guard, Options, Task, schedule};
+use crate::opt::solve::Solver;
+use crate::opt::split::Split;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// What a block computes; each kind is one function of generated code.
@@ -251,7 +256,7 @@ fn build_route(
         Route::Constrained => constrained::lower(model, eqs, split, &mut ir)?,
         _ => {
             let leaves = leaves(model, eqs, split, &mut ir)?;
-            tree::lower(model, eqs, &mut ir, &leaves, route == Route::Recursive)?
+            tree_model::lower(model, eqs, &mut ir, &leaves, route == Route::Recursive)?
         }
     };
     let linear = model

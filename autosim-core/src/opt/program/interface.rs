@@ -3,11 +3,11 @@
 //! user code, and the layout of its state vector. The emitter and the
 //! documentation read this and the program, nothing else.
 
-use super::split::Split;
 use crate::diag::Span;
 use crate::expr::{SymId, SymbolKind};
 use crate::mech::{ConstraintKind, Equations};
 use crate::model::{FloatType, ResolvedModel};
+use crate::opt::split::Split;
 
 /// One state variable.
 #[derive(Clone, Debug, PartialEq)]

@@ -2,8 +2,8 @@
 //! of latencies through them (the cycles no parallelism hides). The
 //! choice between the two ways of solving a tree weighs both.
 
-use super::ir::{Ir, Nid, Op};
-use super::schedule::{Block, Stmt};
+use crate::opt::ir::{Ir, Nid, Op};
+use crate::opt::schedule::{Block, Stmt};
 use rustc_hash::FxHashMap;
 
 /// Rough latencies in cycles, enough to rank chains.

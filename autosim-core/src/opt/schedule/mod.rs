@@ -3,9 +3,14 @@
 //! (subroutines first, then user functions in model order, then each result
 //! with what it needs just before it), and what the block costs.
 
-use super::interleave::interleave;
-use super::ir::{Ir, Leaf, Nid, Op};
+pub(super) mod common;
+pub(super) mod cost;
+pub(super) mod interleave;
+pub(super) mod naming;
+
 use crate::expr::Func;
+use crate::opt::ir::{Ir, Leaf, Nid, Op};
+use crate::opt::schedule::interleave::interleave;
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::BTreeSet;
 use std::fmt;

@@ -8,8 +8,8 @@
 //! subroutine outputs are held: their derivative is zero (a linear model
 //! treats them as inputs; documented in `language.md`).
 
-use super::ir::{Ir, Leaf, Nid, Op};
 use crate::expr::Func;
+use crate::opt::ir::{Ir, Leaf, Nid, Op};
 use rustc_hash::FxHashMap;
 
 /// Derivatives of IR nodes with respect to one leaf, memoized.

@@ -15,10 +15,10 @@
 //! critical path is 0.8 of its operations) waits for the shared part
 //! instead: 1 086 → 1 250 ns, so it keeps one function.
 
-use super::cost::critical_path;
-use super::ir::{Ir, Nid, Op};
-use super::schedule::{Block, Options, Task, schedule};
 use crate::limits::MAX_LETS_IN_FUNCTION;
+use crate::opt::ir::{Ir, Nid, Op};
+use crate::opt::schedule::cost::critical_path;
+use crate::opt::schedule::{Block, Options, Task, schedule};
 use rustc_hash::FxHashSet;
 
 /// Blocks with more bound values than this share for speed when they are

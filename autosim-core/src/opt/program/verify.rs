@@ -18,9 +18,9 @@
 //! 6. Names a block binds are unique and do not shadow a state, input or
 //!    subroutine output.
 
-use super::ir::{Leaf, Nid, Op};
-use super::program::{BlockKind, MassLayout, Program};
-use super::schedule::{Block, Stmt};
+use crate::opt::ir::{Leaf, Nid, Op};
+use crate::opt::program::{BlockKind, MassLayout, Program};
+use crate::opt::schedule::{Block, Stmt};
 use rustc_hash::FxHashSet;
 
 impl Program {

@@ -14,10 +14,10 @@
 //! only pure values move across them. Values are unchanged, so results
 //! are bit for bit the same; only the order of the `let`s differs.
 
-use super::cost::latency;
-use super::ir::{Ir, Leaf, Nid, Op};
-use super::schedule::Stmt;
 use crate::expr::Func;
+use crate::opt::ir::{Ir, Leaf, Nid, Op};
+use crate::opt::schedule::Stmt;
+use crate::opt::schedule::cost::latency;
 use rustc_hash::FxHashMap;
 use std::cmp::Reverse;
 

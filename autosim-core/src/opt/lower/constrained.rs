@@ -13,18 +13,18 @@
 //! work in the admissible motions). Nothing is inverted symbolically;
 //! every pivot is checked at run time.
 
-use super::elim::Elimination;
-use super::ir::{Ir, Leaf, Nid};
-use super::lower::Lowering;
-use super::lowered::{
-    Assembly, Lowered, binding_rates, collect_calls, leaves, lower_all, lower_extra, lower_one,
-};
-use super::program::ProgramError;
-use super::solve::ldlt_solve;
-use super::split::Split;
 use crate::expr::{ExprId, SymId};
 use crate::mech::{Equations, ItemRef};
 use crate::model::ResolvedModel;
+use crate::opt::ir::{Ir, Leaf, Nid};
+use crate::opt::lower::equations::{
+    Assembly, Lowered, binding_rates, collect_calls, leaves, lower_all, lower_extra, lower_one,
+};
+use crate::opt::lower::expr::Lowering;
+use crate::opt::program::ProgramError;
+use crate::opt::solve::elim::Elimination;
+use crate::opt::solve::ldlt_solve;
+use crate::opt::split::Split;
 use rustc_hash::FxHashMap;
 
 /// The constraint solve: the factored `A_d` and the matrix rows.
@@ -123,7 +123,7 @@ struct Full {
 /// matrix, dependent speeds, kinematics, mass matrix and forcing,
 /// subroutine arguments, the reduced solve, extra states, outputs, initial
 /// state, assembly).
-pub(super) fn lower(
+pub(crate) fn lower(
     model: &mut ResolvedModel,
     eqs: &Equations,
     split: &Split,

@@ -4,7 +4,7 @@
 use super::expr::{ExprPrinter, Locals, ident};
 use super::sines;
 use crate::limits::MAX_LETS_IN_FUNCTION;
-use crate::model::FloatType;
+use crate::opt::FloatType;
 use crate::opt::{Block, BlockKind, Guard, Leaf, Nid, Program, Stmt};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;

@@ -1,8 +1,11 @@
 //! The equation program: lowering to an operation IR, the unrolled solve of
 //! the mass matrix, scheduling (named intermediates, hoisted constants,
 //! call order) and operation counts (the paper's Eqs. 12-23), with the
-//! interface generated code exposes, a text form and a verifier.
+//! interface generated code exposes, a text form and a verifier. Its one
+//! input is [`Input`], built by `pipeline.rs`.
 
+mod error;
+mod input;
 mod ir;
 mod linearize;
 mod lower;
@@ -11,12 +14,13 @@ mod schedule;
 mod solve;
 mod split;
 
+pub use error::ProgramError;
+pub use input::{Declared, Described, FloatType, Formulation, Input, Options, SubroutineCall};
 pub use ir::{Ir, Leaf, Nid, Op};
-pub use lower::expr::{Lowering, UnboundSymbol};
 pub use program::interface::{
     Closure, ConstraintInfo, Interface, MotionInfo, Quantity, StateLayout, StateVar, UserCode,
 };
 pub use program::interp::{At, Interpreter, SolveError, UserCalls};
-pub use program::{BlockKind, MassLayout, Program, ProgramError, build};
+pub use program::{BlockKind, MassLayout, Program, build};
 pub use schedule::{Block, Guard, Ops, Stmt, Task};
 pub use split::Split;

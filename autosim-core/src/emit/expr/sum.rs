@@ -14,7 +14,7 @@
 //! `a.fma(b, acc)` is `a * b + acc`: the same bits as the sum unfused.
 
 use super::{ExprPrinter, Prec};
-use crate::model::FloatType;
+use crate::opt::FloatType;
 use crate::opt::{Nid, Op};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;

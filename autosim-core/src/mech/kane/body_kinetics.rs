@@ -17,6 +17,8 @@ use crate::mech::system::{BodyId, System};
 /// N is not listed).
 #[derive(Clone, Debug)]
 pub struct BodyKinetics {
+    /// The body.
+    pub body: BodyId,
     /// The parent's position in the list (`None`: N).
     pub parent: Option<usize>,
     /// `C[i][j] = p_i · b_j`: the body's axes in the parent's.
@@ -80,6 +82,7 @@ impl System {
             let (f, t) = (own.force[b].c, own.moment[b].c);
             let bias = [t[0], t[1], t[2], f[0], f[1], f[2]].map(|x| self.arena.neg(x));
             out.push(BodyKinetics {
+                body: BodyId(b as u32),
                 parent: body
                     .parent
                     .filter(|p| *p != BodyId::N)

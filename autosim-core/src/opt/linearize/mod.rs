@@ -13,8 +13,7 @@
 pub(super) mod tangent;
 
 use crate::opt::ir::{Ir, Leaf, Nid};
-use crate::opt::linearize::tangent::Tangent;
-use crate::opt::lower::equations::with_accelerations;
+use crate::opt::linearize::tangent::{Tangent, with_accelerations};
 use crate::opt::solve::Solver;
 use crate::opt::solve::elim::Elimination;
 

@@ -237,6 +237,16 @@ fn rebuild(ir: &mut Ir, n: Nid, new: &FxHashMap<Nid, Nid>) -> Nid {
     }
 }
 
+/// `nodes` with `Leaf::Accel(k)` replaced by `du[k]`.
+pub(crate) fn with_accelerations(ir: &mut Ir, nodes: &[Nid], du: &[Nid]) -> Vec<Nid> {
+    let map: FxHashMap<Nid, Nid> = du
+        .iter()
+        .enumerate()
+        .map(|(k, d)| (ir.leaf(Leaf::Accel(k)), *d))
+        .collect();
+    substitute(ir, nodes, &map)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

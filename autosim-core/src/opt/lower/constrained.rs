@@ -13,19 +13,16 @@
 //! work in the admissible motions). Nothing is inverted symbolically;
 //! every pivot is checked at run time.
 
-use crate::expr::{ExprId, SymId};
+use super::Lowering;
+use super::context::{Env, binding_rates};
+use super::equations::{Assembly, Lowered};
+use crate::expr::ExprId;
 use crate::mech::{Equations, ItemRef};
-use crate::model::ResolvedModel;
+use crate::opt::error::ProgramError;
 use crate::opt::ir::{Ir, Leaf, Nid};
-use crate::opt::lower::equations::{
-    Assembly, Lowered, binding_rates, collect_calls, leaves, lower_all, lower_extra, lower_one,
-};
-use crate::opt::lower::expr::Lowering;
-use crate::opt::program::ProgramError;
 use crate::opt::solve::elim::Elimination;
 use crate::opt::solve::ldlt_solve;
 use crate::opt::split::Split;
-use rustc_hash::FxHashMap;
 
 /// The constraint solve: the factored `A_d` and the matrix rows.
 struct ConstraintSolve {
@@ -123,45 +120,39 @@ struct Full {
 /// matrix, dependent speeds, kinematics, mass matrix and forcing,
 /// subroutine arguments, the reduced solve, extra states, outputs, initial
 /// state, assembly).
-pub(crate) fn lower(
-    model: &mut ResolvedModel,
-    eqs: &Equations,
-    split: &Split,
-    ir: &mut Ir,
-) -> Result<Lowered, ProgramError> {
-    let mut env = leaves(model, eqs, split, ir)?;
-    let mut calls: Vec<(ExprId, Nid)> = Vec::new();
-    let solve_c = constraint_solve(model, eqs, ir, &env)?;
-    let rhs = dependent_rhs(ir, eqs, split, &solve_c.a, &env, model)?;
-    let dependent_speeds = solve_c.elim.solve(ir, &rhs);
-    for (r, &k) in split.dependent.iter().enumerate() {
-        env.insert(eqs.speeds[k], dependent_speeds[r]);
-    }
+pub(crate) fn lower(lw: &mut Lowering<'_>) -> Result<Lowered, ProgramError> {
+    let given = lw.given;
+    let (eqs, split) = (given.eqs, given.split);
+    let solve_c = constraint_solve(lw, eqs)?;
+    let rhs = dependent_rhs(lw, eqs, split, &solve_c.a)?;
+    let dependent_speeds = solve_c.elim.solve(&mut lw.ir, &rhs);
+    lw.extend(
+        split
+            .dependent
+            .iter()
+            .zip(&dependent_speeds)
+            .map(|(&k, d)| (eqs.speeds[k], *d)),
+    );
+    let env = lw.env().clone();
 
-    let sys = &mut model.system;
-    let coordinate_item: Vec<ItemRef> = split
-        .coordinates
-        .iter()
-        .map(|&j| ItemRef::Body(sys.coordinates()[j].body))
-        .collect();
-    let subs = sys.subroutines().to_vec();
-    let mut lw = Lowering::new(&mut sys.arena, ir, &env);
     let kin_exprs: Vec<ExprId> = split
         .coordinates
         .iter()
         .map(|&j| eqs.kinematics[j])
         .collect();
-    let kinematics = lower_all(&mut lw, &kin_exprs, |k| coordinate_item[k])?;
-    let full = full_equations(&mut lw, eqs)?;
-    let bias = lower_all(&mut lw, &row_biases(eqs), ItemRef::Constraint)?;
+    let kinematics = lw.all(&kin_exprs, |k| {
+        given.declared.coordinate_items[split.coordinates[k]]
+    })?;
+    let full = Full {
+        mass: lw.mass_matrix()?,
+        forcing: lw.forcing()?,
+    };
+    let bias = lw.all(&row_biases(eqs), ItemRef::Constraint)?;
     let accel: Vec<ExprId> = eqs.prescribed.iter().map(|p| p.acceleration).collect();
-    let prescribed_accel = lower_all(&mut lw, &accel, ItemRef::Motion)?;
-    let mut sub_args = Vec::with_capacity(subs.len());
-    for (k, s) in subs.iter().enumerate() {
-        sub_args.push(lower_all(&mut lw, &s.args, |_| ItemRef::Subroutine(k))?);
-    }
-    calls.extend(lw.user_calls());
+    let prescribed_accel = lw.all(&accel, ItemRef::Motion)?;
+    let sub_args = lw.sub_args()?;
 
+    let ir = &mut lw.ir;
     let red = reduction(ir, split, &solve_c, &bias, &prescribed_accel);
     let columns: Vec<Vec<Nid>> = split
         .free
@@ -195,23 +186,18 @@ pub(crate) fn lower(
         .collect();
     let acc = red.accelerations(ir, split, &rate_leaves);
     let with_rates = binding_rates(&env, eqs, &acc);
-    let (extra, extra_in_rates) = lower_extra(
-        &mut model.system.arena,
-        ir,
-        &with_rates,
-        eqs,
-        &solve.du,
-        &mut calls,
-    )?;
+    let (extra, extra_in_rates) = lw.extra(with_rates, &solve.du)?;
 
-    let outputs = outputs(model, eqs, split, ir, &env, &red, &full, &mut calls)?;
-    let initial = initial(model, split, ir, &env)?;
-    let assembly = assembly(model, eqs, ir, &env)?;
-    let mut named: Vec<(String, Nid)> = Vec::new();
-    for (r, &k) in split.dependent.iter().enumerate() {
-        let name = model.system.arena.symbol(eqs.speeds[k]).name.clone();
-        named.push((name, dependent_speeds[r]));
-    }
+    let outputs = outputs(lw, &env, &red, &full)?;
+    let initial = lw.initial()?;
+    lw.bind(env);
+    let assembly = assembly(lw, eqs)?;
+    let named = split
+        .dependent
+        .iter()
+        .zip(&dependent_speeds)
+        .map(|(&k, d)| (lw.name(eqs.speeds[k]).to_string(), *d))
+        .collect();
     Ok(Lowered {
         kinematics,
         mass,
@@ -223,7 +209,7 @@ pub(crate) fn lower(
         outputs,
         initial,
         sub_args,
-        call_order: collect_calls(calls),
+        call_order: lw.call_order(),
         named,
         assembly,
     })
@@ -231,19 +217,15 @@ pub(crate) fn lower(
 
 /// The constraint matrix `A` lowered and `A_d` factored.
 fn constraint_solve(
-    model: &mut ResolvedModel,
+    lw: &mut Lowering<'_>,
     eqs: &Equations,
-    ir: &mut Ir,
-    env: &FxHashMap<SymId, Nid>,
 ) -> Result<ConstraintSolve, ProgramError> {
     let rows = &eqs.constraints.rows;
-    let mut lw = Lowering::new(&mut model.system.arena, ir, env);
     let mut a: Vec<Vec<Nid>> = Vec::with_capacity(rows.len());
     for (r, row) in rows.iter().enumerate() {
-        a.push(lower_all(&mut lw, &row.coefficients, |_| {
-            ItemRef::Constraint(r)
-        })?);
+        a.push(lw.all(&row.coefficients, |_| ItemRef::Constraint(r))?);
     }
+    let ir = &mut lw.ir;
     let deps = &eqs.constraints.dependent_speeds;
     let a_d: Vec<Vec<Option<Nid>>> = a
         .iter()
@@ -261,20 +243,18 @@ fn constraint_solve(
 
 /// `−(b + Σ A_k u_k)` over the known speeds `k`, per row.
 fn dependent_rhs(
-    ir: &mut Ir,
+    lw: &mut Lowering<'_>,
     eqs: &Equations,
     split: &Split,
     a: &[Vec<Nid>],
-    env: &FxHashMap<SymId, Nid>,
-    model: &mut ResolvedModel,
 ) -> Result<Vec<Nid>, ProgramError> {
     let offsets: Vec<ExprId> = eqs.constraints.rows.iter().map(|r| r.offset).collect();
-    let mut lw = Lowering::new(&mut model.system.arena, ir, env);
-    let offsets = lower_all(&mut lw, &offsets, ItemRef::Constraint)?;
+    let offsets = lw.all(&offsets, ItemRef::Constraint)?;
     let known: Vec<(usize, Nid)> = (0..eqs.speeds.len())
         .filter(|k| split.dependent_row(*k).is_none())
-        .map(|k| (k, env[&eqs.speeds[k]]))
+        .map(|k| (k, lw.env()[&eqs.speeds[k]]))
         .collect();
+    let ir = &mut lw.ir;
     Ok((0..a.len())
         .map(|r| {
             let mut neg = vec![offsets[r]];
@@ -288,26 +268,9 @@ fn dependent_rhs(
         .collect())
 }
 
-/// `M` (lower triangle) and `f` with every speed known.
-fn full_equations(lw: &mut Lowering<'_>, eqs: &Equations) -> Result<Full, ProgramError> {
-    let n = eqs.coordinates.len();
-    let mut mass: Vec<Vec<Option<Nid>>> = vec![vec![None; n]; n];
-    for i in 0..n {
-        for j in 0..=i {
-            let e = eqs.mass_matrix[i][j];
-            if !lw.is_zero(e) {
-                mass[i][j] = Some(lower_one(lw, e, ItemRef::Model)?);
-            }
-        }
-    }
-    let forcing = lower_all(lw, &eqs.forcing, |_| ItemRef::Model)?;
-    Ok(Full { mass, forcing })
-}
-
 fn row_biases(eqs: &Equations) -> Vec<ExprId> {
     eqs.constraints.rows.iter().map(|r| r.bias).collect()
 }
-
 /// The columns of `P` and `w`.
 fn reduction(
     ir: &mut Ir,
@@ -346,34 +309,27 @@ fn reduction(
 /// The model's outputs, then the residuals of the position constraints and
 /// the forces that enforce the motions; accelerations are read from the
 /// derivatives (`Leaf::Accel` of the independent speeds).
-#[allow(clippy::too_many_arguments)]
 fn outputs(
-    model: &mut ResolvedModel,
-    eqs: &Equations,
-    split: &Split,
-    ir: &mut Ir,
-    env: &FxHashMap<SymId, Nid>,
+    lw: &mut Lowering<'_>,
+    env: &Env,
     red: &Reduction,
     full: &Full,
-    calls: &mut Vec<(ExprId, Nid)>,
 ) -> Result<Vec<Nid>, ProgramError> {
+    let (eqs, split) = (lw.given.eqs, lw.given.split);
     let du_free: Vec<Nid> = (0..split.free.len())
-        .map(|i| ir.leaf(Leaf::Accel(i)))
+        .map(|i| lw.ir.leaf(Leaf::Accel(i)))
         .collect();
-    let acc = red.accelerations(ir, split, &du_free);
-    let with_accel = binding_rates(env, eqs, &acc);
-    let sys = &mut model.system;
-    let exprs: Vec<ExprId> = sys.outputs().iter().map(|o| o.expr).collect();
-    let mut lw = Lowering::new(&mut sys.arena, ir, &with_accel);
-    let mut out = lower_all(&mut lw, &exprs, ItemRef::Output)?;
+    let acc = red.accelerations(&mut lw.ir, split, &du_free);
+    lw.bind(binding_rates(env, eqs, &acc));
+    let mut out = lw.outputs()?;
     let positions = &eqs.constraints.positions;
     for (i, g) in eqs.constraints.residuals.iter().enumerate() {
-        out.push(lower_one(&mut lw, *g, ItemRef::Constraint(positions[i]))?);
+        out.push(lw.one(*g, ItemRef::Constraint(positions[i]))?);
     }
-    calls.extend(lw.user_calls());
     if split.prescribed.is_empty() {
         return Ok(out);
     }
+    let ir = &mut lw.ir;
     let m_acc = times_mass(ir, &full.mass, &acc);
     let residual: Vec<Nid> = (0..acc.len())
         .map(|k| ir.sum(vec![m_acc[k]], vec![full.forcing[k]]))
@@ -385,60 +341,28 @@ fn outputs(
     Ok(out)
 }
 
-/// The initial state: the state coordinates, independent speeds and extra
-/// states.
-fn initial(
-    model: &mut ResolvedModel,
-    split: &Split,
-    ir: &mut Ir,
-    env: &FxHashMap<SymId, Nid>,
-) -> Result<Vec<Nid>, ProgramError> {
-    let sys = &mut model.system;
-    let coords = sys.coordinates();
-    let mut exprs: Vec<ExprId> = split
-        .coordinates
-        .iter()
-        .map(|&k| coords[k].initial_q)
-        .collect();
-    exprs.extend(split.free.iter().map(|&k| coords[k].initial_u));
-    exprs.extend(sys.states().iter().map(|s| s.initial));
-    // The initial values are functions of the parameters only.
-    let params: FxHashMap<SymId, Nid> = sys
-        .parameters()
-        .iter()
-        .filter_map(|p| Some((*p, *env.get(p)?)))
-        .collect();
-    let mut lw = Lowering::new(&mut sys.arena, ir, &params);
-    lower_all(&mut lw, &exprs, |_| ItemRef::Model)
-}
-
 /// The Newton step of assembly, `Δq_d = −G_d⁻¹ g`, with the residuals `g`
 /// of the position constraints (none without them).
-fn assembly(
-    model: &mut ResolvedModel,
-    eqs: &Equations,
-    ir: &mut Ir,
-    env: &FxHashMap<SymId, Nid>,
-) -> Result<Option<Assembly>, ProgramError> {
+fn assembly(lw: &mut Lowering<'_>, eqs: &Equations) -> Result<Option<Assembly>, ProgramError> {
     let c = &eqs.constraints;
     let np = c.positions.len();
     if np == 0 {
         return Ok(None);
     }
-    let mut lw = Lowering::new(&mut model.system.arena, ir, env);
     let item = |i: usize| ItemRef::Constraint(c.positions[i]);
-    let residuals = lower_all(&mut lw, &c.residuals, item)?;
+    let residuals = lw.all(&c.residuals, item)?;
     let mut jacobian: Vec<Vec<Option<Nid>>> = Vec::with_capacity(np);
     for (i, line) in c.jacobian.iter().enumerate() {
         let mut row = Vec::with_capacity(np);
         for e in line {
             row.push(match lw.is_zero(*e) {
                 true => None,
-                false => Some(lower_one(&mut lw, *e, item(i))?),
+                false => Some(lw.one(*e, item(i))?),
             });
         }
         jacobian.push(row);
     }
+    let ir = &mut lw.ir;
     let own: Vec<usize> = (0..np).collect();
     let elim = Elimination::factor(ir, &jacobian, &c.assembly_order, &own);
     let rhs: Vec<Nid> = residuals.iter().map(|g| ir.neg(*g)).collect();

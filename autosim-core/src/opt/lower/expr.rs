@@ -6,67 +6,24 @@
 //! (`k·a + k·b` as `k·(a + b)`; constant factors first, which may add a
 //! sum to the constants block to save a product in every call).
 
-use crate::expr::{Arena, ExprId, Node, Number, SymId};
-use crate::opt::ir::{Ir, Nid, Op};
+use super::context::Lowering;
+use crate::expr::{ExprId, Node, Number};
+use crate::opt::ir::{Nid, Op};
 use indexmap::IndexMap;
-use rustc_hash::FxHashMap;
-
-/// Lowers expressions of one arena into an IR, memoized per expression.
-pub struct Lowering<'a> {
-    arena: &'a mut Arena,
-    ir: &'a mut Ir,
-    leaves: &'a FxHashMap<SymId, Nid>,
-    memo: FxHashMap<ExprId, Nid>,
-}
 
 /// A symbol with no value in the program (e.g. a free symbol).
-#[derive(Clone, Debug, PartialEq)]
-pub struct UnboundSymbol(pub String);
+pub(super) struct UnboundSymbol(pub String);
 
-impl<'a> Lowering<'a> {
-    /// A lowering where symbols take the IR values in `leaves`.
-    pub fn new(arena: &'a mut Arena, ir: &'a mut Ir, leaves: &'a FxHashMap<SymId, Nid>) -> Self {
-        Lowering {
-            arena,
-            ir,
-            leaves,
-            memo: FxHashMap::default(),
-        }
-    }
-
-    /// The IR being built (for operations beside lowering).
-    pub fn ir(&mut self) -> &mut Ir {
-        self.ir
-    }
-
-    /// `true` if `e` is exactly zero.
-    pub fn is_zero(&self, e: ExprId) -> bool {
-        self.arena.is_zero(e)
-    }
-
-    /// The user-function calls lowered so far: (expression, IR node).
-    pub fn user_calls(&self) -> Vec<(ExprId, Nid)> {
-        self.memo
-            .iter()
-            .filter(|(e, _)| {
-                matches!(
-                    self.arena.node(**e),
-                    Node::Func(crate::expr::Func::User(_), _)
-                )
-            })
-            .map(|(e, n)| (*e, *n))
-            .collect()
-    }
-
+impl Lowering<'_> {
     /// The IR node computing `e`.
-    pub fn lower(&mut self, e: ExprId) -> Result<Nid, UnboundSymbol> {
+    pub(super) fn lower(&mut self, e: ExprId) -> Result<Nid, UnboundSymbol> {
         if let Some(n) = self.memo.get(&e) {
             return Ok(*n);
         }
         let node = self.arena.node(e).clone();
         let r = match node {
             Node::Num(n) => self.ir.num(n.to_f64()),
-            Node::Sym(s) => match self.leaves.get(&s) {
+            Node::Sym(s) => match self.env.get(&s) {
                 Some(n) => *n,
                 None => return Err(UnboundSymbol(self.arena.symbol(s).name.clone())),
             },

@@ -4,9 +4,9 @@
 //! documentation read this and the program, nothing else.
 
 use crate::diag::Span;
-use crate::expr::{SymId, SymbolKind};
+use crate::expr::SymId;
 use crate::mech::{ConstraintKind, Equations};
-use crate::model::{FloatType, ResolvedModel};
+use crate::opt::input::{FloatType, Input};
 use crate::opt::split::Split;
 
 /// One state variable.
@@ -197,52 +197,20 @@ pub struct Interface {
 }
 
 impl Interface {
-    /// The interface of a resolved model with these equations, its speeds
+    /// The interface of a model as its input describes it, its speeds
     /// split as `split` says.
-    pub fn new(model: &ResolvedModel, eqs: &Equations, split: &Split) -> Interface {
-        let sys = &model.system;
-        let a = &sys.arena;
+    pub fn new(input: &Input, split: &Split) -> Interface {
+        let (a, eqs, d) = (&input.arena, &input.equations, &input.described);
         let state = |s: &SymId| StateVar {
             name: a.symbol(*s).name.clone(),
             unit: a.symbol(*s).unit.clone().unwrap_or_default(),
         };
-        let symbol = |s: &SymId| {
-            let sym = a.symbol(*s);
-            let default = match sym.kind {
-                SymbolKind::Parameter { default } | SymbolKind::Input { default } => default,
-                _ => 0.0,
-            };
-            model.quantity(&sym.name, sym.unit.as_deref(), default)
-        };
-        let mut outputs: Vec<Quantity> = sys
-            .outputs()
-            .iter()
-            .map(|o| model.quantity(&o.name, o.unit.as_deref(), 0.0))
-            .collect();
-        outputs.extend(model.constraint_outputs(eqs));
-        let subroutines = sys
-            .subroutines()
-            .iter()
-            .map(|s| {
-                model.user_code(
-                    &s.name,
-                    s.outputs
-                        .iter()
-                        .map(|o| a.symbol(*o).name.clone())
-                        .collect(),
-                )
-            })
-            .collect();
-        let extern_fns = a
-            .user_fns()
-            .map(|(_, f)| model.user_code(&f.name, Vec::new()))
-            .collect();
         Interface {
-            name: sys.name().to_string(),
-            docs: model.docs.clone(),
-            float: model.float,
-            parameters: sys.parameters().iter().map(symbol).collect(),
-            inputs: sys.inputs().iter().map(symbol).collect(),
+            name: d.name.clone(),
+            docs: d.docs.clone(),
+            float: input.options.float,
+            parameters: d.parameters.clone(),
+            inputs: d.inputs.clone(),
             states: StateLayout {
                 coordinates: split
                     .coordinates
@@ -252,14 +220,14 @@ impl Interface {
                 speeds: split.free.iter().map(|&k| state(&eqs.speeds[k])).collect(),
                 extra: eqs.states.iter().map(state).collect(),
             },
-            outputs,
-            extern_fns,
-            subroutines,
-            constraints: model.constraint_infos(eqs),
-            motions: model.motion_infos(),
+            outputs: d.outputs.clone(),
+            extern_fns: d.extern_fns.clone(),
+            subroutines: d.subroutines.clone(),
+            constraints: d.constraints.clone(),
+            motions: d.motions.clone(),
             closures: closures(eqs, split),
             linear_states: None,
-            cautions: model.singular_starts(),
+            cautions: d.cautions.clone(),
         }
     }
 
@@ -282,149 +250,4 @@ fn closures(eqs: &Equations, split: &Split) -> Vec<Closure> {
             slot: split.coordinates.iter().position(|k| k == q).unwrap_or(0),
         })
         .collect()
-}
-
-impl ResolvedModel {
-    /// A note for every body whose three-angle rotation starts where its
-    /// kinematical equations divide by zero: the middle angle at 0 (or π)
-    /// for a repeated axis (3-1-3), at ±π/2 for three distinct axes
-    /// (1-2-3). The first `derivatives` call would fail there.
-    fn singular_starts(&self) -> Vec<String> {
-        use crate::expr::{Bindings, NoUserFunctions};
-        use crate::mech::Rotation;
-        let sys = &self.system;
-        let b = Bindings::with_defaults(&sys.arena);
-        let mut notes = Vec::new();
-        for body in sys.bodies() {
-            let Rotation::Sequence([a, _, c]) = body.joint.rotation else {
-                continue;
-            };
-            let n = body.coordinates.len();
-            if n < 3 {
-                continue;
-            }
-            let middle = &sys.coordinates()[body.coordinates[n - 2]];
-            let angle = sys.arena.eval(middle.initial_q, &b, &mut NoUserFunctions);
-            let (s, co) = angle.sin_cos();
-            let singular = if a == c {
-                s.abs() < 1e-9
-            } else {
-                co.abs() < 1e-9
-            };
-            if singular {
-                let q = &sys.arena.symbol(middle.q).name;
-                notes.push(format!(
-                    "Body `{}` starts at a singularity of its rotation sequence ({q} = {angle}): its kinematical equations divide by zero there (the angle rates are not finite). Start it elsewhere (`initial: [...]`) or use `rotate: quaternion`.",
-                    body.name
-                ));
-            }
-        }
-        notes
-    }
-
-    /// The constraints with their dependents.
-    fn constraint_infos(&self, eqs: &Equations) -> Vec<ConstraintInfo> {
-        let sys = &self.system;
-        let name = |s: SymId| sys.arena.symbol(s).name.clone();
-        let c = &eqs.constraints;
-        sys.constraints()
-            .iter()
-            .enumerate()
-            .map(|(k, con)| ConstraintInfo {
-                name: con.name.clone(),
-                kind: con.kind,
-                dependent_speed: name(eqs.speeds[c.dependent_speeds[k]]),
-                dependent_coordinate: c
-                    .positions
-                    .iter()
-                    .position(|&p| p == k)
-                    .map(|i| name(eqs.coordinates[c.dependent_coordinates[i]])),
-                unit: con.unit.clone().unwrap_or_default(),
-                docs: self.item_docs.get(&con.name).cloned().unwrap_or_default(),
-                span: self.spans.named(&con.name),
-            })
-            .collect()
-    }
-
-    /// The prescribed motions.
-    fn motion_infos(&self) -> Vec<MotionInfo> {
-        let sys = &self.system;
-        sys.motions()
-            .iter()
-            .map(|m| MotionInfo {
-                name: m.name.clone(),
-                coordinate: sys
-                    .arena
-                    .symbol(sys.coordinates()[m.coordinate].q)
-                    .name
-                    .clone(),
-                docs: self.item_docs.get(&m.name).cloned().unwrap_or_default(),
-                span: self.spans.named(&m.name),
-            })
-            .collect()
-    }
-
-    /// The outputs every constrained model adds after the model's own: the
-    /// residual of each position constraint, then the generalized force
-    /// that enforces each motion (N for a translation, N m for a
-    /// rotation).
-    fn constraint_outputs(&self, eqs: &Equations) -> Vec<Quantity> {
-        let sys = &self.system;
-        let mut out = Vec::new();
-        for &k in &eqs.constraints.positions {
-            let c = &sys.constraints()[k];
-            out.push(Quantity {
-                name: c.name.clone(),
-                unit: c.unit.clone().unwrap_or_default(),
-                default: 0.0,
-                docs: Some(vec![format!(
-                    "Residual of the position constraint `{}` (zero when the configuration satisfies it).",
-                    c.name
-                )]),
-                span: self.spans.named(&c.name),
-            });
-        }
-        for m in sys.motions() {
-            let coordinate = &sys.coordinates()[m.coordinate];
-            let unit = match sys.arena.symbol(coordinate.q).unit.as_deref() {
-                Some("m") => "N",
-                Some("rad") => "N m",
-                _ => "",
-            };
-            let q = &sys.arena.symbol(coordinate.q).name;
-            out.push(Quantity {
-                name: m.name.clone(),
-                unit: unit.to_string(),
-                default: 0.0,
-                docs: Some(vec![format!(
-                    "Generalized force along `{q}` that enforces the motion `{}`.",
-                    m.name
-                )]),
-                span: self.spans.named(&m.name),
-            });
-        }
-        out
-    }
-
-    /// The interface entry of a named value declared by the model.
-    fn quantity(&self, name: &str, unit: Option<&str>, default: f64) -> Quantity {
-        Quantity {
-            name: name.to_string(),
-            unit: unit.unwrap_or_default().to_string(),
-            default,
-            docs: self.item_docs.get(name).cloned(),
-            span: self.spans.named(name),
-        }
-    }
-
-    /// The interface entry of user code.
-    fn user_code(&self, name: &str, outputs: Vec<String>) -> UserCode {
-        UserCode {
-            name: name.to_string(),
-            params: self.formal_params.get(name).cloned().unwrap_or_default(),
-            outputs,
-            docs: self.item_docs.get(name).cloned().unwrap_or_default(),
-            span: self.spans.named(name),
-        }
-    }
 }

@@ -8,18 +8,15 @@ pub(super) mod interp;
 pub(super) mod text;
 pub(super) mod verify;
 
-use crate::mech::{Equations, ItemRef};
-use crate::model::{Formulation, ResolvedModel};
+use crate::opt::error::ProgramError;
+use crate::opt::input::{Formulation, Input};
 use crate::opt::ir::{Ir, Leaf, Nid};
 use crate::opt::linearize::{Linear, Linearizable};
-use crate::opt::lower::constrained;
-use crate::opt::lower::equations::{Lowered, leaves};
-use crate::opt::lower::tree_model;
+use crate::opt::lower::equations::Lowered;
+use crate::opt::lower::{Given, Lowering, constrained, tree_model};
 use crate::opt::program::interface::{Interface, StateLayout};
-use crate::opt::schedule::common;
-use crate::opt::schedule::cost;
 use crate::opt::schedule::naming::Naming;
-use crate::opt::schedule::{Block, Guard, Options, Task, schedule};
+use crate::opt::schedule::{Block, Guard, Options, Task, common, cost, schedule};
 use crate::opt::solve::Solver;
 use crate::opt::split::Split;
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -174,55 +171,24 @@ fn slots(values: &[Nid]) -> FxHashMap<Nid, usize> {
     values.iter().enumerate().map(|(k, n)| (*n, k)).collect()
 }
 
-/// Why a program could not be built.
-#[derive(Clone, Debug, PartialEq)]
-pub enum ProgramError {
-    /// An expression of `item` uses a symbol that has no value at run time.
-    Unbound {
-        /// The symbol's name.
-        name: String,
-        /// The item whose expression uses it.
-        item: ItemRef,
-    },
-}
-
-impl ProgramError {
-    /// The item whose expression caused the error.
-    pub fn item(&self) -> ItemRef {
-        match self {
-            ProgramError::Unbound { item, .. } => *item,
-        }
-    }
-}
-
-impl std::fmt::Display for ProgramError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            ProgramError::Unbound { name, .. } => {
-                write!(f, "`{name}` has no value in the generated program")
-            }
-        }
-    }
-}
-
-/// Builds the program of a resolved model from its equations.
-pub fn build(model: &mut ResolvedModel, eqs: &Equations) -> Result<Program, ProgramError> {
-    let split = Split::new(eqs);
+/// Builds the program of a model from everything it is given.
+pub fn build(mut input: Input) -> Result<Program, ProgramError> {
+    let split = Split::new(&input.equations);
     if !split.is_tree() {
-        return build_route(model, eqs, &split, Route::Constrained);
+        return build_route(&mut input, &split, Route::Constrained);
     }
-    match model.formulation {
-        Formulation::MassMatrix => build_route(model, eqs, &split, Route::MassMatrix),
-        Formulation::Recursive => build_route(model, eqs, &split, Route::Recursive),
+    match input.options.formulation {
+        Formulation::MassMatrix => build_route(&mut input, &split, Route::MassMatrix),
+        Formulation::Recursive => build_route(&mut input, &split, Route::Recursive),
         // With small variables the mass matrix is truncated term by term;
         // the recursion would truncate a different (first-order equal)
         // model, so the choice keeps the mass matrix.
-        Formulation::Auto if model.system.arena.has_small_symbols() => {
-            build_route(model, eqs, &split, Route::MassMatrix)
+        Formulation::Auto if input.arena.has_small_symbols() => {
+            build_route(&mut input, &split, Route::MassMatrix)
         }
         Formulation::Auto => {
-            let matrix = build_route(model, eqs, &split, Route::MassMatrix)?;
-            let recursive = build_route(model, eqs, &split, Route::Recursive)?;
+            let matrix = build_route(&mut input, &split, Route::MassMatrix)?;
+            let recursive = build_route(&mut input, &split, Route::Recursive)?;
             let cost = |p: &Program| cost::estimated_cycles(&p.ir, p.block(BlockKind::Derivatives));
             Ok(match cost(&recursive) < cost(&matrix) {
                 true => recursive,
@@ -244,22 +210,21 @@ enum Route {
 }
 
 /// The program of one route.
-fn build_route(
-    model: &mut ResolvedModel,
-    eqs: &Equations,
-    split: &Split,
-    route: Route,
-) -> Result<Program, ProgramError> {
-    let interface = Interface::new(model, eqs, split);
-    let mut ir = Ir::new();
-    let lowered = match route {
-        Route::Constrained => constrained::lower(model, eqs, split, &mut ir)?,
-        _ => {
-            let leaves = leaves(model, eqs, split, &mut ir)?;
-            tree_model::lower(model, eqs, &mut ir, &leaves, route == Route::Recursive)?
-        }
+fn build_route(input: &mut Input, split: &Split, route: Route) -> Result<Program, ProgramError> {
+    let interface = Interface::new(input, split);
+    let given = Given {
+        eqs: &input.equations,
+        declared: &input.declared,
+        split,
     };
-    let linear = model
+    let mut lw = Lowering::start(&mut input.arena, given)?;
+    let lowered = match route {
+        Route::Constrained => constrained::lower(&mut lw)?,
+        _ => tree_model::lower(&mut lw, route == Route::Recursive)?,
+    };
+    let mut ir = lw.into_ir();
+    let linear = input
+        .options
         .linearize
         .then(|| linearizable(&lowered, &interface).linearize(&mut ir));
     let mut interface = interface;

@@ -7,6 +7,10 @@ use crate::model::{ResolvedModel, Scene, resolve_scene};
 use crate::opt::{Program, build};
 use crate::syntax::{self, ast};
 
+mod input;
+
+pub use input::opt_input;
+
 /// A compiled model.
 #[derive(Clone, Debug)]
 pub struct Compiled {
@@ -40,7 +44,7 @@ pub fn compile_scene(model: &ast::Model, scene: &Scene) -> Result<Compiled, Diag
     if equations.constraints.is_empty() && equations.prescribed.is_empty() {
         check_mass_matrix(&resolved, &equations)?;
     }
-    let program = match build(&mut resolved, &equations) {
+    let program = match build(opt_input(&resolved, &equations)) {
         Ok(p) => p,
         Err(e) => return Err(at(&resolved, e.item(), e.to_string(), None)),
     };

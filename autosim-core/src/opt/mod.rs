@@ -15,11 +15,12 @@ mod solve;
 mod split;
 
 pub use error::ProgramError;
-pub use input::{Declared, Described, FloatType, Formulation, Input, Options, SubroutineCall};
-pub use ir::{Ir, Leaf, Nid, Op};
-pub use program::interface::{
-    Closure, ConstraintInfo, Interface, MotionInfo, Quantity, StateLayout, StateVar, UserCode,
+pub use input::{
+    ConstraintInfo, Declared, Described, FloatType, Formulation, Input, MotionInfo, Options,
+    Quantity, SubroutineCall, UserCode,
 };
+pub use ir::{Ir, Leaf, Nid, Op};
+pub use program::interface::{Closure, Interface, StateLayout, StateVar};
 pub use program::interp::{At, Interpreter, SolveError, UserCalls};
 pub use program::{BlockKind, MassLayout, Program, build};
 pub use schedule::{Block, Guard, Ops, Stmt, Task};

@@ -6,13 +6,15 @@
 //! subroutine arguments, added states, outputs, initial state).
 
 use super::Given;
-use super::expr::UnboundSymbol;
 use crate::expr::{Arena, ExprId, Func, Node, SymId};
 use crate::mech::{Equations, ItemRef};
 use crate::opt::error::ProgramError;
 use crate::opt::ir::{Ir, Leaf, Nid};
 use crate::opt::linearize::tangent::with_accelerations;
 use rustc_hash::FxHashMap;
+
+/// A symbol with no value in the program (e.g. a free symbol).
+pub(super) struct UnboundSymbol(pub String);
 
 /// The IR values of symbols.
 pub(crate) type Env = FxHashMap<SymId, Nid>;

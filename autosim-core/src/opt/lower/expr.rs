@@ -6,13 +6,10 @@
 //! (`k·a + k·b` as `k·(a + b)`; constant factors first, which may add a
 //! sum to the constants block to save a product in every call).
 
-use super::context::Lowering;
+use super::context::{Lowering, UnboundSymbol};
 use crate::expr::{ExprId, Node, Number};
 use crate::opt::ir::{Nid, Op};
 use indexmap::IndexMap;
-
-/// A symbol with no value in the program (e.g. a free symbol).
-pub(super) struct UnboundSymbol(pub String);
 
 impl Lowering<'_> {
     /// The IR node computing `e`.

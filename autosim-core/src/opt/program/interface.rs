@@ -3,10 +3,9 @@
 //! user code, and the layout of its state vector. The emitter and the
 //! documentation read this and the program, nothing else.
 
-use crate::diag::Span;
 use crate::expr::SymId;
-use crate::mech::{ConstraintKind, Equations};
-use crate::opt::input::{FloatType, Input};
+use crate::mech::Equations;
+use crate::opt::input::{ConstraintInfo, FloatType, Input, MotionInfo, Quantity, UserCode};
 use crate::opt::split::Split;
 
 /// One state variable.
@@ -79,71 +78,6 @@ impl StateLayout {
     pub fn speed_rate_name(&self, k: usize) -> String {
         format!("{}_dot", self.speeds[k].name)
     }
-}
-
-/// A named value of the interface: a parameter (a field of `Parameters`),
-/// an input (of `Inputs`) or an output.
-#[derive(Clone, Debug)]
-pub struct Quantity {
-    /// Name.
-    pub name: String,
-    /// Unit text (empty when none).
-    pub unit: String,
-    /// Default value (0 for outputs).
-    pub default: f64,
-    /// The model's doc comments; `None` for a parameter the compiler
-    /// declared (a body's default mass or inertia).
-    pub docs: Option<Vec<String>>,
-    /// Where it is declared (the body, for a default mass property).
-    pub span: Span,
-}
-
-/// User code the model calls: an `extern fn` (one value) or an `extern
-/// sub` (an array of values), a method of the `Externs` trait.
-#[derive(Clone, Debug)]
-pub struct UserCode {
-    /// Name.
-    pub name: String,
-    /// Formal argument names.
-    pub params: Vec<String>,
-    /// Names of the values a subroutine returns (empty for a function).
-    pub outputs: Vec<String>,
-    /// Doc comments.
-    pub docs: Vec<String>,
-    /// Where it is declared.
-    pub span: Span,
-}
-
-/// A constraint, as generated code and its documentation name it.
-#[derive(Clone, Debug)]
-pub struct ConstraintInfo {
-    /// Name.
-    pub name: String,
-    /// Position or speed.
-    pub kind: ConstraintKind,
-    /// The speed it determines.
-    pub dependent_speed: String,
-    /// The coordinate it determines (position constraints).
-    pub dependent_coordinate: Option<String>,
-    /// Unit of its expression (empty when not given).
-    pub unit: String,
-    /// Doc comments.
-    pub docs: Vec<String>,
-    /// Where it is declared.
-    pub span: Span,
-}
-
-/// A prescribed motion.
-#[derive(Clone, Debug)]
-pub struct MotionInfo {
-    /// Name (also the output of the generalized force that enforces it).
-    pub name: String,
-    /// The coordinate it drives.
-    pub coordinate: String,
-    /// Doc comments.
-    pub docs: Vec<String>,
-    /// Where it is declared.
-    pub span: Span,
 }
 
 /// What assembly solves: each position constraint (an index into

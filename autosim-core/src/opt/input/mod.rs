@@ -2,9 +2,12 @@
 //! resolved model and its equations. opt reads nothing else (it imports
 //! nothing from `model`).
 
+mod described;
+
+pub use described::{ConstraintInfo, Described, MotionInfo, Quantity, UserCode};
+
 use crate::expr::{Arena, ExprId, SymId};
 use crate::mech::{Equations, ItemRef};
-use crate::opt::program::interface::{ConstraintInfo, MotionInfo, Quantity, UserCode};
 
 /// Everything the program of a model is built from.
 #[derive(Clone, Debug)]
@@ -55,34 +58,6 @@ pub struct SubroutineCall {
     pub args: Vec<ExprId>,
     /// The symbols it sets (`Leaf::SubOut`).
     pub outputs: Vec<SymId>,
-}
-
-/// What generated code exposes of a model as the model declares it:
-/// names, units, defaults, docs and spans (opt adds the state vector and
-/// what it solves for).
-#[derive(Clone, Debug)]
-pub struct Described {
-    /// The model's name (the generated type).
-    pub name: String,
-    /// The model's doc comments.
-    pub docs: Vec<String>,
-    /// Parameters in declaration order.
-    pub parameters: Vec<Quantity>,
-    /// Inputs in declaration order.
-    pub inputs: Vec<Quantity>,
-    /// The outputs: the model's, then the residual of each position
-    /// constraint and the force of each motion.
-    pub outputs: Vec<Quantity>,
-    /// User functions, by `UserFnId` index.
-    pub extern_fns: Vec<UserCode>,
-    /// User subroutines in declaration order.
-    pub subroutines: Vec<UserCode>,
-    /// Constraints in declaration order.
-    pub constraints: Vec<ConstraintInfo>,
-    /// Prescribed motions in declaration order.
-    pub motions: Vec<MotionInfo>,
-    /// Cautions for the user, printed in the model's documentation.
-    pub cautions: Vec<String>,
 }
 
 /// What the program is asked for (the model's `settings` and the scene's

@@ -10,7 +10,7 @@
 use super::recursion::Resultants;
 use crate::expr::ExprId;
 use crate::mech::framevec::Mat3;
-use crate::mech::joint::UnitMotion;
+use crate::mech::joint::{Axis, UnitMotion};
 use crate::mech::system::{BodyId, System};
 
 /// One body's data for the recursive solve (bodies in parent-first order;
@@ -34,6 +34,15 @@ pub struct BodyKinetics {
     /// Each of the body's speeds: its index and its unit motion
     /// `[ω; v_origin]` in body axes.
     pub speeds: Vec<(usize, [ExprId; 6])>,
+    /// For each speed, the component of `[ω; v_origin]` its unit motion
+    /// is the unit vector of, where it is one (`UnitMotion::axis`).
+    pub unit_axes: Vec<Option<usize>>,
+    /// The axis the body turns about relative to its parent, where its
+    /// rotation is one turn about an axis the two share (a simple
+    /// rotation by an angle that is not small, with no constant turn
+    /// before it): `rotation` is then 1 on
+    /// that axis and `[[c, −s], [s, c]]` in the other two.
+    pub turn: Option<Axis>,
     /// The body's applied plus velocity-dependent inertia forces, negated
     /// (the bias force of the recursion): `[−moment about the origin;
     /// −force]`, body axes.
@@ -79,6 +88,7 @@ impl System {
                     (k, [w[0], w[1], w[2], v[0], v[1], v[2]])
                 })
                 .collect();
+            let unit_axes = body.coordinates.iter().map(|&k| motions[k].axis).collect();
             let (f, t) = (own.force[b].c, own.moment[b].c);
             let bias = [t[0], t[1], t[2], f[0], f[1], f[2]].map(|x| self.arena.neg(x));
             out.push(BodyKinetics {
@@ -93,6 +103,8 @@ impl System {
                 first_moment,
                 inertia,
                 speeds,
+                unit_axes,
+                turn: self.frames.turn_axis(&self.arena, pf, body.frame),
                 bias,
             });
         }

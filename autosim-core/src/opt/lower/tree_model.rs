@@ -111,6 +111,8 @@ fn tree_bodies(
             offset,
             inertia: rigid_inertia(&mut lw.ir, m, &h, &j),
             speeds,
+            unit_axes: b.unit_axes.clone(),
+            turn: b.turn.map(|a| a.index()),
             bias,
         });
     }

@@ -17,7 +17,7 @@
 //! mass matrix's are.
 
 use crate::opt::ir::{Ir, Nid};
-use crate::opt::solve::axis_rotation::{AxisRotation, M3};
+use crate::opt::solve::axis_rotation::{AxisRotation, M3, literal_turn};
 
 /// Spatial vectors `[angular; linear]`.
 type V6 = [Nid; 6];
@@ -36,6 +36,12 @@ pub(crate) struct TreeBody {
     pub inertia: M6,
     /// Speed index and unit motion of each of its speeds.
     pub speeds: Vec<(usize, V6)>,
+    /// For each speed, the component of `[ω; v]` its unit motion is the
+    /// unit vector of, where it is one (from `mech`'s joint).
+    pub unit_axes: Vec<Option<usize>>,
+    /// The axis the body turns about relative to its parent, where its
+    /// rotation is one turn about an axis the two share.
+    pub turn: Option<usize>,
     /// Its bias force (applied plus velocity-dependent inertia forces,
     /// negated), body axes.
     pub bias: V6,
@@ -90,7 +96,13 @@ impl Articulated {
             // gives row `a` of `W` and `I^a S = U − W Sᵀ U = 0` row and
             // column `a` of `I^a`: exact values the algebra would only
             // reach as `x − x D D⁻¹`.
-            let axes: Vec<Option<usize>> = s.iter().map(|sk| coordinate_axis(ir, sk)).collect();
+            let axes = b.unit_axes.clone();
+            debug_assert!(
+                s.iter()
+                    .zip(&axes)
+                    .all(|(sk, a)| coordinate_axis(ir, sk) == *a),
+                "the unit motions are not the coordinate axes the joint says"
+            );
             for (c2, axis) in axes.iter().enumerate() {
                 if let Some(a) = *axis {
                     for (c, wc) in w.iter_mut().enumerate() {
@@ -113,7 +125,7 @@ impl Articulated {
                 }
             }
             if let Some(p) = b.parent {
-                let moved = inertia_to_parent(ir, &articulated, &b.rotation, &b.offset);
+                let moved = inertia_to_parent(ir, &articulated, b);
                 for r in 0..6 {
                     for c in r..6 {
                         let v = ir.sum(vec![ia[p][r][c], moved[r][c]], Vec::new());
@@ -332,7 +344,7 @@ impl SmallLdlt {
 }
 
 /// `Some(a)` if `s` is the coordinate axis `e_a` (literal ones and
-/// zeros).
+/// zeros; what `mech` says of the joint, checked in debug builds).
 fn coordinate_axis(ir: &Ir, s: &V6) -> Option<usize> {
     let mut axis = None;
     for (r, x) in s.iter().enumerate() {
@@ -440,11 +452,17 @@ fn mul3(ir: &mut Ir, x: &M3, y: &M3) -> M3 {
 /// `Xᵀ I X` for a child's articulated inertia `I`: rotated to the
 /// parent's axes (`C A Cᵀ` per block), then moved from the child's origin
 /// to the parent's (`A − B r̃ + r̃ Bᵀ − r̃ C r̃`, `B + r̃ C`, `C`).
-fn inertia_to_parent(ir: &mut Ir, m: &M6, c: &M3, r: &[Nid; 3]) -> M6 {
+fn inertia_to_parent(ir: &mut Ir, m: &M6, body: &TreeBody) -> M6 {
+    let (c, r) = (&body.rotation, &body.offset);
     let part = |row: usize, col: usize| -> M3 {
         std::array::from_fn(|i| std::array::from_fn(|j| m[row + i][col + j]))
     };
-    let axis = AxisRotation::of(ir, c);
+    debug_assert_eq!(
+        literal_turn(ir, c),
+        body.turn,
+        "the rotation is not the turn the joint says"
+    );
+    let axis = body.turn.map(|k| AxisRotation::about(ir, c, k));
     let turn = |ir: &mut Ir, b: &M3, symmetric: bool| match &axis {
         Some(axis) => axis.rotate(ir, b, symmetric),
         None => rotate_block(ir, c, b, symmetric),

@@ -1,6 +1,7 @@
 //! `C B Cᵀ` for a rotation `C` about a coordinate axis, by double angles.
 //!
-//! A joint turning about one of its body's axes has a direction cosine
+//! A joint turning about one of its body's axes (`mech`'s
+//! `BodyKinetics::turn`) has a direction cosine
 //! matrix with a 1 on that axis and `[[c, −s], [s, c]]` (`c = cos q`,
 //! `s = ±sin q`) in the other two. Rotating a 3×3 block with it leaves the
 //! axis's own entry alone, turns the axis's row and column as vectors, and
@@ -32,22 +33,15 @@ pub(crate) struct AxisRotation {
 }
 
 impl AxisRotation {
-    /// `Some` if `c` is such a rotation.
-    pub fn of(ir: &mut Ir, c: &M3) -> Option<AxisRotation> {
-        let k = (0..3).find(|&k| ir.as_num(c[k][k]) == Some(1.0))?;
+    /// The rotation `c` about axis `k`, which the joint turns about (the
+    /// matrix is such a rotation: checked in debug builds).
+    pub fn about(ir: &mut Ir, c: &M3, k: usize) -> AxisRotation {
         let (i, j) = match k {
             0 => (1, 2),
             1 => (0, 2),
             _ => (0, 1),
         };
-        let zero = |n: Nid| ir.as_num(n) == Some(0.0);
-        if ![c[k][i], c[k][j], c[i][k], c[j][k]].into_iter().all(zero) {
-            return None;
-        }
         let (cos, s) = (c[i][i], c[j][i]);
-        if c[j][j] != cos || c[i][j] != ir.neg(s) || !same_angle(ir, cos, s) {
-            return None;
-        }
         let cc = ir.mul(cos, cos);
         let cs = ir.mul(cos, s);
         let half = ir.num(0.5);
@@ -55,13 +49,13 @@ impl AxisRotation {
         let c2_half = ir.sum(vec![cc], vec![half]);
         let c2 = ir.sum(vec![cc, cc], vec![one]);
         let s2 = ir.sum(vec![cs, cs], Vec::new());
-        Some(AxisRotation {
+        AxisRotation {
             k,
             i,
             j,
             cos_sin: (cos, s),
             double: [c2, c2_half, s2, cs],
-        })
+        }
     }
 
     /// `C b Cᵀ`; `symmetric`: `b` is, and so is the result.
@@ -110,6 +104,25 @@ impl AxisRotation {
         }
         out
     }
+}
+
+/// The axis `c` turns about, read from its literal entries (what `mech`
+/// says of the joint, checked in debug builds).
+pub(crate) fn literal_turn(ir: &Ir, c: &M3) -> Option<usize> {
+    [(0, 1, 2), (1, 0, 2), (2, 0, 1)]
+        .into_iter()
+        .find(|&axes| is_turn(ir, c, axes))
+        .map(|(k, _, _)| k)
+}
+
+/// Whether `c` is 1 on axis `k`, 0 beside it, and turns the other two
+/// axes `i`, `j` by the cosine and sine of one angle (literal entries).
+fn is_turn(ir: &Ir, c: &M3, (k, i, j): (usize, usize, usize)) -> bool {
+    let zero = |n: Nid| ir.as_num(n) == Some(0.0);
+    ir.as_num(c[k][k]) == Some(1.0)
+        && [c[k][i], c[k][j], c[i][k], c[j][k]].into_iter().all(zero)
+        && c[j][j] == c[i][i]
+        && same_angle(ir, c[i][i], c[j][i])
 }
 
 /// `cos` is `cos(x)` and `s` is `sin(x)` or `−sin(x)` of the same `x`.
@@ -167,7 +180,8 @@ mod tests {
                     let (r, col) = if sym && r > col { (col, r) } else { (r, col) };
                     ir.leaf(Leaf::State(1 + 3 * r + col))
                 };
-                let rotation = AxisRotation::of(&mut ir, &c).expect("an axis rotation");
+                assert_eq!(literal_turn(&ir, &c), Some(k));
+                let rotation = AxisRotation::about(&mut ir, &c, k);
                 for symmetric in [false, true] {
                     let b: M3 = std::array::from_fn(|r| {
                         std::array::from_fn(|col| leaf(&mut ir, r, col, symmetric))
@@ -200,6 +214,6 @@ mod tests {
         let mut ir = Ir::new();
         let m: M3 =
             std::array::from_fn(|r| std::array::from_fn(|c| ir.leaf(Leaf::State(3 * r + c))));
-        assert!(AxisRotation::of(&mut ir, &m).is_none());
+        assert_eq!(literal_turn(&ir, &m), None);
     }
 }

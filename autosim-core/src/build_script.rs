@@ -26,6 +26,13 @@ pub enum BuildError {
     /// `OUT_DIR` is not set (not running in a build script) and no output
     /// directory was configured.
     NoOutDir,
+    /// The path given to [`Config::runtime_path`] is not a Rust path.
+    RuntimePath {
+        /// The path as given.
+        path: String,
+        /// Why it does not parse.
+        error: String,
+    },
 }
 
 impl fmt::Display for BuildError {
@@ -36,6 +43,10 @@ impl fmt::Display for BuildError {
             BuildError::NoOutDir => write!(
                 f,
                 "OUT_DIR is not set: call autosim::build from a build script, or set Config::out_dir"
+            ),
+            BuildError::RuntimePath { path, error } => write!(
+                f,
+                "Config::runtime_path(\"{path}\") is not a Rust path ({error}): write it as `::autosim::runtime` or `::autosim_runtime`"
             ),
         }
     }
@@ -48,7 +59,8 @@ impl std::error::Error for BuildError {}
 pub struct Config {
     out_dir: Option<PathBuf>,
     markdown: bool,
-    emit: EmitOptions,
+    /// The runtime's path as given (checked when compiling).
+    runtime_path: Option<String>,
     quiet: bool,
     scene: Scene,
 }
@@ -89,10 +101,23 @@ impl Config {
 
     /// The path generated code uses for the runtime crate (default
     /// `::autosim::runtime`; use `::autosim_runtime` when depending on the
-    /// runtime directly).
+    /// runtime directly). A path that is not a Rust path makes
+    /// [`Config::compile`] fail with [`BuildError::RuntimePath`].
     pub fn runtime_path(&mut self, path: &str) -> &mut Config {
-        self.emit.runtime_path = path.to_string();
+        self.runtime_path = Some(path.to_string());
         self
+    }
+
+    /// How generated code is written: the runtime's path checked.
+    fn emit_options(&self) -> Result<EmitOptions, BuildError> {
+        let mut emit = EmitOptions::default();
+        if let Some(path) = &self.runtime_path {
+            emit.runtime_path = syn::parse_str(path).map_err(|e| BuildError::RuntimePath {
+                path: path.clone(),
+                error: e.to_string(),
+            })?;
+        }
+        Ok(emit)
     }
 
     /// Compiles the next models for a scene: a new model name, float type,
@@ -113,6 +138,7 @@ impl Config {
     /// Compiles model files (paths as given, usually relative to the crate
     /// root where build scripts run).
     pub fn compile(&self, paths: &[impl AsRef<Path>]) -> Result<Vec<Compiled>, BuildError> {
+        let emit = self.emit_options()?;
         let out_dir = match &self.out_dir {
             Some(d) => d.clone(),
             None => std::env::var_os("OUT_DIR")
@@ -125,12 +151,17 @@ impl Config {
         })?;
         let mut out = Vec::with_capacity(paths.len());
         for p in paths {
-            out.push(self.compile_one(p.as_ref(), &out_dir)?);
+            out.push(self.compile_one(p.as_ref(), &out_dir, &emit)?);
         }
         Ok(out)
     }
 
-    fn compile_one(&self, path: &Path, out_dir: &Path) -> Result<Compiled, BuildError> {
+    fn compile_one(
+        &self,
+        path: &Path,
+        out_dir: &Path,
+        emit: &EmitOptions,
+    ) -> Result<Compiled, BuildError> {
         if !self.quiet {
             println!("cargo::rerun-if-changed={}", path.display());
         }
@@ -139,8 +170,7 @@ impl Config {
         let compiled = compile_source_scene(&file, &self.scene)
             .map_err(|d| BuildError::Model(d.render(&file)))?;
         let name = compiled.program.interface.name.clone();
-        let module = self
-            .emit
+        let module = emit
             .module_name
             .clone()
             .unwrap_or_else(|| snake_case(&name));
@@ -148,7 +178,7 @@ impl Config {
         let text = format!(
             "{}{}",
             header(&shown, &file.text),
-            format_tokens(&model_tokens(&compiled.program, &self.emit))
+            format_tokens(&model_tokens(&compiled.program, emit))
         );
         let rust_file = out_dir.join(format!("{module}.rs"));
         let changed = write_if_changed(&rust_file, &text)?;
@@ -187,4 +217,32 @@ fn write_if_changed(path: &Path, text: &str) -> Result<bool, BuildError> {
 pub fn compile(path: impl AsRef<Path>) -> Result<Compiled, BuildError> {
     let mut v = Config::new().compile(&[path])?;
     v.pop().ok_or(BuildError::NoOutDir)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A runtime path that is not a Rust path is an error, before anything
+    /// is read or written; a good one is accepted.
+    #[test]
+    fn a_bad_runtime_path_is_an_error() {
+        let dir = std::env::temp_dir().join("autosim-runtime-path-test");
+        let err = Config::new()
+            .out_dir(&dir)
+            .quiet(true)
+            .runtime_path("::autosim runtime")
+            .compile(&["does-not-exist.sim"])
+            .expect_err("a bad path");
+        assert!(
+            matches!(&err, BuildError::RuntimePath { path, .. } if path == "::autosim runtime"),
+            "{err}"
+        );
+        assert!(err.to_string().contains("is not a Rust path"), "{err}");
+        let ok = Config::new()
+            .runtime_path("::autosim_runtime")
+            .emit_options();
+        let path = ok.expect("a good path").runtime_path;
+        assert_eq!(quote::quote!(#path).to_string(), ":: autosim_runtime");
+    }
 }

@@ -28,8 +28,8 @@ impl Arena {
         self.num(Number::int(n))
     }
 
-    /// The expression for the rational `num/den` (0 if `den == 0`... never
-    /// call it so; a zero denominator gives 0 rather than a panic).
+    /// The expression for the rational `num/den`; a zero denominator gives
+    /// 0 rather than a panic.
     pub fn rational(&mut self, num: i64, den: i64) -> ExprId {
         let n = Number::rational(num as i128, den as i128).unwrap_or(Number::ZERO);
         self.num(n)
@@ -120,7 +120,7 @@ impl Arena {
         terms: &mut Vec<(ExprId, Number)>,
     ) {
         match self.node(e).clone() {
-            Node::Num(n) => *constant = constant.add(scale.mul(n)),
+            Node::Num(n) => *constant = *constant + scale * n,
             Node::Sum(ts) => {
                 for t in ts.iter() {
                     self.collect_term(*t, scale, constant, terms);
@@ -128,10 +128,10 @@ impl Arena {
             }
             Node::Prod(c, fs) => {
                 if fs.len() == 1 && matches!(self.node(fs[0]), Node::Sum(_)) {
-                    self.collect_term(fs[0], scale.mul(c), constant, terms);
+                    self.collect_term(fs[0], scale * c, constant, terms);
                 } else {
                     let mono = self.monomial(&fs);
-                    terms.push((mono, scale.mul(c)));
+                    terms.push((mono, scale * c));
                 }
             }
             _ => terms.push((e, scale)),
@@ -210,7 +210,7 @@ impl Arena {
         let mut merged: Vec<(ExprId, Number)> = Vec::with_capacity(terms.len());
         for (m, c) in terms {
             match merged.last_mut() {
-                Some(last) if last.0 == m => last.1 = last.1.add(c),
+                Some(last) if last.0 == m => last.1 = last.1 + c,
                 _ => merged.push((m, c)),
             }
         }
@@ -218,7 +218,7 @@ impl Arena {
         // A monomial can be the number 1 (e.g. from the trig identity).
         let one = self.one();
         if let Some(pos) = merged.iter().position(|t| t.0 == one) {
-            constant = constant.add(merged[pos].1);
+            constant = constant + merged[pos].1;
             merged.remove(pos);
         }
 
@@ -270,9 +270,9 @@ impl Arena {
         // Sign convention: the leading (lowest-id) term is never negative.
         let negate = merged[0].1.is_negative();
         if negate {
-            constant = constant.neg();
+            constant = -constant;
             for t in merged.iter_mut() {
-                t.1 = t.1.neg();
+                t.1 = -t.1;
             }
         }
         let mut items: Vec<ExprId> = Vec::with_capacity(merged.len() + 1);
@@ -399,7 +399,7 @@ impl Arena {
                     return true;
                 }
                 // c M - c M s²  →  c M c²
-                let neg_c = c.neg();
+                let neg_c = -c;
                 let rest_found = if rest.is_empty() {
                     if *constant == neg_c { Some(None) } else { None }
                 } else {
@@ -470,7 +470,7 @@ impl Arena {
         for (b, e) in merged {
             let f = if e == self.one() { b } else { self.pow(b, e) };
             match self.node(f) {
-                Node::Num(n) => coef = coef.mul(*n),
+                Node::Num(n) => coef = coef * *n,
                 Node::Prod(..) => {
                     reflatten = true;
                     factors.push(f);
@@ -497,9 +497,9 @@ impl Arena {
 
     fn collect_factor(&mut self, e: ExprId, coef: &mut Number, powers: &mut Vec<(ExprId, ExprId)>) {
         match self.node(e).clone() {
-            Node::Num(n) => *coef = coef.mul(n),
+            Node::Num(n) => *coef = *coef * n,
             Node::Prod(c, fs) => {
-                *coef = coef.mul(c);
+                *coef = *coef * c;
                 for f in fs.iter() {
                     self.collect_factor(*f, coef, powers);
                 }
@@ -538,7 +538,7 @@ impl Arena {
                         if let Some(v) = b.powi(n) {
                             return self.num(v);
                         }
-                    } else if let Some(k) = e.mul(Number::int(2)).as_integer()
+                    } else if let Some(k) = (e * Number::int(2)).as_integer()
                         && let Some(v) = b.exact_sqrt().and_then(|r| r.powi(k))
                     {
                         // `b^(k/2)` of a perfect square, for every odd `k`: a
@@ -564,13 +564,13 @@ impl Arena {
                     }
                     if let Some(e2n) = self.as_number(e2) {
                         if integer.is_some() {
-                            let ne = self.num(e2n.mul(e));
+                            let ne = self.num(e2n * e);
                             return self.pow(b2, ne);
                         }
                         if e2n.as_integer().is_some_and(|k| k % 2 == 0) {
                             // (x^(2k))^e = |x|^(2k e)
                             let ab = self.func(Func::Abs, &[b2]);
-                            let ne = self.num(e2n.mul(e));
+                            let ne = self.num(e2n * e);
                             return self.pow(ab, ne);
                         }
                     }

@@ -58,19 +58,6 @@ pub struct Equations {
     pub tree: TreeKinetics,
 }
 
-impl Equations {
-    /// All expressions (kinematics, mass matrix, forcing, state derivatives).
-    pub fn all_expressions(&self) -> Vec<ExprId> {
-        let mut v = self.kinematics.clone();
-        for row in &self.mass_matrix {
-            v.extend(row);
-        }
-        v.extend(&self.forcing);
-        v.extend(&self.state_derivatives);
-        v
-    }
-}
-
 impl System {
     /// Derives the equations of motion (Kane's method, composite-body form).
     pub fn equations(&mut self) -> Result<Equations, LocatedError> {

@@ -164,7 +164,7 @@ impl Lowering<'_> {
             && let Some(n) = self.arena.as_number(x)
             && n.is_negative()
         {
-            let pos = self.arena.num(n.neg());
+            let pos = self.arena.num(-n);
             return Some(self.arena.pow(b, pos));
         }
         None

@@ -9,11 +9,9 @@
 //! Where: in blocks too big for one `let` per value (their intermediates
 //! live in an array anyway), and in big blocks bound by throughput rather
 //! than latency, where it is also faster: scheduled apart, the shared
-//! values and the rest each keep fewer values live (chain-spatial-20:
-//! `derivatives` 7 093 → 6 479 instructions, stack reloads 869 → 501,
-//! 830 → 760 ns). A latency-bound block (chain-planar-50, whose
-//! critical path is 0.8 of its operations) waits for the shared part
-//! instead: 1 086 → 1 250 ns, so it keeps one function.
+//! values and the rest each keep fewer values live. A latency-bound block
+//! would wait for the shared part instead, so it keeps one function
+//! (timings: `bench/results/compiler-choices.md`).
 
 use crate::limits::MAX_LETS_IN_FUNCTION;
 use crate::opt::ir::{Ir, Nid, Op};
@@ -22,8 +20,8 @@ use crate::opt::schedule::{Block, Options, Task, schedule};
 use rustc_hash::FxHashSet;
 
 /// Blocks with more bound values than this share for speed when they are
-/// throughput-bound (chain-spatial-10, 713 values, is 4 % slower shared;
-/// chain-spatial-20, 1 694, is 8 % faster).
+/// throughput-bound; smaller ones were slower shared
+/// (`bench/results/compiler-choices.md`).
 pub const MIN_VALUES_TO_SHARE: usize = 1000;
 
 /// The common block of `first` and `second` (scheduled from `tasks`

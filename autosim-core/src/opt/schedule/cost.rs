@@ -18,13 +18,10 @@ pub fn latency(op: &Op) -> u32 {
 }
 
 /// The estimated cycles of one execution of `block`: its operations (one
-/// a cycle) plus its critical path. Neither alone ranks the two
-/// formulations of the chains of `bench/peers` the way they time: planar
-/// chains of 5 and 7 links are 18-22 % faster by the mass matrix, which
-/// has more operations (628 against 481 at 7 links) but a critical path
-/// half as long (248 against 443 cycles: the recursion's inward pass is
-/// one chain with a division per link); this sum ranks all seven pairs
-/// timed (n = 3, 5, 7, 10 planar and 5, 7, 10 spatial) as measured.
+/// a cycle) plus its critical path: neither alone ranks the two
+/// formulations the way they time (a recursion with fewer operations can
+/// be slower for its one long chain); the sum ranks every pair timed as
+/// measured (`bench/results/compiler-choices.md`).
 pub fn estimated_cycles(ir: &Ir, block: &Block) -> usize {
     block.ops.total() + critical_path(ir, block) as usize
 }

@@ -1,11 +1,10 @@
 //! Where generated code's math comes from: the `libm` crate without `std`
 //! or with the `libm` feature (the same bits as on a device), the standard
-//! library otherwise; sums of products fused only with `std`, without
-//! `libm`, on a target with the instruction. Checked in both
-//! configurations (`.ci/run` also runs `cargo test -p autosim-runtime
-//! --features libm`).
+//! library otherwise. Checked in both configurations (`.ci/run` also runs
+//! this file with `--features libm`); whether sums of products fuse is
+//! checked by the runtime's own `add_mul_rounds_once_exactly_where_it_fuses`.
 
-use autosim_runtime::__private::{MulAdd, math};
+use autosim_runtime::__private::math;
 
 /// `true` where every math function is asked to come from `libm`.
 const FROM_LIBM: bool = cfg!(any(not(feature = "std"), feature = "libm"));
@@ -47,17 +46,4 @@ fn exp_ln_powers_and_roots_come_from_where_the_features_say() {
             "expf({x32})"
         );
     }
-}
-
-#[test]
-fn sums_of_products_fuse_only_with_std_without_libm() {
-    let fused = cfg!(all(
-        feature = "std",
-        not(feature = "libm"),
-        any(target_feature = "fma", target_arch = "aarch64")
-    ));
-    let e = f64::EPSILON;
-    // (1 + ε)(1 − ε) − 1 is 0 rounded twice and −ε² rounded once.
-    let got = (-1.0_f64).add_mul(1.0 + e, 1.0 - e);
-    assert_eq!(got, if fused { -(e * e) } else { 0.0 });
 }

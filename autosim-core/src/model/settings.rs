@@ -8,7 +8,7 @@
 use super::scope::Resolver;
 use super::{FloatType, Formulation, ResolvedModel, Scene};
 use crate::diag::{Diagnostic, Diagnostics, Span, did_you_mean};
-use crate::syntax::ast::{self, Expr, Item, Opt, SceneKey, SettingKey, UnOp};
+use crate::syntax::ast::{self, Expr, Item, Opt, SceneKey, SettingKey};
 
 /// Applies the settings, then the scene's overrides; returns the outputs
 /// to generate (`None`: all).
@@ -97,19 +97,9 @@ fn float_type(value: &Expr) -> Checked<FloatType> {
 
 /// `threshold`: an integer from 1 to 20.
 fn threshold(value: &Expr) -> Checked<i16> {
-    let (negative, inner) = match value {
-        Expr::Unary {
-            op: UnOp::Neg,
-            operand,
-            ..
-        } => (true, operand.as_ref()),
-        other => (false, other),
-    };
-    let k = match inner {
-        Expr::Number(n) => n.text.parse::<i16>().ok(),
-        _ => None,
-    };
-    k.map(|k| if negative { -k } else { k })
+    super::typed::integer_literal(value)
+        .and_then(Result::ok)
+        .and_then(|k| i16::try_from(k).ok())
         .filter(|k| crate::limits::THRESHOLDS.contains(k))
         .ok_or_else(|| mistake(value.span(), "the threshold is an integer from 1 to 20"))
 }

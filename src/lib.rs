@@ -35,7 +35,7 @@ pub use autosim_runtime as runtime;
 /// `autosim::build::compile("models/pendulum.sim")?` in `build.rs` and
 /// `autosim::include_model!(pendulum);` where the module should appear.
 #[cfg(feature = "build")]
-pub use autosim_core::build;
+pub use autosim_core::build_script as build;
 
 /// Functional Mock-up Units (feature `fmu`): `autosim::fmu::Fmu::new(
 /// "models/quarter_car.sim").build()?` writes `QuarterCar.fmu` (FMI 2.0,

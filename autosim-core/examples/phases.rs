@@ -33,7 +33,8 @@ fn main() {
     };
     let t_eqs = t.elapsed();
     let t = Instant::now();
-    let Ok(program) = autosim_core::opt::build(&mut model, &eqs) else {
+    let input = autosim_core::pipeline::opt_input(&model, &eqs);
+    let Ok(program) = autosim_core::opt::build(input) else {
         eprintln!("program errors");
         std::process::exit(1);
     };

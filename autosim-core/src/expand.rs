@@ -16,8 +16,18 @@ use std::path::Path;
 /// `crate_root` (the using crate's `CARGO_MANIFEST_DIR`).
 pub fn expand_model(input: TokenStream, crate_root: &Path) -> TokenStream {
     match file_arguments(&input) {
-        Some(Ok(args)) => expand_file(&args, crate_root),
-        Some(Err(e)) => e.to_compile_error(),
+        Some(Ok(args)) => {
+            let mut mistakes = args.diagnostics.clone();
+            match Scene::from_options(&args.options) {
+                Ok(scene) if mistakes.is_empty() => expand_file(&args, &scene, crate_root),
+                Ok(_) => compile_errors(&mistakes),
+                Err(d) => {
+                    mistakes.append(d);
+                    compile_errors(&mistakes)
+                }
+            }
+        }
+        Some(Err(d)) => compile_errors(&d),
         None => {
             let parsed = syntax::parse_tokens_recovering(input);
             let name = model_name(&parsed, &Scene::default());
@@ -35,6 +45,13 @@ pub fn expand_model(input: TokenStream, crate_root: &Path) -> TokenStream {
             }
         }
     }
+}
+
+/// The errors of the macro's own tokens.
+fn compile_errors(d: &Diagnostics) -> TokenStream {
+    d.to_syn_error()
+        .map(|e| e.to_compile_error())
+        .unwrap_or_default()
 }
 
 /// The name the generated module and type take.
@@ -55,23 +72,18 @@ fn compile(parsed: Parsed, scene: &Scene) -> Result<TokenStream, Diagnostics> {
 /// A model file: the module (or the errors, each showing `path:line:col`
 /// and the excerpt, at the span of the path literal), and an
 /// `include_str!` of the file so the crate is rebuilt when it changes.
-fn expand_file(args: &FileArguments, crate_root: &Path) -> TokenStream {
+fn expand_file(args: &FileArguments, scene: &Scene, crate_root: &Path) -> TokenStream {
     let full = crate_root.join(&args.path);
     let span = args.span;
     let file = match SourceFile::read(&full, &args.path, Span::from_token(span)) {
         Ok(f) => f,
-        Err(d) => {
-            return d
-                .to_syn_error()
-                .map(|e| e.to_compile_error())
-                .unwrap_or_default();
-        }
+        Err(d) => return compile_errors(&d),
     };
     let full_str = full.to_string_lossy().to_string();
     let track = quote_spanned!(span=> const _: &str = include_str!(#full_str););
     let parsed = syntax::parse_source_recovering(&file);
-    let name = model_name(&parsed, &args.scene);
-    match compile(parsed, &args.scene) {
+    let name = model_name(&parsed, scene);
+    match compile(parsed, scene) {
         Ok(module) => quote!(#module #track),
         Err(d) => {
             let errors = d.to_syn_error_in(&file, span).map(|e| e.to_compile_error());

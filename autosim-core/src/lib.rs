@@ -10,7 +10,7 @@
 // Index loops over 3×3 components read like the mathematics they implement.
 #![allow(clippy::needless_range_loop)]
 
-pub mod build;
+pub mod build_script;
 pub mod diag;
 pub mod emit;
 pub mod expand;

@@ -111,7 +111,7 @@ proptest! {
                     c.arena.to_text(g), c.arena.to_text(*base), c.arena.to_text(e));
             }
             if exact && !ce.is_zero() {
-                let ratio = ce.div(cg).unwrap();
+                let ratio = ce.checked_div(cg).unwrap();
                 prop_assert!(ratio.as_integer().is_some(), "coefficient {ce} / {cg}");
             }
             let q = c.arena.div(e, g);

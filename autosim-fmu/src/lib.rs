@@ -31,7 +31,7 @@ pub mod units;
 
 pub use description::Experiment;
 
-use autosim_core::build::Config;
+use autosim_core::build_script::Config;
 use autosim_core::diag::{SourceFile, Span};
 use autosim_core::model::{FloatType, Scene};
 use autosim_core::opt::Program;

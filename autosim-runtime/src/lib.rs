@@ -96,7 +96,7 @@
 //! | feature | default | adds |
 //! | --- | --- | --- |
 //! | `std` | yes | `exp`, `ln`, `powf` and `sqrt` from the standard library; the `io` module with TOML parameter files |
-//! | `libm` | no | kept for compatibility: the trigonometric functions and their inverses always come from the `libm` crate (the same bits on every target, and faster than glibc's), and without `std` every function does |
+//! | `libm` | no | every math function from the `libm` crate and `add_mul`/`sub_mul` unfused even with `std`: the same bits with and without `std` (without `std` this is so anyway; the trigonometric functions and their inverses come from `libm` always) |
 //! | `csv` | yes | `io::CsvWriter`, an observer that writes one flushed CSV row per output |
 //! | `plot` | yes | `io::svg_plot`, `io::Recording::plot_svg` and `io::xy_svg_plot` (SVG line plots, linear or log axes, no system fonts needed) |
 //! | `serde` | no | `Serialize`/`Deserialize` for settings, summaries and step reports |

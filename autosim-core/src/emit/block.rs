@@ -4,7 +4,7 @@
 use super::expr::{ExprPrinter, Locals, ident};
 use super::sines;
 use crate::limits::MAX_LETS_IN_FUNCTION;
-use crate::model::FloatType;
+use crate::opt::FloatType;
 use crate::opt::{Block, BlockKind, Guard, Leaf, Nid, Program, Stmt};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
@@ -29,16 +29,8 @@ pub enum Target<'a> {
 /// they do not take in pairs (`emit/sines.rs`: one left over, or of an
 /// angle the block computes) by `math::sin_cos_inline` (no branch on the
 /// angle) instead of libm's `sincos`, whose branches, mispredicted at
-/// random angles, discard the work a block has in flight. Measured on
-/// `bench/peers` at random states, one call per angle. On a 2-vCPU AMD
-/// EPYC: chain-spatial-50 2 773 → 2 468 ns, chain-planar-50 1 590 → 1 330
-/// ns (1 685 values), at 635-713 values (chain-planar-20,
-/// chain-spatial-10) within 2 %, chain-planar-5 faster with libm's
-/// shorter path (87.5 ns against 99.8). On a 2-vCPU Intel Xeon (AVX-512):
-/// chain-planar-20 (697 values) 511 → 430 ns, chain-spatial-10 (745) 288
-/// → 270, chain-spatial-20 (its shared block, 611) 707 → 642;
-/// chain-planar-10 (317) gained too (215 → 192) but chain-spatial-2 lost
-/// (20 → 23).
+/// random angles, discard the work a block has in flight; smaller blocks
+/// keep libm's shorter path (timings: `bench/results/compiler-choices.md`).
 pub const MIN_VALUES_FOR_INLINE_SINES: usize = 600;
 
 /// The array index of each bound value of a block with more than

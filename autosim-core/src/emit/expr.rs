@@ -3,7 +3,7 @@
 //! of evaluation needs, and calls of the runtime's math functions.
 
 use crate::expr::{Func, Prec};
-use crate::model::FloatType;
+use crate::opt::FloatType;
 use crate::opt::{Ir, Leaf, Nid, Op, Program};
 use proc_macro2::{Ident, Literal, Span, TokenStream};
 use quote::quote;

@@ -17,15 +17,9 @@
 use crate::opt::{Block, Ir, Leaf, Nid, Op, Stmt};
 use rustc_hash::{FxHashMap, FxHashSet};
 
-/// Angles per group. Measured on the chains of `bench/peers` (Intel Xeon
-/// with AVX-512, `-C target-cpu=native`, interleaved A/B against one call
-/// per angle): in big blocks two lanes made chain-planar-20 and -50 and
-/// chain-spatial-10 9-11 % faster and chain-spatial-50 8.5 %, slowing
-/// none; four lanes (256-bit vectors) made chain-spatial-50 4 % faster but
-/// chain-planar-50 20 % and chain-spatial-10 29 % slower. Pairs in small
-/// blocks too, against libm's `sincos` there: chain-planar-7 and -10 20 %
-/// faster, chain-spatial-2 16 %, -5 9 %, -7 15 %, -20 19 %, the 50-link
-/// chains unchanged.
+/// Angles per group: two lanes were faster than one call per angle in
+/// every chain measured, four slower in most (timings:
+/// `bench/results/compiler-choices.md`).
 pub const LANES: usize = 2;
 
 /// One sine and cosine: the two bound values and the angle.

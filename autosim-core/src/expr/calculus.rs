@@ -123,7 +123,7 @@ impl Arena {
                 let db = self.differentiate(b, memo, leaf, only, skip_constants, limit)?;
                 if let Some(n) = self.as_number(x) {
                     // n b^(n-1) db
-                    let nm1 = self.num(n.sub(Number::ONE));
+                    let nm1 = self.num(n - Number::ONE);
                     let p = self.pow(b, nm1);
                     let t = self.mul(p, db);
                     self.scale(n, t)

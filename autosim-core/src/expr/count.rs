@@ -82,7 +82,7 @@ impl Arena {
     /// - a function call: one function. Numbers and symbols are free.
     pub fn op_count(&self, roots: &[ExprId]) -> OpCount {
         let half = Number::rational(1, 2).unwrap_or(Number::ZERO);
-        let minus_half = half.neg();
+        let minus_half = -half;
         let mut count = OpCount::default();
         let mut seen: FxHashSet<ExprId> = FxHashSet::default();
         let mut stack: Vec<ExprId> = roots.to_vec();

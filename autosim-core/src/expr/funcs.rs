@@ -62,8 +62,8 @@ impl Arena {
     /// Splits `e` into (is negative, absolute expression) by its leading sign.
     pub fn split_sign(&mut self, e: ExprId) -> (bool, ExprId) {
         match self.node(e).clone() {
-            Node::Num(n) if n.is_negative() => (true, self.num(n.neg())),
-            Node::Prod(c, fs) if c.is_negative() => (true, self.product_with(c.neg(), &fs)),
+            Node::Num(n) if n.is_negative() => (true, self.num(-n)),
+            Node::Prod(c, fs) if c.is_negative() => (true, self.product_with(-c, &fs)),
             _ => (false, e),
         }
     }

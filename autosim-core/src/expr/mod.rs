@@ -2,8 +2,8 @@
 //! calculus, evaluation and a text form.
 
 mod arena;
-mod build;
 mod calculus;
+mod construct;
 mod count;
 mod eval;
 mod funcs;

@@ -6,6 +6,7 @@
 
 use core::cmp::Ordering;
 use core::fmt;
+use core::ops::{Add, Mul, Neg, Sub};
 
 /// A number in an expression: an exact rational `num/den` (`den > 0`, lowest
 /// terms) or a float written by the user.
@@ -159,65 +160,6 @@ impl Number {
         Number::float(x).unwrap_or(Number::Float(f64::INFINITY.to_bits()))
     }
 
-    /// Sum.
-    #[allow(clippy::should_implement_trait)]
-    pub fn add(self, other: Number) -> Number {
-        if let (Number::Rational { num: a, den: b }, Number::Rational { num: c, den: d }) =
-            (self, other)
-        {
-            let exact = (|| {
-                let g = gcd(b, d);
-                let lcm = (b / g).checked_mul(d)?;
-                let n = a
-                    .checked_mul(lcm / b)?
-                    .checked_add(c.checked_mul(lcm / d)?)?;
-                Number::rational(n, lcm)
-            })();
-            if let Some(r) = exact {
-                return r;
-            }
-        }
-        Number::from_f64_result(self.to_f64() + other.to_f64())
-    }
-
-    /// Negation.
-    #[allow(clippy::should_implement_trait)]
-    pub fn neg(self) -> Number {
-        match self {
-            Number::Rational { num, den } => match num.checked_neg() {
-                Some(n) => Number::Rational { num: n, den },
-                None => Number::from_f64_result(-self.to_f64()),
-            },
-            Number::Float(bits) => Number::from_f64_result(-f64::from_bits(bits)),
-        }
-    }
-
-    /// Difference.
-    #[allow(clippy::should_implement_trait)]
-    pub fn sub(self, other: Number) -> Number {
-        self.add(other.neg())
-    }
-
-    /// Product.
-    #[allow(clippy::should_implement_trait)]
-    pub fn mul(self, other: Number) -> Number {
-        if let (Number::Rational { num: a, den: b }, Number::Rational { num: c, den: d }) =
-            (self, other)
-        {
-            let exact = (|| {
-                let g1 = gcd(a, d).max(1);
-                let g2 = gcd(c, b).max(1);
-                let n = (a / g1).checked_mul(c / g2)?;
-                let m = (b / g2).checked_mul(d / g1)?;
-                Number::rational(n, m)
-            })();
-            if let Some(r) = exact {
-                return r;
-            }
-        }
-        Number::from_f64_result(self.to_f64() * other.to_f64())
-    }
-
     /// Reciprocal; `None` for zero.
     pub fn recip(self) -> Option<Number> {
         if self.is_zero() {
@@ -232,9 +174,8 @@ impl Number {
     }
 
     /// Quotient; `None` when dividing by zero.
-    #[allow(clippy::should_implement_trait)]
-    pub fn div(self, other: Number) -> Option<Number> {
-        Some(self.mul(other.recip()?))
+    pub fn checked_div(self, other: Number) -> Option<Number> {
+        Some(self * other.recip()?)
     }
 
     /// Integer power; `None` for `0^negative`.
@@ -285,7 +226,7 @@ impl Number {
 
     /// Absolute value.
     pub fn abs(self) -> Number {
-        if self.is_negative() { self.neg() } else { self }
+        if self.is_negative() { -self } else { self }
     }
 
     /// Total order by value (for sorting numbers).
@@ -308,6 +249,81 @@ fn isqrt(n: i128) -> Option<i128> {
         r += 1;
     }
     (r * r == n).then_some(r)
+}
+
+/// `a/b + c/d` exactly, if it fits.
+fn rational_sum((a, b): (i128, i128), (c, d): (i128, i128)) -> Option<Number> {
+    let g = gcd(b, d);
+    let lcm = (b / g).checked_mul(d)?;
+    let n = a
+        .checked_mul(lcm / b)?
+        .checked_add(c.checked_mul(lcm / d)?)?;
+    Number::rational(n, lcm)
+}
+
+/// `a/b · c/d` exactly, if it fits.
+fn rational_product((a, b): (i128, i128), (c, d): (i128, i128)) -> Option<Number> {
+    let g1 = gcd(a, d).max(1);
+    let g2 = gcd(c, b).max(1);
+    let n = (a / g1).checked_mul(c / g2)?;
+    let m = (b / g2).checked_mul(d / g1)?;
+    Number::rational(n, m)
+}
+
+/// Both as `(numerator, denominator)`, if both are rational.
+fn rationals(x: Number, y: Number) -> Option<((i128, i128), (i128, i128))> {
+    match (x, y) {
+        (Number::Rational { num: a, den: b }, Number::Rational { num: c, den: d }) => {
+            Some(((a, b), (c, d)))
+        }
+        _ => None,
+    }
+}
+
+/// Sum: exact for rationals that fit, a float otherwise.
+impl Add for Number {
+    type Output = Number;
+
+    fn add(self, other: Number) -> Number {
+        rationals(self, other)
+            .and_then(|(x, y)| rational_sum(x, y))
+            .unwrap_or_else(|| Number::from_f64_result(self.to_f64() + other.to_f64()))
+    }
+}
+
+/// Negation.
+impl Neg for Number {
+    type Output = Number;
+
+    fn neg(self) -> Number {
+        match self {
+            Number::Rational { num, den } => match num.checked_neg() {
+                Some(n) => Number::Rational { num: n, den },
+                None => Number::from_f64_result(-self.to_f64()),
+            },
+            Number::Float(bits) => Number::from_f64_result(-f64::from_bits(bits)),
+        }
+    }
+}
+
+/// Difference.
+impl Sub for Number {
+    type Output = Number;
+
+    fn sub(self, other: Number) -> Number {
+        self + -other
+    }
+}
+
+/// Product: exact for rationals that fit, a float otherwise.
+impl Mul for Number {
+    type Output = Number;
+
+    fn mul(self, other: Number) -> Number {
+        rationals(self, other)
+            .and_then(|(x, y)| rational_product(x, y))
+            .unwrap_or_else(|| Number::from_f64_result(self.to_f64() * other.to_f64()))
+    }
 }
 
 impl fmt::Display for Number {
@@ -348,16 +364,16 @@ mod tests {
     fn arithmetic_is_exact_and_overflow_degrades_to_float() {
         let a = Number::rational(1, 3).unwrap();
         let b = Number::rational(1, 6).unwrap();
-        assert_eq!(a.add(b), Number::rational(1, 2).unwrap());
-        assert_eq!(a.mul(b), Number::rational(1, 18).unwrap());
-        assert_eq!(a.div(b), Some(Number::int(2)));
+        assert_eq!(a + b, Number::rational(1, 2).unwrap());
+        assert_eq!(a * b, Number::rational(1, 18).unwrap());
+        assert_eq!(a.checked_div(b), Some(Number::int(2)));
         assert_eq!(Number::ZERO.recip(), None);
         let big = Number::Rational {
             num: i128::MAX,
             den: 1,
         };
-        assert!(matches!(big.add(big), Number::Float(_)));
-        assert!(matches!(big.mul(big), Number::Float(_)));
+        assert!(matches!(big + big, Number::Float(_)));
+        assert!(matches!(big * big, Number::Float(_)));
         assert_eq!(
             Number::rational(9, 4).unwrap().exact_sqrt(),
             Number::rational(3, 2)

@@ -190,18 +190,6 @@ impl Arena {
         out.dedup();
         out
     }
-
-    /// Number of distinct nodes reachable from the roots (a size measure).
-    pub fn dag_size(&self, roots: &[ExprId]) -> usize {
-        let mut seen = rustc_hash::FxHashSet::default();
-        let mut stack: Vec<ExprId> = roots.to_vec();
-        while let Some(x) = stack.pop() {
-            if seen.insert(x) {
-                stack.extend(self.children(x));
-            }
-        }
-        seen.len()
-    }
 }
 
 fn unreachable_leaf(_arena: &mut Arena, _node: &Node) -> ExprId {

@@ -150,7 +150,7 @@ impl Arena {
             Node::Pow(b, x) => match self.as_number(*x) {
                 Some(n) if n.is_negative() => {
                     out.push_str("1/");
-                    self.write_divisor(out, *b, n.neg());
+                    self.write_divisor(out, *b, -n);
                 }
                 Some(n) => self.write_pow(out, *b, n),
                 None => {
@@ -246,7 +246,7 @@ impl Arena {
         for f in &den {
             out.push('/');
             if let Node::Pow(b, x) = self.node(*f) {
-                let n = self.as_number(*x).unwrap_or(Number::MINUS_ONE).neg();
+                let n = -self.as_number(*x).unwrap_or(Number::MINUS_ONE);
                 self.write_divisor(out, *b, n);
             }
         }

@@ -2,11 +2,11 @@
 //! kinematical equations), then gets its velocity by the forward recursion
 //! (the paper's Eq. 11), its mass properties and its points.
 
+use super::body_order::order_parents_first;
 use super::error::ModelError;
 use super::framevec::{Fv, Mat3};
 use super::joint::{BuiltJoint, DofKind, DofSymbols, translation};
 use super::system::{Body, BodyId, BodySpec, Coordinate, System};
-use super::tree::order_parents_first;
 use crate::expr::ExprId;
 
 impl System {

@@ -139,6 +139,16 @@ impl Frames {
         self.add_child(parent, (name, uv_prefix), Some((axis, angle)), new_axes)
     }
 
+    /// The axis `b` is rotated about from `a`, where `b` is one exact
+    /// rotation about an axis of `a` (`add_rotated` by an angle that is
+    /// not small: a small angle's cosine and sine are truncated to 1 and
+    /// the angle).
+    pub fn turn_axis(&self, arena: &Arena, a: FrameId, b: FrameId) -> Option<Axis> {
+        let frame = &self.frames[b.index()];
+        let (axis, angle) = frame.rotation?;
+        (frame.parent == Some(a) && arena.order(angle) == 0).then_some(axis)
+    }
+
     /// Adds a frame oriented by a general direction-cosine matrix relative
     /// to `parent`: `c[i][j] = b_i · a_j` (all three unit vectors new).
     pub fn add_general(

@@ -3,6 +3,7 @@
 
 mod body;
 mod body_check;
+mod body_order;
 mod constraint;
 mod declare;
 mod error;
@@ -12,10 +13,10 @@ mod joint;
 mod kane;
 mod kinematics;
 mod system;
-mod tree;
 mod vector;
 mod vector_ops;
 
+pub use body_order::{ParentOrder, order_parents_first};
 pub use constraint::{Constraint, ConstraintKind, Motion};
 pub use error::{BodyField, ItemRef, LocatedError, ModelError};
 pub use frames::{Frame, FrameId, Frames, Uv, UvId};
@@ -28,5 +29,4 @@ pub use system::{
     Body, BodyId, BodySpec, Coordinate, ExtraState, Force, Load, Moment, Output, Point, PointId,
     Subroutine, System,
 };
-pub use tree::{ParentOrder, order_parents_first};
 pub use vector::{Dyadic, Vector};

@@ -436,9 +436,4 @@ impl System {
     pub fn parameters(&self) -> &[SymId] {
         &self.parameters
     }
-
-    /// The absolute angular velocity of a frame (basis-free).
-    pub fn frame_angular_velocity(&self, f: FrameId) -> &Vector {
-        &self.frame_w[f.index()]
-    }
 }

@@ -26,65 +26,13 @@ pub use scene::Scene;
 pub use spans::ItemSpans;
 pub use value::Value;
 
+pub use crate::opt::{FloatType, Formulation};
+
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::mech::System;
 use crate::syntax::ast::{self, Item};
 use rustc_hash::FxHashMap;
 use scope::Resolver;
-
-/// The float type generated code computes in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum FloatType {
-    /// `f64` (default).
-    #[default]
-    F64,
-    /// `f32`.
-    F32,
-}
-
-/// How a tree's accelerations are solved in generated code.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum Formulation {
-    /// Both are built; the one estimated faster per `derivatives` call
-    /// (operations plus the longest chain of dependent operations, in
-    /// cycles) is generated (default).
-    #[default]
-    Auto,
-    /// The mass matrix and its unrolled LDLᵀ (O(n²) entries, O(n³) factor
-    /// for a chain; the cheapest for small models).
-    MassMatrix,
-    /// The articulated-body recursion (O(n), the mass matrix never
-    /// formed; the cheapest for long chains).
-    Recursive,
-}
-
-impl Formulation {
-    /// The names a model writes, in the order the documentation lists them.
-    pub const NAMES: [&'static str; 3] = ["auto", "mass_matrix", "recursive"];
-
-    /// The formulation called `name` in a model (`settings` or the macro's
-    /// option).
-    pub fn named(name: &str) -> Option<Formulation> {
-        match name {
-            "auto" => Some(Formulation::Auto),
-            "mass_matrix" => Some(Formulation::MassMatrix),
-            "recursive" => Some(Formulation::Recursive),
-            _ => None,
-        }
-    }
-
-    /// What to tell a user who wrote `name` for a formulation: the likely
-    /// intended name, or what the three do.
-    pub fn help_for(name: &str) -> String {
-        match crate::diag::did_you_mean(name, Formulation::NAMES) {
-            Some(close) => format!("did you mean `{close}`?"),
-            None => "`auto` (the default) generates whichever is estimated faster; \
-                     `mass_matrix` forms M and factors it, `recursive` runs the \
-                     articulated-body recursion"
-                .to_string(),
-        }
-    }
-}
 
 /// The resolved model: the system plus what code generation and
 /// documentation need to know about the source.

@@ -1,12 +1,14 @@
-//! The model's `settings` and the scene's options over them: the float
-//! type, the small-term threshold, which outputs are generated and whether
-//! the linearization is; and the
-//! check that every name a scene gives exists in the model.
+//! The model's `settings` and the scene's options over them, both read by
+//! one set of checks (one wording for each mistake): the float type, the
+//! small-term threshold, which outputs are generated, whether the
+//! linearization is and how the accelerations are solved; the scene's own
+//! name, `small` and `lock`; and the check that every name a scene gives
+//! exists in the model.
 
 use super::scope::Resolver;
 use super::{FloatType, Formulation, ResolvedModel, Scene};
-use crate::diag::{Diagnostic, did_you_mean};
-use crate::syntax::ast::{self, Item, SettingKey};
+use crate::diag::{Diagnostic, Diagnostics, Span, did_you_mean};
+use crate::syntax::ast::{self, Expr, Item, Opt, SceneKey, SettingKey};
 
 /// Applies the settings, then the scene's overrides; returns the outputs
 /// to generate (`None`: all).
@@ -20,51 +22,16 @@ pub(super) fn apply_settings(
     for item in &model.items {
         let Item::Settings(s) = item else { continue };
         for opt in &s.options.entries {
-            match opt.key {
-                SettingKey::Threshold => threshold(r, &opt.value),
-                SettingKey::Outputs => {
-                    let mut names = Vec::new();
-                    for it in super::body_options::items(&opt.value) {
-                        match it {
-                            ast::Expr::Name(n) => names.push(n.clone()),
-                            other => r.error(other.span(), "`outputs` takes output names"),
-                        }
-                    }
-                    output_filter = Some(names);
-                }
-                SettingKey::Linearize => match &opt.value {
-                    ast::Expr::Name(n) if n.text == "true" => out.linearize = true,
-                    ast::Expr::Name(n) if n.text == "false" => out.linearize = false,
-                    other => r.push(
-                        Diagnostic::error(other.span(), "`linearize` is `true` or `false`").help(
-                            "`linearize: true` generates `linearize`, the model's A, B, C, D",
-                        ),
-                    ),
-                },
-                SettingKey::Formulation => {
-                    let written = match &opt.value {
-                        ast::Expr::Name(n) => n.text.as_str(),
-                        _ => "",
-                    };
-                    match Formulation::named(written) {
-                        Some(f) => out.formulation = f,
-                        None => r.push(
-                            Diagnostic::error(
-                                opt.value.span(),
-                                "`formulation` is `auto`, `mass_matrix` or `recursive`",
-                            )
-                            .help(Formulation::help_for(written)),
-                        ),
-                    }
-                }
-                SettingKey::Float => match &opt.value {
-                    ast::Expr::Name(n) if n.text == "f64" => out.float = FloatType::F64,
-                    ast::Expr::Name(n) if n.text == "f32" => out.float = FloatType::F32,
-                    other => r.push(Diagnostic::error(
-                        other.span(),
-                        "the float type must be `f64` or `f32`",
-                    )),
-                },
+            let value = &opt.value;
+            let applied = match opt.key {
+                SettingKey::Threshold => threshold(value).map(|k| r.sys.set_threshold(k)),
+                SettingKey::Outputs => outputs(value).map(|n| output_filter = Some(n)),
+                SettingKey::Linearize => linearize(value).map(|l| out.linearize = l),
+                SettingKey::Formulation => formulation(value).map(|f| out.formulation = f),
+                SettingKey::Float => float_type(value).map(|f| out.float = f),
+            };
+            if let Err(d) = applied {
+                r.push(*d);
             }
         }
     }
@@ -84,18 +51,124 @@ pub(super) fn apply_settings(
     scene.outputs.clone().or(output_filter)
 }
 
-/// The formulation a setting names.
-fn threshold(r: &mut Resolver<'_>, value: &ast::Expr) {
-    let Some(k) = r.integer(value, "the threshold") else {
-        return;
-    };
-    match i16::try_from(k)
-        .ok()
-        .filter(|k| crate::limits::THRESHOLDS.contains(k))
-    {
-        Some(k) => r.sys.set_threshold(k),
-        None => r.error(value.span(), "the threshold must be between 1 and 20"),
+impl Scene {
+    /// The scene the macro's options give (`autosim::model!(file = "...",
+    /// key = value, ...)`), checked as the model's `settings` are: every
+    /// mistake at once.
+    pub fn from_options(options: &[Opt<SceneKey>]) -> Result<Scene, Diagnostics> {
+        let mut scene = Scene::default();
+        let mut diagnostics = Diagnostics::new();
+        for opt in options {
+            let value = &opt.value;
+            let applied = match opt.key {
+                SceneKey::Name => name(value).map(|n| scene.name = Some(n)),
+                SceneKey::Float => float_type(value).map(|f| scene.float = Some(f)),
+                SceneKey::Threshold => threshold(value).map(|k| scene.threshold = Some(k)),
+                SceneKey::Outputs => outputs(value).map(|n| scene.outputs = Some(n)),
+                SceneKey::Small => body_names(value, "small").map(|n| scene.small = n),
+                SceneKey::Lock => body_names(value, "lock").map(|n| scene.lock = n),
+                SceneKey::Linearize => linearize(value).map(|l| scene.linearize = Some(l)),
+                SceneKey::Formulation => formulation(value).map(|f| scene.formulation = Some(f)),
+            };
+            if let Err(d) = applied {
+                diagnostics.push(*d);
+            }
+        }
+        diagnostics.finish(scene)
     }
+}
+
+/// The value of an option, or the one diagnostic of its mistake.
+type Checked<T> = Result<T, Box<Diagnostic>>;
+
+/// The diagnostic of a mistaken value.
+fn mistake(span: Span, message: impl Into<String>) -> Box<Diagnostic> {
+    Box::new(Diagnostic::error(span, message))
+}
+
+/// `float`: `f64` or `f32`.
+fn float_type(value: &Expr) -> Checked<FloatType> {
+    match value {
+        Expr::Name(n) if n.text == "f64" => Ok(FloatType::F64),
+        Expr::Name(n) if n.text == "f32" => Ok(FloatType::F32),
+        other => Err(mistake(other.span(), "the float type is `f64` or `f32`")),
+    }
+}
+
+/// `threshold`: an integer from 1 to 20.
+fn threshold(value: &Expr) -> Checked<i16> {
+    super::typed::integer_literal(value)
+        .and_then(Result::ok)
+        .and_then(|k| i16::try_from(k).ok())
+        .filter(|k| crate::limits::THRESHOLDS.contains(k))
+        .ok_or_else(|| mistake(value.span(), "the threshold is an integer from 1 to 20"))
+}
+
+/// `linearize`: `true` or `false`.
+fn linearize(value: &Expr) -> Checked<bool> {
+    match value {
+        Expr::Name(n) if n.text == "true" => Ok(true),
+        Expr::Name(n) if n.text == "false" => Ok(false),
+        other => Err(Box::new(
+            Diagnostic::error(other.span(), "`linearize` is `true` or `false`")
+                .help("`true` also generates `linearize`, the model's A, B, C, D"),
+        )),
+    }
+}
+
+/// `formulation`: `auto`, `mass_matrix` or `recursive`.
+fn formulation(value: &Expr) -> Checked<Formulation> {
+    let written = match value {
+        Expr::Name(n) => n.text.as_str(),
+        _ => "",
+    };
+    Formulation::named(written).ok_or_else(|| {
+        Box::new(
+            Diagnostic::error(
+                value.span(),
+                "`formulation` is `auto`, `mass_matrix` or `recursive`",
+            )
+            .help(Formulation::help_for(written)),
+        )
+    })
+}
+
+/// `name`: the model's new name.
+fn name(value: &Expr) -> Checked<ast::Name> {
+    match value {
+        Expr::Name(n) => Ok(n.clone()),
+        other => Err(mistake(
+            other.span(),
+            "`name` is the model's new name, such as `RigidBoom`",
+        )),
+    }
+}
+
+/// `outputs`: output names.
+fn outputs(value: &Expr) -> Checked<Vec<ast::Name>> {
+    names(value).map_err(|span| mistake(span, "`outputs` takes output names"))
+}
+
+/// `small` or `lock` (named `key`): names of bodies or coordinates.
+fn body_names(value: &Expr, key: &str) -> Checked<Vec<ast::Name>> {
+    names(value).map_err(|span| {
+        mistake(
+            span,
+            format!("`{key}` takes names of bodies or coordinates"),
+        )
+    })
+}
+
+/// The names of a list (or one name); the span of the first item that is
+/// no name.
+fn names(value: &Expr) -> Result<Vec<ast::Name>, Span> {
+    super::body_options::items(value)
+        .into_iter()
+        .map(|item| match item {
+            Expr::Name(n) => Ok(n.clone()),
+            other => Err(other.span()),
+        })
+        .collect()
 }
 
 /// Every `small`/`lock` name of the scene matched a body or coordinate,

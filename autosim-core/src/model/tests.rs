@@ -222,3 +222,30 @@ test.sim:3:25: error: `formulation` is `auto`, `mass_matrix` or `recursive`
         "`auto` (the default) generates whichever is estimated faster",
     );
 }
+
+/// A setting and the scene option of the same key are checked by one
+/// check: the same message for the same mistake, and every mistake of the
+/// scene at once.
+#[test]
+fn settings_and_scene_options_share_their_messages() {
+    use crate::model::Scene;
+    use crate::syntax::file_arguments;
+    let settings = resolved(&format!(
+        "{HEADER}settings {{ float: f16, threshold: 30, linearize: yes }}\n"
+    ));
+    let input: proc_macro2::TokenStream =
+        r#"file = "m.sim", float = f16, threshold = 30, linearize = yes"#
+            .parse()
+            .expect("tokens");
+    let arguments = file_arguments(&input)
+        .expect("a file argument list")
+        .expect("a readable argument list");
+    assert!(arguments.diagnostics.is_empty());
+    let scene = Scene::from_options(&arguments.options).expect_err("three mistakes");
+    let messages: Vec<String> = scene.iter().map(|d| d.message.clone()).collect();
+    assert_eq!(messages.len(), 3, "{messages:?}");
+    for m in &messages {
+        assert!(settings.contains(m.as_str()), "{m} not in\n{settings}");
+    }
+    assert_eq!(settings.matches("error").count(), 3, "{settings}");
+}

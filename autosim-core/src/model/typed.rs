@@ -248,24 +248,30 @@ impl Resolver<'_> {
 
     /// An integer literal (possibly negative).
     pub fn integer(&mut self, e: &Expr, context: &str) -> Option<i64> {
-        let (neg, inner) = match e {
-            Expr::Unary {
-                op: UnOp::Neg,
-                operand,
-                ..
-            } => (true, operand.as_ref()),
-            other => (false, other),
-        };
-        if let Expr::Number(n) = inner {
-            if let Ok(v) = n.text.parse::<i64>() {
-                return Some(if neg { -v } else { v });
-            }
-            if n.text.chars().all(|c| c.is_ascii_digit()) {
-                self.error(e.span(), format!("`{e}` is too large for {context}"));
-                return None;
-            }
+        match integer_literal(e) {
+            Some(Ok(v)) => return Some(v),
+            Some(Err(())) => self.error(e.span(), format!("`{e}` is too large for {context}")),
+            None => self.error(e.span(), format!("{context} must be an integer")),
         }
-        self.error(e.span(), format!("{context} must be an integer"));
         None
+    }
+}
+
+/// The value of an integer literal (possibly negative): `None` if `e` is
+/// none, `Err` if it does not fit an `i64`.
+pub(super) fn integer_literal(e: &Expr) -> Option<Result<i64, ()>> {
+    let (neg, inner) = match e {
+        Expr::Unary {
+            op: UnOp::Neg,
+            operand,
+            ..
+        } => (true, operand.as_ref()),
+        other => (false, other),
+    };
+    let Expr::Number(n) = inner else { return None };
+    match n.text.parse::<i64>() {
+        Ok(v) => Some(Ok(if neg { -v } else { v })),
+        Err(_) if n.text.chars().all(|c| c.is_ascii_digit()) => Some(Err(())),
+        Err(_) => None,
     }
 }

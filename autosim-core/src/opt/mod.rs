@@ -1,38 +1,28 @@
 //! The equation program: lowering to an operation IR, the unrolled solve of
 //! the mass matrix, scheduling (named intermediates, hoisted constants,
 //! call order) and operation counts (the paper's Eqs. 12-23), with the
-//! interface generated code exposes, a text form and a verifier.
+//! interface generated code exposes, a text form and a verifier. Its one
+//! input is [`Input`], built by `pipeline.rs`.
 
-mod articulated;
-mod axis_rotation;
-mod common;
-mod constrained;
-mod cost;
 pub mod dependencies;
-mod elim;
-mod interface;
-mod interleave;
-mod interp;
+mod error;
+mod input;
 mod ir;
 mod linearize;
 mod lower;
-mod lowered;
-mod naming;
 mod program;
 mod schedule;
 mod solve;
 mod split;
-mod tangent;
-mod text;
-mod tree;
-mod verify;
 
-pub use interface::{
-    Closure, ConstraintInfo, Interface, MotionInfo, Quantity, StateLayout, StateVar, UserCode,
+pub use error::ProgramError;
+pub use input::{
+    ConstraintInfo, Declared, Described, FloatType, Formulation, Input, MotionInfo, Options,
+    Quantity, SubroutineCall, UserCode,
 };
-pub use interp::{At, Interpreter, SolveError, UserCalls};
 pub use ir::{Ir, Leaf, Nid, Op};
-pub use lower::{Lowering, UnboundSymbol};
-pub use program::{BlockKind, MassLayout, Program, ProgramError, build};
+pub use program::interface::{Closure, Interface, StateLayout, StateVar};
+pub use program::interp::{At, Interpreter, SolveError, UserCalls};
+pub use program::{BlockKind, MassLayout, Program, build};
 pub use schedule::{Block, Guard, Ops, Stmt, Task};
 pub use split::Split;

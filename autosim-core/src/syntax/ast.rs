@@ -10,7 +10,8 @@ use std::fmt;
 use crate::diag::Span;
 
 pub use super::keys::{
-    BodyKey, ConstraintKey, ForceKey, MomentKey, MotionKey, OptionKey, SettingKey, StateKey,
+    BodyKey, ConstraintKey, ForceKey, MomentKey, MotionKey, OptionKey, SceneKey, SettingKey,
+    StateKey,
 };
 
 /// A whole model: `model Name;` plus its items in source order.

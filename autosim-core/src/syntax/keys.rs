@@ -157,6 +157,30 @@ option_keys! {
     }
 }
 
+option_keys! {
+    /// The scene options of `autosim::model!(file = "...", key = value, ...)`:
+    /// what one use of a model sets (the settings it overrides, and more).
+    SceneKey, "model option" {
+        /// `name = RigidBoom` — a new name for the model and its module.
+        Name = "name",
+        /// `float = f32` — the float type (overrides the setting).
+        Float = "float",
+        /// `threshold = 3` — the small-term threshold (overrides the setting).
+        Threshold = "threshold",
+        /// `outputs = [roll, yaw]` — generate only these outputs.
+        Outputs = "outputs",
+        /// `small = [B, q9]` — bodies or coordinates made small.
+        Small = "small",
+        /// `lock = [q9, q10]` — bodies or coordinates locked.
+        Lock = "lock",
+        /// `linearize = true` — generate `linearize` (overrides the setting).
+        Linearize = "linearize",
+        /// `formulation = recursive` — how the accelerations are solved
+        /// (overrides the setting).
+        Formulation = "formulation",
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -35,7 +35,7 @@ use syn::parse::{ParseStream, Parser};
 pub use crate::diag::SourceFile;
 use crate::diag::{Diagnostic, Diagnostics};
 use cx::{Cx, Failed};
-pub use scene::{FileArguments, SCENE_OPTIONS, file_arguments};
+pub use scene::{FileArguments, file_arguments};
 
 /// What a parse with recovery read: the model, if a `model` item was
 /// found (possibly incomplete where there are errors), and every error.

@@ -80,7 +80,7 @@ pub(crate) fn options<K: OptionKey>(
         ));
     }
     let (entries, span) = in_group(input, cx, Delimiter::Brace, |content| {
-        Ok(entries::<K>(content, cx))
+        Ok(entries::<K>(content, cx, Assign::Colon))
     })?;
     Ok(Options {
         entries,
@@ -88,10 +88,40 @@ pub(crate) fn options<K: OptionKey>(
     })
 }
 
-fn entries<K: OptionKey>(content: ParseStream, cx: &Cx) -> Vec<Opt<K>> {
+/// How an entry gives its key a value: `key: value` in a block, `key =
+/// value` among the macro's arguments.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Assign {
+    /// `key: value`.
+    Colon,
+    /// `key = value`.
+    Equals,
+}
+
+impl Assign {
+    fn text(self) -> &'static str {
+        match self {
+            Assign::Colon => ":",
+            Assign::Equals => "=",
+        }
+    }
+
+    /// Whether the next token is this one (`:` but not `::`).
+    fn peek(self, input: ParseStream) -> bool {
+        match self {
+            Assign::Colon => input.peek(Token![:]) && !input.peek(Token![::]),
+            Assign::Equals => input.peek(Token![=]) && !input.peek(Token![==]),
+        }
+    }
+}
+
+/// Entries `key: value` (or `key = value`) separated by commas, up to the
+/// end of `content`: every bad entry reported and skipped, a key given
+/// twice reported.
+pub(crate) fn entries<K: OptionKey>(content: ParseStream, cx: &Cx, assign: Assign) -> Vec<Opt<K>> {
     let mut out: Vec<Opt<K>> = Vec::new();
     while !content.is_empty() {
-        let last = match entry::<K>(content, cx) {
+        let last = match entry::<K>(content, cx, assign) {
             Ok((Some(opt), last)) => {
                 match out.iter().find(|seen| seen.key == opt.key) {
                     Some(first) => cx.report(duplicate(
@@ -111,12 +141,12 @@ fn entries<K: OptionKey>(content: ParseStream, cx: &Cx) -> Vec<Opt<K>> {
                 continue;
             }
         };
-        separator(
-            content,
-            cx,
-            last,
-            content.peek(syn::Ident) && content.peek2(Token![:]),
-        );
+        let next_is_entry = content.peek(syn::Ident)
+            && match assign {
+                Assign::Colon => content.peek2(Token![:]),
+                Assign::Equals => content.peek2(Token![=]),
+            };
+        separator(content, cx, last, next_is_entry);
     }
     out
 }
@@ -142,13 +172,18 @@ fn separator(content: ParseStream, cx: &Cx, last: Span, next_is_entry: bool) {
 
 /// One `key: value`; `None` for an unknown key (reported). Also returns the
 /// span of the value, for a missing-comma message.
-fn entry<K: OptionKey>(content: ParseStream, cx: &Cx) -> PResult<(Option<Opt<K>>, Span)> {
+fn entry<K: OptionKey>(
+    content: ParseStream,
+    cx: &Cx,
+    assign: Assign,
+) -> PResult<(Option<Opt<K>>, Span)> {
     if content.cursor().ident().is_none() {
         let example = K::ALL.first().map_or("key", |(text, _)| text);
+        let sep = assign.text();
         return cx.fail(expected(
             cx,
             content,
-            &format!("a {} such as `{example}: ...`", K::WHAT),
+            &format!("a {} such as `{example}{sep} ...`", K::WHAT),
         ));
     }
     let ident: syn::Ident = content.call(syn::ext::IdentExt::parse_any)?;
@@ -158,14 +193,21 @@ fn entry<K: OptionKey>(content: ParseStream, cx: &Cx) -> PResult<(Option<Opt<K>>
     if key.is_none() {
         cx.report(unknown_key::<K>(&text, key_span));
     }
-    if !content.peek(Token![:]) || content.peek(Token![::]) {
-        let mut diagnostic = expected(cx, content, &format!("`:` after `{text}`"));
-        if content.peek(Token![=]) {
+    if !assign.peek(content) {
+        let sep = assign.text();
+        let mut diagnostic = expected(cx, content, &format!("`{sep}` after `{text}`"));
+        if assign == Assign::Colon && content.peek(Token![=]) {
             diagnostic = diagnostic.help("block entries are written `key: value`");
+        }
+        if assign == Assign::Equals && content.peek(Token![:]) {
+            diagnostic = diagnostic.help("the macro's options are written `key = value`");
         }
         return cx.fail(diagnostic);
     }
-    content.parse::<Token![:]>()?;
+    match assign {
+        Assign::Colon => drop(content.parse::<Token![:]>()?),
+        Assign::Equals => drop(content.parse::<Token![=]>()?),
+    }
     let value = expr(content, cx)?;
     let last = value.span();
     Ok((

@@ -1,12 +1,16 @@
-//! The arguments of `autosim::model!(file = "...", ...)`: the path of a
-//! model file and the scene options of this use of it (see
-//! [`Scene`](crate::model::Scene)).
+//! The arguments of `autosim::model!(file = "...", key = value, ...)`: the
+//! path of a model file and the scene options of this use of it, read as
+//! the same option list a `settings` block gives (keys: [`SceneKey`]),
+//! every mistake reported at once. The resolver gives them their meaning
+//! (`model/settings.rs`).
 
-use crate::diag::Span;
-use crate::model::{FloatType, Formulation, Scene};
-use crate::syntax::ast;
+use super::ast::{Opt, SceneKey};
+use super::cx::{Cx, PResult, expected, skip_all};
+use super::parse_block::{Assign, entries};
+use crate::diag::Diagnostics;
 use proc_macro2::{TokenStream, TokenTree};
-use syn::parse::{Parse, ParseStream, Parser};
+use syn::Token;
+use syn::parse::{ParseStream, Parser};
 
 /// A model file named by a macro, with the options of its use.
 #[derive(Clone, Debug)]
@@ -15,132 +19,74 @@ pub struct FileArguments {
     pub path: String,
     /// The span of the path literal.
     pub span: proc_macro2::Span,
-    /// The scene options.
-    pub scene: Scene,
+    /// The scene options that could be read, in the order written.
+    pub options: Vec<Opt<SceneKey>>,
+    /// The mistakes of the option list (each bad entry is skipped).
+    pub diagnostics: Diagnostics,
 }
 
-/// The options a use site may set, in the order the docs list them.
-pub const SCENE_OPTIONS: &[&str] = &[
-    "name",
-    "float",
-    "threshold",
-    "outputs",
-    "small",
-    "lock",
-    "linearize",
-    "formulation",
-];
-
-/// `Some` if the macro input starts with `file =`: the path and options,
-/// or the error of a malformed argument list.
-pub fn file_arguments(input: &TokenStream) -> Option<syn::Result<FileArguments>> {
+/// `Some` if the macro input starts with `file =`: the path and the
+/// options with their mistakes, or the mistakes if the path cannot be read.
+pub fn file_arguments(input: &TokenStream) -> Option<Result<FileArguments, Diagnostics>> {
     let mut tokens = input.clone().into_iter();
     match (tokens.next(), tokens.next()) {
         (Some(TokenTree::Ident(i)), Some(TokenTree::Punct(p)))
             if i == "file" && p.as_char() == '=' =>
         {
-            Some(Parser::parse2(arguments, input.clone()))
+            let cx = Cx::tokens();
+            let parsed = (|input: ParseStream| {
+                let arguments = arguments(input, &cx);
+                skip_all(input);
+                Ok(arguments)
+            })
+            .parse2(input.clone());
+            let arguments = match parsed {
+                Ok(Ok(arguments)) => Some(arguments),
+                Ok(Err(failed)) => {
+                    cx.record(failed);
+                    None
+                }
+                Err(error) => {
+                    cx.record(error.into());
+                    None
+                }
+            };
+            let diagnostics = cx.into_diagnostics();
+            Some(match arguments {
+                Some(arguments) => Ok(FileArguments {
+                    diagnostics,
+                    ..arguments
+                }),
+                None => Err(diagnostics),
+            })
         }
         _ => None,
     }
 }
 
-fn arguments(input: ParseStream) -> syn::Result<FileArguments> {
+fn arguments(input: ParseStream, cx: &Cx) -> PResult<FileArguments> {
     let _: syn::Ident = input.parse()?;
-    let _: syn::Token![=] = input.parse()?;
-    let lit: syn::LitStr = input.parse().map_err(|e| {
-        syn::Error::new(
-            e.span(),
-            "expected `file = \"path/to/model.sim\"` (a path relative to the crate root)",
-        )
-    })?;
-    let mut scene = Scene::default();
-    while !input.is_empty() {
-        let _: syn::Token![,] = input.parse()?;
-        if input.is_empty() {
-            break;
+    let _: Token![=] = input.parse()?;
+    if !input.peek(syn::LitStr) {
+        return cx.fail(expected(
+            cx,
+            input,
+            "`file = \"path/to/model.sim\"` (a path relative to the crate root)",
+        ));
+    }
+    let lit: syn::LitStr = input.parse()?;
+    let mut options = Vec::new();
+    if !input.is_empty() {
+        if !input.peek(Token![,]) {
+            return cx.fail(expected(cx, input, "`,` after the path"));
         }
-        let key: syn::Ident = input.parse()?;
-        let _: syn::Token![=] = input.parse()?;
-        option(input, &key, &mut scene)?;
+        input.parse::<Token![,]>()?;
+        options = entries::<SceneKey>(input, cx, Assign::Equals);
     }
     Ok(FileArguments {
         path: lit.value(),
         span: lit.span(),
-        scene,
+        options,
+        diagnostics: Diagnostics::new(),
     })
-}
-
-fn name(i: &syn::Ident) -> ast::Name {
-    ast::Name {
-        text: i.to_string(),
-        span: Span::from_token(i.span()),
-    }
-}
-
-fn names(input: ParseStream) -> syn::Result<Vec<ast::Name>> {
-    let content;
-    syn::bracketed!(content in input);
-    let items = content.parse_terminated(syn::Ident::parse, syn::Token![,])?;
-    Ok(items.iter().map(name).collect())
-}
-
-/// One `key = value` option.
-fn option(input: ParseStream, key: &syn::Ident, scene: &mut Scene) -> syn::Result<()> {
-    match key.to_string().as_str() {
-        "name" => scene.name = Some(name(&input.parse()?)),
-        "float" => {
-            let f: syn::Ident = input.parse()?;
-            scene.float = Some(match f.to_string().as_str() {
-                "f64" => FloatType::F64,
-                "f32" => FloatType::F32,
-                _ => {
-                    return Err(syn::Error::new(
-                        f.span(),
-                        "the float type is `f64` or `f32`",
-                    ));
-                }
-            });
-        }
-        "threshold" => {
-            let k: syn::LitInt = input.parse()?;
-            let v: i16 = k.base10_parse()?;
-            if !crate::limits::THRESHOLDS.contains(&v) {
-                return Err(syn::Error::new(
-                    k.span(),
-                    "the threshold must be between 1 and 20",
-                ));
-            }
-            scene.threshold = Some(v);
-        }
-        "outputs" => scene.outputs = Some(names(input)?),
-        "linearize" => {
-            let b: syn::LitBool = input.parse()?;
-            scene.linearize = Some(b.value);
-        }
-        "formulation" => {
-            let f: syn::Ident = input.parse()?;
-            let name = f.to_string();
-            scene.formulation = Some(Formulation::named(&name).ok_or_else(|| {
-                syn::Error::new(
-                    f.span(),
-                    format!(
-                        "the formulation is `auto`, `mass_matrix` or `recursive`: {}",
-                        Formulation::help_for(&name)
-                    ),
-                )
-            })?);
-        }
-        "small" => scene.small = names(input)?,
-        "lock" => scene.lock = names(input)?,
-        other => {
-            return Err(syn::Error::new(
-                key.span(),
-                format!(
-                    "unknown model option `{other}`: the options are `name`, `float`, `threshold`, `outputs`, `small`, `lock`, `linearize` and `formulation`"
-                ),
-            ));
-        }
-    }
-    Ok(())
 }

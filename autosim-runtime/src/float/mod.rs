@@ -156,12 +156,21 @@ pub trait MulAdd: Sized {
     fn sub_mul(self, a: Self, b: Self) -> Self;
 }
 
-/// Whether [`MulAdd`] fuses: `std`'s `mul_add` compiles to one instruction.
+/// Whether [`MulAdd`] fuses: `std`'s `mul_add` compiles to one instruction
+/// (and the `libm` feature does not ask for the bits without `std`).
 macro_rules! fused {
     ($fused:expr, $plain:expr) => {{
-        #[cfg(all(feature = "std", any(target_feature = "fma", target_arch = "aarch64")))]
+        #[cfg(all(
+            feature = "std",
+            not(feature = "libm"),
+            any(target_feature = "fma", target_arch = "aarch64")
+        ))]
         return $fused;
-        #[cfg(not(all(feature = "std", any(target_feature = "fma", target_arch = "aarch64"))))]
+        #[cfg(not(all(
+            feature = "std",
+            not(feature = "libm"),
+            any(target_feature = "fma", target_arch = "aarch64")
+        )))]
         return $plain;
     }};
 }
@@ -192,7 +201,9 @@ impl_mul_add!(f32);
 /// --bench math`) they are 1.1 to 1.5 times faster (a sine and cosine pair
 /// 7.6 ns against 11.6), and they give the same bits with and without
 /// `std`. `sqrt`, `exp`, `ln`, `powf` and `powi` come from `std` where
-/// there is one (as fast or faster there), from `libm` otherwise.
+/// there is one (as fast or faster there), from `libm` otherwise, and with
+/// the `libm` feature always (so that a model computes the same bits with
+/// and without `std`).
 mod imp {
     macro_rules! math {
         (
@@ -226,7 +237,7 @@ mod imp {
                     let (s, c) = crate::float::straight_sin_cos::sin_cos_lanes(x.map(f64::from));
                     (s.map(<$t>::from_f64), c.map(<$t>::from_f64))
                 }
-                #[cfg(feature = "std")]
+                #[cfg(all(feature = "std", not(feature = "libm")))]
                 forward! {
                     pub fn sqrt(x: $t) -> $t => $t::sqrt;
                     pub fn exp(x: $t) -> $t => $t::exp;
@@ -234,7 +245,7 @@ mod imp {
                     pub fn powf(x: $t, e: $t) -> $t => $t::powf;
                     pub fn powi(x: $t, n: i32) -> $t => $t::powi;
                 }
-                #[cfg(not(feature = "std"))]
+                #[cfg(any(not(feature = "std"), feature = "libm"))]
                 forward! {
                     pub fn sqrt(x: $t) -> $t => libm::$sqrt;
                     pub fn exp(x: $t) -> $t => libm::$exp;
@@ -243,7 +254,7 @@ mod imp {
                 }
                 /// Exponentiation by squaring: exact for the small integer
                 /// powers generated code uses.
-                #[cfg(not(feature = "std"))]
+                #[cfg(any(not(feature = "std"), feature = "libm"))]
                 #[inline(always)]
                 pub fn powi(x: $t, n: i32) -> $t {
                     let mut base = if n < 0 { 1.0 / x } else { x };
@@ -399,6 +410,7 @@ mod tests {
     fn add_mul_rounds_once_exactly_where_it_fuses() {
         let fused = cfg!(all(
             feature = "std",
+            not(feature = "libm"),
             any(target_feature = "fma", target_arch = "aarch64")
         ));
         rounds_once_where_fused(f64::EPSILON, fused);

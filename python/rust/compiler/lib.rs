@@ -168,8 +168,8 @@ fn compile_text(text: &str, path: &str, options: Options) -> Result<(String, Str
         )));
     }
     let emit = EmitOptions {
-        runtime_path: "::autosim_runtime".to_string(),
         module_name: Some("generated".to_string()),
+        ..EmitOptions::with_runtime_path("::autosim_runtime").expect("a constant Rust path")
     };
     let rust = format!(
         "{}{}",

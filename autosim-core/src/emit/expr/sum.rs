@@ -3,18 +3,17 @@
 //! `acc + a * b` printed `a.fma(b, acc)` is one instruction where the
 //! target has fused multiply-adds instead of two; big generated functions
 //! are limited by how fast the processor reads their instructions, so that
-//! pays there. But a fused multiply-add takes a multiply's latency (4
-//! cycles) where an add takes 2 on current Intel cores (3 on AMD): when the
-//! sum so far is ready later than the product's factors, the separate add
-//! finishes first, and on a chain of such sums (the inward pass of a planar
-//! chain) fusing everything made the code 5 % slower. So a sum is printed
+//! pays there. But a fused multiply-add takes a multiply's latency where an
+//! add is shorter: when the sum so far is ready later than the product's
+//! factors, the separate add finishes first (fusing everything made chains
+//! of such sums slower: `bench/results/compiler-choices.md`). So a sum is printed
 //! left to right as the IR orders it, and each product after the first term
 //! is fused only where that does not make the sum ready later, by rough
 //! latencies from the block's inputs. Without fused instructions
 //! `a.fma(b, acc)` is `a * b + acc`: the same bits as the sum unfused.
 
 use super::{ExprPrinter, Prec};
-use crate::model::FloatType;
+use crate::opt::FloatType;
 use crate::opt::{Nid, Op};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;

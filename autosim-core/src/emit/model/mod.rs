@@ -11,14 +11,14 @@ use super::block::BlockEmitter;
 use super::expr::{Locals, float_type, ident};
 use crate::opt::{BlockKind, Interface, Ops, Program, Quantity, StateVar};
 use proc_macro2::{Ident, Literal, TokenStream};
-use quote::{format_ident, quote};
+use quote::{ToTokens, format_ident, quote};
 
 /// How generated code is written.
 #[derive(Clone, Debug)]
 pub struct EmitOptions {
     /// Path of the runtime crate in generated code (default
     /// `::autosim::runtime`).
-    pub runtime_path: String,
+    pub runtime_path: syn::Path,
     /// Name of the generated module (default: the model name in snake case).
     pub module_name: Option<String>,
 }
@@ -26,9 +26,21 @@ pub struct EmitOptions {
 impl Default for EmitOptions {
     fn default() -> Self {
         EmitOptions {
-            runtime_path: "::autosim::runtime".to_string(),
+            runtime_path: syn::parse_quote!(::autosim::runtime),
             module_name: None,
         }
+    }
+}
+
+impl EmitOptions {
+    /// Options for code that reaches the runtime crate at `path` (e.g.
+    /// `"::autosim_runtime"`), or the parser's error if `path` is not a Rust
+    /// path.
+    pub fn with_runtime_path(path: &str) -> Result<EmitOptions, syn::Error> {
+        Ok(EmitOptions {
+            runtime_path: syn::parse_str(path)?,
+            module_name: None,
+        })
     }
 }
 
@@ -79,10 +91,7 @@ fn ops_tokens(rt: &TokenStream, o: &Ops) -> TokenStream {
 /// The whole generated module.
 pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
     let i = &prog.interface;
-    let rt: TokenStream = options
-        .runtime_path
-        .parse()
-        .unwrap_or_else(|_| quote!(::autosim::runtime));
+    let rt: TokenStream = options.runtime_path.to_token_stream();
     let module = ident(
         &options
             .module_name

@@ -3,7 +3,7 @@
 
 use super::{doc, docs};
 use crate::emit::expr::{float_type, ident, literal};
-use crate::model::FloatType;
+use crate::opt::FloatType;
 use crate::opt::{Interface, Quantity};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;

@@ -10,7 +10,7 @@
 //! way the speed is `u = dq/dt` and the angular velocity relative to the
 //! parent is `u d`.
 
-use super::build::RotationParts;
+use super::symbols::RotationParts;
 use super::{Axis, DofKind};
 use crate::expr::{Arena, ExprId, SymId};
 use crate::mech::frames::FrameId;

@@ -3,7 +3,7 @@
 //! relative to the parent in the body's axes, and the rates
 //! `dq/dt = E⁻¹ ω` (singular where the first and third axes line up).
 
-use super::build::RotationParts;
+use super::symbols::RotationParts;
 use super::{Axis, DofKind};
 use crate::expr::{ExprId, SymId};
 use crate::mech::frames::FrameId;

@@ -2,24 +2,27 @@
 //!
 //! A [`Joint`] is up to three translations along directions fixed in the
 //! parent, followed by a [`Rotation`]: none, one about an axis, a sequence
-//! of three body-fixed rotations, or Euler parameters. It owns the body's
-//! degrees of freedom: how many there are and how they are named, the
-//! frames they create, the kinematical equations `dq/dt = f(q, u)` and the
-//! unit motion of each speed ([`DofKind`]). Each rotation kind lives in a
-//! file of its own (`simple.rs`, `euler.rs`, `quaternion.rs`); adding a kind
-//! is a variant of [`Rotation`], its file, and its arms in this one.
+//! of three body-fixed rotations, Euler parameters, or one about a constant
+//! direction of the parent. It owns the body's degrees of freedom: how many
+//! there are and how they are named, their symbols, the frames they create
+//! and the kinematical equations `dq/dt = f(q, u)` (`symbols.rs`), the
+//! unit motion of each speed ([`DofKind`], `motion.rs`), the translations
+//! (`translation.rs`) and what locking does (`lock.rs`). Each rotation kind
+//! lives in a file of its own (`simple.rs`, `euler.rs`, `quaternion.rs`,
+//! `about.rs`); adding a kind is a variant of [`Rotation`], its file, and
+//! its arms in this one and in `symbols.rs`.
 
 mod about;
-mod build;
 mod euler;
 mod lock;
 mod motion;
 mod quaternion;
 mod simple;
+mod symbols;
 pub(crate) mod translation;
 
-pub(crate) use build::{BuiltJoint, DofSymbols};
 pub use motion::UnitMotion;
+pub(crate) use symbols::{BuiltJoint, DofSymbols};
 
 use super::error::{BodyField, ModelError};
 use crate::expr::{Arena, ExprId};

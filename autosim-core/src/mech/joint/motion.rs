@@ -4,6 +4,7 @@
 
 use super::DofKind;
 use super::translation::joint_offset;
+use crate::expr::ExprId;
 use crate::mech::framevec::Fv;
 use crate::mech::system::{BodyId, System};
 
@@ -15,6 +16,11 @@ pub struct UnitMotion {
     pub w: Fv,
     /// Velocity of the origin.
     pub v: Fv,
+    /// Where the unit motion is a unit vector of the body's axes, its
+    /// component in `[ω; v]` (0 to 5): a rotation about a body axis (the
+    /// joint's `DofKind::Rotation`), or a translation or rotation along a
+    /// direction that is a body axis.
+    pub axis: Option<usize>,
 }
 
 impl System {
@@ -28,18 +34,34 @@ impl System {
             DofKind::Translation { direction } => {
                 let pf = self.bodies[body.parent.unwrap_or(BodyId::N).index()].frame;
                 let v = Fv::new(pf, direction).reexpress(&mut self.arena, &mut self.frames, frame);
-                UnitMotion { w: zero, v }
+                let axis = self.unit_component(&v.c).map(|a| 3 + a);
+                UnitMotion { w: zero, v, axis }
             }
             DofKind::Rotation { axis } => {
                 let mut e = zero;
                 e.c[axis.index()] = self.arena.one();
-                UnitMotion { w: e, v: zero }
+                UnitMotion {
+                    w: e,
+                    v: zero,
+                    axis: Some(axis.index()),
+                }
             }
             DofKind::RotationAbout { direction } => UnitMotion {
                 w: Fv::new(frame, direction),
                 v: zero,
+                axis: self.unit_component(&direction),
             },
         }
+    }
+
+    /// The axis `a` if the components `c` are exactly the unit vector `e_a`.
+    fn unit_component(&self, c: &[ExprId; 3]) -> Option<usize> {
+        let one = self.arena.one();
+        let a = c.iter().position(|x| *x == one)?;
+        c.iter()
+            .enumerate()
+            .all(|(i, x)| i == a || self.arena.is_zero(*x))
+            .then_some(a)
     }
 
     /// The velocity of body `b`'s origin relative to its parent (parent

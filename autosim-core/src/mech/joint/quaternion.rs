@@ -3,7 +3,7 @@
 //! the three speeds (the angular velocity relative to the parent in body
 //! axes); `e0` is an extra state with its own rate.
 
-use super::build::RotationParts;
+use super::symbols::RotationParts;
 use super::{Axis, DofKind};
 use crate::expr::{Arena, ExprId, Number, SymId};
 use crate::mech::error::ModelError;

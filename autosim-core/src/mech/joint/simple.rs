@@ -1,7 +1,7 @@
 //! A simple rotation: the body turns about one axis of its parent, which it
 //! shares (the paper's Table 8: `c1, c2, b3`); its speed is `dq/dt`.
 
-use super::build::RotationParts;
+use super::symbols::RotationParts;
 use super::{Axis, DofKind};
 use crate::expr::{ExprId, SymId};
 use crate::mech::frames::FrameId;

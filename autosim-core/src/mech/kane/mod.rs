@@ -15,14 +15,14 @@
 //! an acceleration `-g` of N. The mass matrix is never inverted: the
 //! accelerations are solved numerically by the caller.
 
+mod body_kinetics;
 mod constraints;
 mod loads;
 mod mass;
 mod recursion;
-mod tree;
 
+pub use body_kinetics::{BodyKinetics, TreeKinetics};
 pub use constraints::{ConstraintEquations, ConstraintRow, Prescribed};
-pub use tree::{BodyKinetics, TreeKinetics};
 
 use super::error::{ItemRef, LocatedError, ModelError};
 use super::joint::UnitMotion;
@@ -56,19 +56,6 @@ pub struct Equations {
     pub prescribed: Vec<Prescribed>,
     /// Each body's data for a recursive solve of `M du/dt = f`.
     pub tree: TreeKinetics,
-}
-
-impl Equations {
-    /// All expressions (kinematics, mass matrix, forcing, state derivatives).
-    pub fn all_expressions(&self) -> Vec<ExprId> {
-        let mut v = self.kinematics.clone();
-        for row in &self.mass_matrix {
-            v.extend(row);
-        }
-        v.extend(&self.forcing);
-        v.extend(&self.state_derivatives);
-        v
-    }
 }
 
 impl System {

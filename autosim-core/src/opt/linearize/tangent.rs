@@ -1,0 +1,311 @@
+//! Forward differentiation of the program IR: the derivative of a node
+//! with respect to one leaf (a state or an input), built as IR nodes so
+//! the linearization shares the optimizer's naming, hoisting and counting.
+//!
+//! Values the caller knows the derivative of are seeded (the
+//! accelerations: their derivative comes from the mass matrix's factor,
+//! not from differentiating the unrolled solve). User functions and
+//! subroutine outputs are held: their derivative is zero (a linear model
+//! treats them as inputs; documented in `language.md`).
+
+use crate::expr::Func;
+use crate::opt::ir::{Ir, Leaf, Nid, Op};
+use rustc_hash::FxHashMap;
+
+/// Derivatives of IR nodes with respect to one leaf, memoized.
+pub struct Tangent {
+    wrt: Leaf,
+    memo: FxHashMap<Nid, Nid>,
+}
+
+impl Tangent {
+    /// Derivatives with respect to `wrt`.
+    pub fn new(wrt: Leaf) -> Tangent {
+        Tangent {
+            wrt,
+            memo: FxHashMap::default(),
+        }
+    }
+
+    /// Declares `d leaf / d wrt = value` for another leaf (the IR's
+    /// rewriting can absorb an inner node into its users, never a leaf).
+    pub fn seed(&mut self, leaf: Nid, value: Nid) {
+        self.memo.insert(leaf, value);
+    }
+
+    /// `d n / d wrt`. Iterative: dependency chains of big models are
+    /// thousands deep.
+    pub fn d(&mut self, ir: &mut Ir, n: Nid) -> Nid {
+        let mut stack: Vec<(Nid, bool)> = vec![(n, false)];
+        while let Some((m, expanded)) = stack.pop() {
+            if self.memo.contains_key(&m) {
+                continue;
+            }
+            if ir.is_constant(m) {
+                let zero = ir.num(0.0);
+                self.memo.insert(m, zero);
+                continue;
+            }
+            if expanded {
+                let dm = self.rule(ir, m);
+                self.memo.insert(m, dm);
+                continue;
+            }
+            stack.push((m, true));
+            for c in ir.children(m) {
+                if !self.memo.contains_key(&c) {
+                    stack.push((c, false));
+                }
+            }
+        }
+        self.memo[&n]
+    }
+
+    /// The derivative of `n`, its children's known.
+    fn rule(&mut self, ir: &mut Ir, n: Nid) -> Nid {
+        let d = |t: &Tangent, c: Nid| t.memo[&c];
+        match ir.op(n).clone() {
+            Op::Num(_) => ir.num(0.0),
+            Op::Leaf(l) => ir.num(if l == self.wrt { 1.0 } else { 0.0 }),
+            Op::Sum { pos, neg } => {
+                let p = pos.iter().map(|c| d(self, *c)).collect();
+                let m = neg.iter().map(|c| d(self, *c)).collect();
+                ir.sum(p, m)
+            }
+            Op::Mul(a, b) => {
+                let (da, db) = (d(self, a), d(self, b));
+                let x = ir.mul(da, b);
+                let y = ir.mul(a, db);
+                ir.sum(vec![x, y], Vec::new())
+            }
+            Op::Div(a, b) => {
+                // (da − (a/b) db) / b
+                let (da, db) = (d(self, a), d(self, b));
+                let q = ir.mul(n, db);
+                let num = ir.sum(vec![da], vec![q]);
+                ir.div(num, b)
+            }
+            Op::Neg(a) => {
+                let da = d(self, a);
+                ir.neg(da)
+            }
+            Op::Powi(a, k) => {
+                let da = d(self, a);
+                let p = ir.powi(a, k - 1);
+                let kk = ir.num(f64::from(k));
+                let s = ir.mul(kk, p);
+                ir.mul(s, da)
+            }
+            Op::Sqrt(a) => {
+                // da / (2 sqrt(a))
+                let da = d(self, a);
+                let two = ir.num(2.0);
+                let den = ir.mul(two, n);
+                ir.div(da, den)
+            }
+            Op::Powf(a, b) => {
+                let (da, db) = (d(self, a), d(self, b));
+                // b a^(b−1) da + a^b ln(a) db
+                let one = ir.num(1.0);
+                let bm1 = ir.sum(vec![b], vec![one]);
+                let p = ir.powf(a, bm1);
+                let t1 = ir.mul(b, p);
+                let t1 = ir.mul(t1, da);
+                let t2 = match ir.as_num(db) {
+                    Some(0.0) => ir.num(0.0),
+                    _ => {
+                        let ln = ir.call(Func::Ln, vec![a]);
+                        let x = ir.mul(n, ln);
+                        ir.mul(x, db)
+                    }
+                };
+                ir.sum(vec![t1, t2], Vec::new())
+            }
+            Op::Call(f, args) => self.call_rule(ir, n, f, &args),
+        }
+    }
+
+    fn call_rule(&mut self, ir: &mut Ir, n: Nid, f: Func, args: &[Nid]) -> Nid {
+        let da: Vec<Nid> = args.iter().map(|c| self.memo[c]).collect();
+        let a = args[0];
+        match f {
+            Func::Sin => {
+                let c = ir.call(Func::Cos, vec![a]);
+                ir.mul(c, da[0])
+            }
+            Func::Cos => {
+                let s = ir.call(Func::Sin, vec![a]);
+                let x = ir.mul(s, da[0]);
+                ir.neg(x)
+            }
+            Func::Tan => {
+                let one = ir.num(1.0);
+                let t2 = ir.powi(n, 2);
+                let s = ir.sum(vec![one, t2], Vec::new());
+                ir.mul(s, da[0])
+            }
+            Func::Asin | Func::Acos => {
+                let one = ir.num(1.0);
+                let a2 = ir.powi(a, 2);
+                let s = ir.sum(vec![one], vec![a2]);
+                let r = ir.sqrt(s);
+                let q = ir.div(da[0], r);
+                if f == Func::Acos { ir.neg(q) } else { q }
+            }
+            Func::Atan2 => {
+                // (x dy − y dx) / (x² + y²)
+                let (y, x) = (args[0], args[1]);
+                let t1 = ir.mul(x, da[0]);
+                let t2 = ir.mul(y, da[1]);
+                let num = ir.sum(vec![t1], vec![t2]);
+                let x2 = ir.powi(x, 2);
+                let y2 = ir.powi(y, 2);
+                let den = ir.sum(vec![x2, y2], Vec::new());
+                ir.div(num, den)
+            }
+            Func::Exp => ir.mul(n, da[0]),
+            Func::Ln => ir.div(da[0], a),
+            Func::Abs => {
+                let s = ir.call(Func::Sign, vec![a]);
+                ir.mul(s, da[0])
+            }
+            Func::Min | Func::Max => {
+                // (da + db ∓ sign(a − b)(da − db)) / 2
+                let b = args[1];
+                let diff = ir.sum(vec![a], vec![b]);
+                let s = ir.call(Func::Sign, vec![diff]);
+                let dd = ir.sum(vec![da[0]], vec![da[1]]);
+                let sd = ir.mul(s, dd);
+                let both = ir.sum(vec![da[0], da[1]], Vec::new());
+                let num = match f {
+                    Func::Min => ir.sum(vec![both], vec![sd]),
+                    _ => ir.sum(vec![both, sd], Vec::new()),
+                };
+                let half = ir.num(0.5);
+                ir.mul(half, num)
+            }
+            // Held: sign is piecewise constant; user code is an input.
+            Func::Sign | Func::User(_) => ir.num(0.0),
+        }
+    }
+}
+
+/// `roots` with the nodes of `map` replaced (their users rebuilt).
+pub fn substitute(ir: &mut Ir, roots: &[Nid], map: &FxHashMap<Nid, Nid>) -> Vec<Nid> {
+    let mut done: FxHashMap<Nid, Nid> = map.clone();
+    for &root in roots {
+        let mut stack: Vec<(Nid, bool)> = vec![(root, false)];
+        while let Some((m, expanded)) = stack.pop() {
+            if done.contains_key(&m) {
+                continue;
+            }
+            if ir.is_constant(m) || matches!(ir.op(m), Op::Leaf(_) | Op::Num(_)) {
+                done.insert(m, m);
+                continue;
+            }
+            if expanded {
+                let r = rebuild(ir, m, &done);
+                done.insert(m, r);
+                continue;
+            }
+            stack.push((m, true));
+            for c in ir.children(m) {
+                stack.push((c, false));
+            }
+        }
+    }
+    roots.iter().map(|r| done[r]).collect()
+}
+
+/// Node `n` with its children replaced by `new[child]`.
+fn rebuild(ir: &mut Ir, n: Nid, new: &FxHashMap<Nid, Nid>) -> Nid {
+    let c = |x: &Nid| new[x];
+    match ir.op(n).clone() {
+        Op::Num(_) | Op::Leaf(_) => n,
+        Op::Sum { pos, neg } => {
+            let p = pos.iter().map(c).collect();
+            let m = neg.iter().map(c).collect();
+            ir.sum(p, m)
+        }
+        Op::Mul(a, b) => ir.mul(c(&a), c(&b)),
+        Op::Div(a, b) => ir.div(c(&a), c(&b)),
+        Op::Neg(a) => ir.neg(c(&a)),
+        Op::Powi(a, k) => ir.powi(c(&a), k),
+        Op::Sqrt(a) => ir.sqrt(c(&a)),
+        Op::Powf(a, b) => ir.powf(c(&a), c(&b)),
+        Op::Call(f, args) => ir.call(f, args.iter().map(c).collect()),
+    }
+}
+
+/// `nodes` with `Leaf::Accel(k)` replaced by `du[k]`.
+pub(crate) fn with_accelerations(ir: &mut Ir, nodes: &[Nid], du: &[Nid]) -> Vec<Nid> {
+    let map: FxHashMap<Nid, Nid> = du
+        .iter()
+        .enumerate()
+        .map(|(k, d)| (ir.leaf(Leaf::Accel(k)), *d))
+        .collect();
+    substitute(ir, nodes, &map)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Evaluates `n` with the state leaves `x`.
+    fn eval(ir: &Ir, n: Nid, x: &[f64]) -> f64 {
+        let v = |m: Nid| eval(ir, m, x);
+        match ir.op(n) {
+            Op::Num(b) => f64::from_bits(*b),
+            Op::Leaf(Leaf::State(i)) => x[*i],
+            Op::Leaf(_) => 0.0,
+            Op::Sum { pos, neg } => {
+                pos.iter().map(|c| v(*c)).sum::<f64>() - neg.iter().map(|c| v(*c)).sum::<f64>()
+            }
+            Op::Mul(a, b) => v(*a) * v(*b),
+            Op::Div(a, b) => v(*a) / v(*b),
+            Op::Neg(a) => -v(*a),
+            Op::Powi(a, k) => v(*a).powi(*k),
+            Op::Sqrt(a) => v(*a).sqrt(),
+            Op::Powf(a, b) => v(*a).powf(v(*b)),
+            Op::Call(f, args) => {
+                let xs: Vec<f64> = args.iter().map(|c| v(*c)).collect();
+                f.eval_builtin(&xs).unwrap_or(f64::NAN)
+            }
+        }
+    }
+
+    #[test]
+    fn derivatives_match_central_differences() {
+        let mut ir = Ir::new();
+        let (x, y) = (ir.leaf(Leaf::State(0)), ir.leaf(Leaf::State(1)));
+        let s = ir.call(Func::Sin, vec![x]);
+        let c = ir.call(Func::Cos, vec![y]);
+        let p = ir.mul(s, c);
+        let q = ir.div(p, y);
+        let r = ir.sqrt(q);
+        let a = ir.call(Func::Atan2, vec![x, y]);
+        let e = ir.call(Func::Exp, vec![a]);
+        let three = ir.num(3.0);
+        let pw = ir.powf(y, x);
+        let cube = ir.powi(x, 3);
+        let m = ir.call(Func::Max, vec![x, cube]);
+        let t = ir.call(Func::Tan, vec![x]);
+        let as_ = ir.call(Func::Asin, vec![c]);
+        let f = ir.sum(vec![r, e, pw, m, t, as_], vec![three]);
+        let at = [0.7, 1.3];
+        for (k, leaf) in [Leaf::State(0), Leaf::State(1)].into_iter().enumerate() {
+            let mut tangent = Tangent::new(leaf);
+            let df = tangent.d(&mut ir, f);
+            let h = 1e-6;
+            let (mut lo, mut hi) = (at, at);
+            lo[k] -= h;
+            hi[k] += h;
+            let fd = (eval(&ir, f, &hi) - eval(&ir, f, &lo)) / (2.0 * h);
+            let got = eval(&ir, df, &at);
+            assert!(
+                (got - fd).abs() < 1e-7 * (1.0 + fd.abs()),
+                "d/dx{k}: {got} vs {fd}"
+            );
+        }
+    }
+}

@@ -9,6 +9,7 @@ mod bodies;
 mod body_options;
 mod declare;
 mod exprs;
+mod finite;
 mod items;
 mod lazy;
 mod loads;
@@ -137,6 +138,7 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
     check_model_name(&mut r, model_name);
     // Settings first: the threshold affects every expression built later.
     let outputs = settings::apply_settings(&mut r, &mut out, model, scene);
+    r.float = out.float;
     declare::declare_values(&mut r, &mut out, model);
     let bodies: Vec<&ast::Body> = model
         .items

@@ -62,6 +62,8 @@ pub(crate) struct Resolver<'a> {
     /// Parameters declared by the compiler (a body's default mass and
     /// inertia), with the span of the body that needs them.
     pub implicit_parameters: Vec<(String, Span)>,
+    /// The model's float type (constants must fit it).
+    pub float: super::FloatType,
 }
 
 pub(crate) use crate::limits::{MAX_NESTING, MAX_PENDING};
@@ -90,6 +92,7 @@ impl<'a> Resolver<'a> {
             scene: super::Scene::default(),
             scene_matched: Vec::new(),
             implicit_parameters: Vec::new(),
+            float: super::FloatType::F64,
         }
     }
 

@@ -26,6 +26,18 @@ pub enum IntegrationError {
         /// Name of that state (`"?"` if the model lists fewer names than states).
         name: &'static str,
     },
+    /// An output became NaN or infinite at a finite state (the run driver
+    /// checks the outputs at every output time). `index` and `name`
+    /// identify the first such output (in
+    /// [`Model::OUTPUT_NAMES`](crate::Model::OUTPUT_NAMES) order).
+    NonFiniteOutput {
+        /// Time of the output.
+        t: f64,
+        /// Index of the first non-finite output.
+        index: usize,
+        /// Name of that output (`"?"` if the model lists fewer names).
+        name: &'static str,
+    },
     /// An adaptive integrator needed a step smaller than its minimum step to
     /// meet its tolerances (or to get finite values): the solution is
     /// probably singular near `t`, or the tolerances are too tight for the
@@ -92,6 +104,7 @@ impl IntegrationError {
     pub fn time(&self) -> Option<f64> {
         match *self {
             IntegrationError::NonFinite { t, .. }
+            | IntegrationError::NonFiniteOutput { t, .. }
             | IntegrationError::StepSizeUnderflow { t, .. }
             | IntegrationError::NewtonFailed { t, .. }
             | IntegrationError::SingularNewtonMatrix { t, .. }
@@ -109,6 +122,10 @@ impl core::fmt::Display for IntegrationError {
             IntegrationError::NonFinite { t, index, name } => write!(
                 f,
                 "state {name} (#{index}) became non-finite at t = {t}; try a smaller step or check the model"
+            ),
+            IntegrationError::NonFiniteOutput { t, index, name } => write!(
+                f,
+                "output {name} (#{index}) is not finite at t = {t} although the state is: the output divides by zero or calls a function outside its domain there"
             ),
             IntegrationError::StepSizeUnderflow { t, h } => write!(
                 f,
@@ -146,6 +163,24 @@ impl core::error::Error for IntegrationError {
             return Some(error);
         }
         None
+    }
+}
+
+/// Returns the first non-finite output of `y` as an
+/// [`IntegrationError::NonFiniteOutput`] at time `t` (the run driver checks
+/// the outputs it reports).
+pub fn check_finite_outputs<M: crate::Model>(
+    t: M::Float,
+    y: &M::Outputs,
+) -> Result<(), IntegrationError> {
+    use crate::Float;
+    match y.as_ref().iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(index) => Err(IntegrationError::NonFiniteOutput {
+            t: t.to_f64(),
+            index,
+            name: M::OUTPUT_NAMES.get(index).copied().unwrap_or("?"),
+        }),
     }
 }
 

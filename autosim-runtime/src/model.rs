@@ -58,6 +58,34 @@ pub enum ModelError {
         /// The dependent coordinate that jumped.
         coordinate: &'static str,
     },
+    /// A derivative came out NaN or infinite although the state was
+    /// finite: the model divides by zero or calls a function outside its
+    /// domain at this state (`-k/x^2` at `x = 0`, `sqrt` of a negative
+    /// number), a user function returned a non-finite value, or the state
+    /// is so large that a derivative overflows (an integration beyond its
+    /// stability limit). Generated models check their derivatives before
+    /// returning them ([`check_derivatives`]).
+    NonFiniteDerivative {
+        /// Index of the first non-finite derivative (state order).
+        index: usize,
+        /// Name of the state whose derivative it is.
+        name: &'static str,
+    },
+}
+
+/// `Ok` if every derivative in `dx` is finite, else
+/// [`ModelError::NonFiniteDerivative`] naming the first state whose
+/// derivative is not. Generated `derivatives` ends with it.
+///
+/// One pass over `dx` without early exit (the common case, all finite,
+/// is a vectorizable AND of comparisons); the index is searched only on
+/// failure.
+#[inline]
+pub fn check_derivatives<M: Model + ?Sized>(dx: &M::State) -> Result<(), ModelError> {
+    match dx.as_ref().iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(index) => Err(non_finite_derivative::<M>(index)),
+    }
 }
 
 impl core::fmt::Display for ModelError {
@@ -78,6 +106,10 @@ impl core::fmt::Display for ModelError {
             ModelError::LostBranch { coordinate } => write!(
                 f,
                 "projection onto the position constraints moved {coordinate} too far: the mechanism jumped to another branch (take smaller steps, or avoid the singular configuration)"
+            ),
+            ModelError::NonFiniteDerivative { index, name } => write!(
+                f,
+                "the derivative of state {name} (#{index}) is not finite at this state: the model divides by zero or calls a function outside its domain here, a user function returned NaN or infinity, or the state is so large that the derivative overflows (an unstable step: try a smaller one)"
             ),
         }
     }
@@ -241,5 +273,16 @@ impl core::fmt::Display for OpCount {
             "{} adds, {} multiplies, {} divides, {} functions, {} user calls",
             self.adds, self.muls, self.divs, self.funcs, self.user_calls
         )
+    }
+}
+
+/// The error of a non-finite derivative (out of line: the check's hot path
+/// is only the comparisons).
+#[cold]
+#[inline(never)]
+fn non_finite_derivative<M: Model + ?Sized>(index: usize) -> ModelError {
+    ModelError::NonFiniteDerivative {
+        index,
+        name: M::STATE_NAMES.get(index).copied().unwrap_or("?"),
     }
 }

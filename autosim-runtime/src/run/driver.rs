@@ -5,6 +5,7 @@
 use super::MAX_RECORDED_INPUTS;
 
 use super::{Observer, RunError, RunSettings, RunSummary};
+use crate::error::check_finite_outputs;
 use crate::integrate::Stepper;
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 
@@ -105,6 +106,7 @@ impl<M: Model> Driver<M> {
                 t: t.to_f64(),
                 error,
             })?;
+        check_finite_outputs::<M>(t, &self.y)?;
         Ok(&self.y)
     }
 

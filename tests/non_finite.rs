@@ -19,7 +19,8 @@ autosim::model! {
 autosim::model! {
     /// An output with no real value below x = 2.
     model Root;
-    body P { translate: 1, q: [x], mass: 1, inertia: 0, initial: [1] }
+    parameters { m = 2 [kg] }
+    body P { translate: 1, q: [x], mass: m, inertia: 0, initial: [1] }
     output root [m] = sqrt(x - 2);
 }
 
@@ -130,4 +131,59 @@ fn a_non_finite_output_stops_the_run_naming_it() {
         }))
     );
     assert_eq!(rows, 0, "nothing was written");
+}
+
+#[test]
+fn a_nan_parameter_is_named_before_the_first_step() {
+    // A NaN mass made the mass matrix's pivot NaN, reported as a singular
+    // mass matrix; the run driver now names the parameter.
+    let mut model = Attract::new();
+    model.set_parameter_values(&[f64::NAN]);
+    let mut x = [1.0, 0.0];
+    let settings = RunSettings::new(0.0, 1.0, 1e-2, 0.1);
+    let r = run(
+        &mut model,
+        &mut Rk4::new(),
+        &mut x,
+        &settings,
+        &mut |_, _: &_, _: &_| {},
+    );
+    let expected = IntegrationError::NonFiniteParameter {
+        t: 0.0,
+        name: "k",
+        input: false,
+    };
+    assert_eq!(r, Err(RunError::Integration(expected)));
+    assert_eq!(
+        expected.to_string(),
+        "parameter k is not finite at t = 0: set it to a finite value"
+    );
+}
+
+#[test]
+fn a_nan_mass_is_named_and_a_nan_pivot_says_so() {
+    let mut model = root::Root::new();
+    model.set_parameter_values(&[f64::NAN]);
+    let mut x = [3.0, 0.0];
+    let settings = RunSettings::new(0.0, 1.0, 1e-2, 0.1);
+    let r = run(
+        &mut model,
+        &mut Rk4::new(),
+        &mut x,
+        &settings,
+        &mut |_, _: &_, _: &_| {},
+    );
+    assert!(
+        matches!(
+            r,
+            Err(RunError::Integration(
+                IntegrationError::NonFiniteParameter { name: "m", .. }
+            ))
+        ),
+        "{r:?}"
+    );
+    // Called directly, derivatives reports the pivot, and says NaN is a cause.
+    let mut dx = [0.0; 2];
+    let e = model.derivatives(0.0, &x, &mut dx).unwrap_err().to_string();
+    assert!(e.contains("or is NaN"), "{e}");
 }

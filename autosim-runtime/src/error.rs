@@ -38,6 +38,17 @@ pub enum IntegrationError {
         /// Name of that output (`"?"` if the model lists fewer names).
         name: &'static str,
     },
+    /// A parameter or an input is NaN or infinite at the start of a run
+    /// (the run driver checks them before the first step: a NaN mass would
+    /// otherwise be reported as a singular mass matrix).
+    NonFiniteParameter {
+        /// Time of the start.
+        t: f64,
+        /// Name of the first such parameter or input.
+        name: &'static str,
+        /// `true` for an input, `false` for a parameter.
+        input: bool,
+    },
     /// An adaptive integrator needed a step smaller than its minimum step to
     /// meet its tolerances (or to get finite values): the solution is
     /// probably singular near `t`, or the tolerances are too tight for the
@@ -105,6 +116,7 @@ impl IntegrationError {
         match *self {
             IntegrationError::NonFinite { t, .. }
             | IntegrationError::NonFiniteOutput { t, .. }
+            | IntegrationError::NonFiniteParameter { t, .. }
             | IntegrationError::StepSizeUnderflow { t, .. }
             | IntegrationError::NewtonFailed { t, .. }
             | IntegrationError::SingularNewtonMatrix { t, .. }
@@ -126,6 +138,11 @@ impl core::fmt::Display for IntegrationError {
             IntegrationError::NonFiniteOutput { t, index, name } => write!(
                 f,
                 "output {name} (#{index}) is not finite at t = {t} although the state is: the output divides by zero or calls a function outside its domain there"
+            ),
+            IntegrationError::NonFiniteParameter { t, name, input } => write!(
+                f,
+                "{} {name} is not finite at t = {t}: set it to a finite value",
+                if *input { "input" } else { "parameter" }
             ),
             IntegrationError::StepSizeUnderflow { t, h } => write!(
                 f,
@@ -164,6 +181,37 @@ impl core::error::Error for IntegrationError {
         }
         None
     }
+}
+
+/// How many parameters and inputs the run driver checks at the start of a
+/// run (the first ones, in name order; a stack buffer of this size).
+pub const MAX_CHECKED_VALUES: usize = 128;
+
+/// The first non-finite parameter, then input, of `model` as an
+/// [`IntegrationError::NonFiniteParameter`] at time `t` (the run driver
+/// checks them before the first step).
+pub fn check_finite_parameters<M: crate::Model>(
+    model: &M,
+    t: M::Float,
+) -> Result<(), IntegrationError> {
+    use crate::Float;
+    let mut buffer = [M::Float::ZERO; MAX_CHECKED_VALUES];
+    let lists = [(M::PARAMETER_NAMES, false), (M::INPUT_NAMES, true)];
+    for (names, input) in lists {
+        let values = &mut buffer[..names.len().min(MAX_CHECKED_VALUES)];
+        match input {
+            false => model.parameter_values(values),
+            true => model.input_values(values),
+        }
+        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+            return Err(IntegrationError::NonFiniteParameter {
+                t: t.to_f64(),
+                name: names[k],
+                input,
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Returns the first non-finite output of `y` as an

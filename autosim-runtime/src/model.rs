@@ -93,7 +93,7 @@ impl core::fmt::Display for ModelError {
         match self {
             ModelError::SingularMassMatrix { speed, name } => write!(
                 f,
-                "the mass matrix is singular at this state: pivot of speed {name} (#{speed}) is not positive"
+                "the mass matrix is singular at this state: pivot of speed {name} (#{speed}) is not positive (or is NaN: check that every mass, inertia and parameter is finite)"
             ),
             ModelError::SingularConstraints { constraint, name } => write!(
                 f,

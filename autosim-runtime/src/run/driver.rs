@@ -5,7 +5,7 @@
 use super::MAX_RECORDED_INPUTS;
 
 use super::{Observer, RunError, RunSettings, RunSummary};
-use crate::error::check_finite_outputs;
+use crate::error::{check_finite_outputs, check_finite_parameters};
 use crate::integrate::Stepper;
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 
@@ -37,6 +37,7 @@ impl<M: Model> Driver<M> {
     ) -> Result<Driver<M>, IntegrationError> {
         settings.validate()?;
         check_finite::<M>(settings.start, x)?;
+        check_finite_parameters(model, settings.start)?;
         model
             .assemble(settings.start, x)
             .map_err(|error| IntegrationError::Model {

@@ -164,7 +164,21 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
 
 /// Names the generated module defines beside the model type (see
 /// `emit::model`), or uses unqualified.
-const TAKEN_TYPE_NAMES: &[&str] = &["Parameters", "Inputs", "Externs", "Constants", "Default"];
+/// (`Result` and `Option` and their variants: the generated code writes
+/// them unqualified, as Rust's prelude names them.)
+const TAKEN_TYPE_NAMES: &[&str] = &[
+    "Parameters",
+    "Inputs",
+    "Externs",
+    "Constants",
+    "Default",
+    "Result",
+    "Option",
+    "Some",
+    "None",
+    "Ok",
+    "Err",
+];
 
 /// The model's name becomes a Rust type: `UpperCamelCase`, and not the name
 /// of another item of the generated module.
@@ -194,10 +208,14 @@ fn check_model_name(r: &mut Resolver<'_>, name: &ast::Name) {
             false => d.help("start it with an upper-case letter"),
         });
     } else if TAKEN_TYPE_NAMES.contains(&text) {
+        let why = match TAKEN_TYPE_NAMES.iter().position(|n| *n == text) {
+            Some(k) if k >= 5 => "the generated code uses Rust's prelude name unqualified",
+            _ => "the generated module has an item of that name",
+        };
         r.push(
             Diagnostic::error(
                 name.span,
-                format!("the model cannot be named `{text}`: the generated module has an item of that name"),
+                format!("the model cannot be named `{text}`: {why}"),
             )
             .help(format!("choose another name, such as `{text}Model`")),
         );

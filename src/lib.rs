@@ -51,6 +51,11 @@ macro_rules! include_model {
     };
 }
 
+/// The language reference (`docs/language.md` in the repository): its Rust
+/// examples are compiled and run by `cargo test`.
+#[doc = include_str!("../docs/language.md")]
+pub mod language {}
+
 /// The user's guide, chapter by chapter (`docs/guide/` in the repository):
 /// every code block is compiled and run by `cargo test`.
 pub mod guide {

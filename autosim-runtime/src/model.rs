@@ -268,11 +268,19 @@ impl OpCount {
 
 impl core::fmt::Display for OpCount {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        write!(
-            f,
-            "{} adds, {} multiplies, {} divides, {} functions, {} user calls",
-            self.adds, self.muls, self.divs, self.funcs, self.user_calls
-        )
+        let names = [
+            (self.adds, "add", "adds"),
+            (self.muls, "multiply", "multiplies"),
+            (self.divs, "divide", "divides"),
+            (self.funcs, "function", "functions"),
+            (self.user_calls, "user call", "user calls"),
+        ];
+        for (k, (n, one, many)) in names.into_iter().enumerate() {
+            let separator = if k == 0 { "" } else { ", " };
+            let noun = if n == 1 { one } else { many };
+            write!(f, "{separator}{n} {noun}")?;
+        }
+        Ok(())
     }
 }
 

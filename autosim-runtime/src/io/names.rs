@@ -8,7 +8,7 @@ use std::prelude::rust_2024::*;
 pub(crate) fn labelled(name: &str, unit: &str) -> String {
     match unit.trim() {
         "" => name.to_string(),
-        unit => format!("{name} [{unit}]"),
+        unit => std::format!("{name} [{unit}]"),
     }
 }
 

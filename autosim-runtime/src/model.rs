@@ -101,7 +101,7 @@ impl core::fmt::Display for ModelError {
             ),
             ModelError::NotAssembled { name } => write!(
                 f,
-                "the position constraints could not be closed (constraint {name} has the largest residual): start nearer a configuration that satisfies them"
+                "the position constraints could not be closed (constraint {name} has the largest residual): no configuration near this one satisfies them, or none exists (a loop cannot close when one link is longer than all the others together: check the lengths), or the start is too far from one (start nearer)"
             ),
             ModelError::LostBranch { coordinate } => write!(
                 f,

@@ -26,6 +26,21 @@ autosim::model! {
 
 use attract::Attract;
 
+/// Runs `model` from `x` with RK4, ignoring the outputs.
+fn run_rk4<M: Model<Float = f64>>(
+    model: &mut M,
+    x: &mut M::State,
+    settings: &RunSettings<f64>,
+) -> Result<autosim::runtime::RunSummary<f64>, RunError<std::convert::Infallible>> {
+    run(
+        model,
+        &mut Rk4::new(),
+        x,
+        settings,
+        &mut |_, _: &_, _: &_| {},
+    )
+}
+
 #[test]
 fn an_infinite_derivative_is_an_error_not_ok() {
     let mut model = Attract::new();
@@ -52,13 +67,7 @@ fn rk4_started_at_the_singularity_stops_with_the_typed_error() {
     let mut model = Attract::new();
     let mut x = [0.0, 0.0];
     let settings = RunSettings::new(0.0, 1.0, 1e-3, 0.1);
-    let r = run(
-        &mut model,
-        &mut Rk4::new(),
-        &mut x,
-        &settings,
-        &mut |_, _: &_, _: &_| {},
-    );
+    let r = run_rk4(&mut model, &mut x, &settings);
     let Err(RunError::Integration(e)) = r else {
         panic!("expected an integration error, got {r:?}");
     };
@@ -83,13 +92,7 @@ fn a_fixed_step_cannot_see_the_singularity_between_steps_an_adaptive_one_stops_t
     // (nothing non-finite to report; the limitation is the fixed step's).
     let settings = RunSettings::new(0.0, 3.0, 1e-3, 0.1);
     let mut x = [1.0, 0.0];
-    let r = run(
-        &mut Attract::new(),
-        &mut Rk4::new(),
-        &mut x,
-        &settings,
-        &mut |_, _: &_, _: &_| {},
-    );
+    let r = run_rk4(&mut Attract::new(), &mut x, &settings);
     assert!(r.is_ok() && x[0] < 0.0, "{r:?} {x:?}");
     // Dormand-Prince's error control shrinks the step toward the
     // singularity and stops there with a typed error.
@@ -141,13 +144,7 @@ fn a_nan_parameter_is_named_before_the_first_step() {
     model.set_parameter_values(&[f64::NAN]);
     let mut x = [1.0, 0.0];
     let settings = RunSettings::new(0.0, 1.0, 1e-2, 0.1);
-    let r = run(
-        &mut model,
-        &mut Rk4::new(),
-        &mut x,
-        &settings,
-        &mut |_, _: &_, _: &_| {},
-    );
+    let r = run_rk4(&mut model, &mut x, &settings);
     let expected = IntegrationError::NonFiniteParameter {
         t: 0.0,
         name: "k",
@@ -166,13 +163,7 @@ fn a_nan_mass_is_named_and_a_nan_pivot_says_so() {
     model.set_parameter_values(&[f64::NAN]);
     let mut x = [3.0, 0.0];
     let settings = RunSettings::new(0.0, 1.0, 1e-2, 0.1);
-    let r = run(
-        &mut model,
-        &mut Rk4::new(),
-        &mut x,
-        &settings,
-        &mut |_, _: &_, _: &_| {},
-    );
+    let r = run_rk4(&mut model, &mut x, &settings);
     assert!(
         matches!(
             r,

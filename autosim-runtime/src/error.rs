@@ -203,7 +203,7 @@ pub fn check_finite_parameters<M: crate::Model>(
             false => model.parameter_values(values),
             true => model.input_values(values),
         }
-        if let Some(k) = values.iter().position(|v| !v.is_finite()) {
+        if let Some(k) = first_non_finite(values) {
             return Err(IntegrationError::NonFiniteParameter {
                 t: t.to_f64(),
                 name: names[k],
@@ -222,14 +222,14 @@ pub fn check_finite_outputs<M: crate::Model>(
     y: &M::Outputs,
 ) -> Result<(), IntegrationError> {
     use crate::Float;
-    match y.as_ref().iter().position(|v| !v.is_finite()) {
-        None => Ok(()),
-        Some(index) => Err(IntegrationError::NonFiniteOutput {
-            t: t.to_f64(),
-            index,
-            name: M::OUTPUT_NAMES.get(index).copied().unwrap_or("?"),
-        }),
-    }
+    let Some(index) = first_non_finite(y.as_ref()) else {
+        return Ok(());
+    };
+    Err(IntegrationError::NonFiniteOutput {
+        t: t.to_f64(),
+        index,
+        name: M::OUTPUT_NAMES.get(index).copied().unwrap_or("?"),
+    })
 }
 
 /// Returns the first non-finite state of `x` as an
@@ -239,12 +239,18 @@ pub fn check_finite_outputs<M: crate::Model>(
 /// state outside a stepper.
 pub fn check_finite<M: crate::Model>(t: M::Float, x: &M::State) -> Result<(), IntegrationError> {
     use crate::Float;
-    match x.as_ref().iter().position(|v| !v.is_finite()) {
-        None => Ok(()),
-        Some(index) => Err(IntegrationError::NonFinite {
-            t: t.to_f64(),
-            index,
-            name: M::STATE_NAMES.get(index).copied().unwrap_or("?"),
-        }),
-    }
+    let Some(index) = first_non_finite(x.as_ref()) else {
+        return Ok(());
+    };
+    Err(IntegrationError::NonFinite {
+        t: t.to_f64(),
+        index,
+        name: M::STATE_NAMES.get(index).copied().unwrap_or("?"),
+    })
+}
+
+/// The index of the first NaN or infinite value.
+#[inline]
+pub(crate) fn first_non_finite<F: crate::Float>(values: &[F]) -> Option<usize> {
+    values.iter().position(|v| !v.is_finite())
 }

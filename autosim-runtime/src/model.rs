@@ -82,7 +82,7 @@ pub enum ModelError {
 /// failure.
 #[inline]
 pub fn check_derivatives<M: Model + ?Sized>(dx: &M::State) -> Result<(), ModelError> {
-    match dx.as_ref().iter().position(|v| !v.is_finite()) {
+    match crate::error::first_non_finite(dx.as_ref()) {
         None => Ok(()),
         Some(index) => Err(non_finite_derivative::<M>(index)),
     }

@@ -32,7 +32,9 @@ pub use autosim_macros::model;
 pub use autosim_runtime as runtime;
 
 /// Compiling `.sim` models from build scripts (feature `build`): write
-/// `autosim::build::compile("models/pendulum.sim")?` in `build.rs` and
+/// `autosim::build::compile("models/pendulum.sim")?` in `build.rs` (its
+/// `main` returning `Result<(), Box<dyn std::error::Error>>`; the error's
+/// `Debug` is the readable diagnostics) and
 /// `autosim::include_model!(pendulum);` where the module should appear.
 #[cfg(feature = "build")]
 pub use autosim_core::build_script as build;
@@ -45,13 +47,21 @@ pub use autosim_core::build_script as build;
 pub use autosim_fmu as fmu;
 
 /// Includes a model compiled by a build script (`autosim::build`): expands
-/// to the generated module `$name` from `OUT_DIR/$name.rs`.
+/// to the generated module `$name` from `OUT_DIR/$name.rs`. `$name` is the
+/// model's name in snake case (`model CartPole;` → `cart_pole`,
+/// `model FourBarH;` → `four_bar_h`), not the file's; given the file's name,
+/// it fails with an error naming the right module.
 #[macro_export]
 macro_rules! include_model {
     ($name:ident) => {
         include!(concat!(env!("OUT_DIR"), "/", stringify!($name), ".rs"));
     };
 }
+
+/// The language reference (`docs/language.md` in the repository): its Rust
+/// examples are compiled and run by `cargo test`.
+#[doc = include_str!("../docs/language.md")]
+pub mod language {}
 
 /// The user's guide, chapter by chapter (`docs/guide/` in the repository):
 /// every code block is compiled and run by `cargo test`.

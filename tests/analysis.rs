@@ -123,6 +123,49 @@ fn an_impossible_trim_is_a_typed_error() {
 }
 
 #[test]
+fn trim_limits_its_step_and_names_a_singular_jacobian() {
+    // Held by gravity alone (no torque): the equilibria are q = k pi.
+    // From q = 1.5 a full Newton step (-tan 1.5 = -14.1) would jump to the
+    // equilibrium at -4 pi; the step limit (max(1, |q|) = 1.5 rad) keeps
+    // the trim on the nearest one, q = 0.
+    let mut m = pendulum::Pendulum::new();
+    let mut x = [1.5, 0.0];
+    trim(&mut m, 0.0, &mut x, &Trim::new(&["q"], &[], &["u"])).unwrap();
+    assert!(x[0].abs() < 1e-12, "{x:?}");
+    // At q = pi/2 the Jacobian d(u')/dq = -(g/L) cos q is zero to rounding:
+    // the Newton step would be 2e16 rad. That is a singular Jacobian, said
+    // so (it was a step to -2.18e16 and `NotConverged`).
+    let mut x = [std::f64::consts::FRAC_PI_2, 0.0];
+    let r = trim(&mut m, 0.0, &mut x, &Trim::new(&["q"], &[], &["u"]));
+    match r {
+        Err(TrimError::Singular { ref residuals }) => assert_eq!(residuals[0].0, "u"),
+        ref other => panic!("expected a singular Jacobian, got {other:?}"),
+    }
+    assert!(r.unwrap_err().to_string().contains("singular Jacobian"));
+    assert_eq!(x[0], std::f64::consts::FRAC_PI_2, "left where it was");
+}
+
+#[test]
+fn fewer_unknowns_than_residuals_is_invalid() {
+    // One unknown (the torque), two residuals (q' and u'): over-determined.
+    let mut m = pendulum::Pendulum::new();
+    let mut x = [0.5, 0.0];
+    let r = trim(
+        &mut m,
+        0.0,
+        &mut x,
+        &Trim::new(&[], &["torque"], &["q", "u"]),
+    );
+    let Err(TrimError::Invalid(why)) = r else {
+        panic!("expected Invalid, got {r:?}");
+    };
+    assert_eq!(
+        why,
+        "2 steady derivatives but 1 free unknown: over-determined (free as many states or inputs as there are steady states)"
+    );
+}
+
+#[test]
 fn bicycle_steady_turn_trims_from_a_rough_start() {
     use bike::bicycle::Bicycle;
     let mut m = Bicycle::new();

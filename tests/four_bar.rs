@@ -104,11 +104,16 @@ fn impossible_closure_and_lost_branch_are_errors() {
     p.L1 = 3.0;
     m.set_parameters(p);
     let mut x = [0.0, 1.0, 1.6, 0.0];
-    assert!(matches!(
-        m.assemble(0.0, &mut x),
-        Err(ModelError::NotAssembled { .. })
-    ));
+    let r = m.assemble(0.0, &mut x);
+    assert!(matches!(r, Err(ModelError::NotAssembled { .. })), "{r:?}");
     assert_eq!(x, [0.0, 1.0, 1.6, 0.0], "unchanged on error");
+    // The message no longer only says "start nearer": the lengths may
+    // make closing impossible, and it says so.
+    let text = r.unwrap_err().to_string();
+    assert!(
+        text.contains("or none exists (a loop cannot close when one link is longer than all the others together: check the lengths)"),
+        "{text}"
+    );
     // The other branch is far from this state: projection refuses to jump.
     let mut m = model(&data);
     let mut x = [0.0, -0.9, -1.0, 0.0];
@@ -143,4 +148,45 @@ fn trajectory_matches_the_reference_and_keeps_the_loop_closed() {
     assert!(worst_q < 1e-8, "state vs reference {worst_q:e}");
     assert!(worst_e < 1e-9, "energy drift {worst_e:e}");
     assert!(worst_loop < 1e-9, "loop residual {worst_loop:e}");
+}
+
+/// Without `dependent:`, the automatic choice keeps a declared `initial:`
+/// value where another choice closes the loop (the crank declared at 1.2
+/// was made dependent and moved to 1.1504); where it cannot, the generated
+/// documentation says which value assembly moves.
+#[test]
+fn automatic_dependents_keep_declared_initial_values() {
+    use autosim_core::diag::SourceFile;
+    use autosim_core::pipeline::compile_source;
+    let source = std::fs::read_to_string("examples/models/four_bar.sim").unwrap();
+    let undeclared = source
+        .replace(", dependent: q2", "")
+        .replace(", dependent: q3", "");
+    // Only the crank's angle declared: the coupler and rocker close the loop.
+    let crank_only = undeclared
+        .replace("q: [q2], u: [u2], initial: [0.2],", "q: [q2], u: [u2],")
+        .replace("q: [q3], u: [u3], initial: [1.5],", "q: [q3], u: [u3],");
+    let c = compile_source(&SourceFile::new("four_bar.sim", crank_only.as_str())).unwrap();
+    let dependents: Vec<_> = c
+        .program
+        .interface
+        .constraints
+        .iter()
+        .map(|k| k.dependent_coordinate.clone().unwrap_or_default())
+        .collect();
+    assert!(!dependents.contains(&"q1".to_string()), "{dependents:?}");
+    assert!(
+        c.program.interface.cautions.is_empty(),
+        "{:?}",
+        c.program.interface.cautions
+    );
+    // Every angle declared: two must move, and the documentation says so.
+    let c = compile_source(&SourceFile::new("four_bar.sim", undeclared.as_str())).unwrap();
+    let cautions = &c.program.interface.cautions;
+    assert_eq!(cautions.len(), 2, "{cautions:?}");
+    assert!(
+        cautions[0].starts_with("Assembly solves `q")
+            && cautions[0].contains("its declared `initial:` value is only a guess"),
+        "{cautions:?}"
+    );
 }

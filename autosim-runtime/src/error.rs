@@ -26,6 +26,29 @@ pub enum IntegrationError {
         /// Name of that state (`"?"` if the model lists fewer names than states).
         name: &'static str,
     },
+    /// An output became NaN or infinite at a finite state (the run driver
+    /// checks the outputs at every output time). `index` and `name`
+    /// identify the first such output (in
+    /// [`Model::OUTPUT_NAMES`](crate::Model::OUTPUT_NAMES) order).
+    NonFiniteOutput {
+        /// Time of the output.
+        t: f64,
+        /// Index of the first non-finite output.
+        index: usize,
+        /// Name of that output (`"?"` if the model lists fewer names).
+        name: &'static str,
+    },
+    /// A parameter or an input is NaN or infinite at the start of a run
+    /// (the run driver checks them before the first step: a NaN mass would
+    /// otherwise be reported as a singular mass matrix).
+    NonFiniteParameter {
+        /// Time of the start.
+        t: f64,
+        /// Name of the first such parameter or input.
+        name: &'static str,
+        /// `true` for an input, `false` for a parameter.
+        input: bool,
+    },
     /// An adaptive integrator needed a step smaller than its minimum step to
     /// meet its tolerances (or to get finite values): the solution is
     /// probably singular near `t`, or the tolerances are too tight for the
@@ -92,6 +115,8 @@ impl IntegrationError {
     pub fn time(&self) -> Option<f64> {
         match *self {
             IntegrationError::NonFinite { t, .. }
+            | IntegrationError::NonFiniteOutput { t, .. }
+            | IntegrationError::NonFiniteParameter { t, .. }
             | IntegrationError::StepSizeUnderflow { t, .. }
             | IntegrationError::NewtonFailed { t, .. }
             | IntegrationError::SingularNewtonMatrix { t, .. }
@@ -109,6 +134,15 @@ impl core::fmt::Display for IntegrationError {
             IntegrationError::NonFinite { t, index, name } => write!(
                 f,
                 "state {name} (#{index}) became non-finite at t = {t}; try a smaller step or check the model"
+            ),
+            IntegrationError::NonFiniteOutput { t, index, name } => write!(
+                f,
+                "output {name} (#{index}) is not finite at t = {t} although the state is: the output divides by zero or calls a function outside its domain there"
+            ),
+            IntegrationError::NonFiniteParameter { t, name, input } => write!(
+                f,
+                "{} {name} is not finite at t = {t}: set it to a finite value",
+                if *input { "input" } else { "parameter" }
             ),
             IntegrationError::StepSizeUnderflow { t, h } => write!(
                 f,
@@ -149,6 +183,55 @@ impl core::error::Error for IntegrationError {
     }
 }
 
+/// How many parameters and inputs the run driver checks at the start of a
+/// run (the first ones, in name order; a stack buffer of this size).
+pub const MAX_CHECKED_VALUES: usize = 128;
+
+/// The first non-finite parameter, then input, of `model` as an
+/// [`IntegrationError::NonFiniteParameter`] at time `t` (the run driver
+/// checks them before the first step).
+pub fn check_finite_parameters<M: crate::Model>(
+    model: &M,
+    t: M::Float,
+) -> Result<(), IntegrationError> {
+    use crate::Float;
+    let mut buffer = [M::Float::ZERO; MAX_CHECKED_VALUES];
+    let lists = [(M::PARAMETER_NAMES, false), (M::INPUT_NAMES, true)];
+    for (names, input) in lists {
+        let values = &mut buffer[..names.len().min(MAX_CHECKED_VALUES)];
+        match input {
+            false => model.parameter_values(values),
+            true => model.input_values(values),
+        }
+        if let Some(k) = first_non_finite(values) {
+            return Err(IntegrationError::NonFiniteParameter {
+                t: t.to_f64(),
+                name: names[k],
+                input,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Returns the first non-finite output of `y` as an
+/// [`IntegrationError::NonFiniteOutput`] at time `t` (the run driver checks
+/// the outputs it reports).
+pub fn check_finite_outputs<M: crate::Model>(
+    t: M::Float,
+    y: &M::Outputs,
+) -> Result<(), IntegrationError> {
+    use crate::Float;
+    let Some(index) = first_non_finite(y.as_ref()) else {
+        return Ok(());
+    };
+    Err(IntegrationError::NonFiniteOutput {
+        t: t.to_f64(),
+        index,
+        name: M::OUTPUT_NAMES.get(index).copied().unwrap_or("?"),
+    })
+}
+
 /// Returns the first non-finite state of `x` as an
 /// [`IntegrationError::NonFinite`] at time `t`.
 ///
@@ -156,12 +239,18 @@ impl core::error::Error for IntegrationError {
 /// state outside a stepper.
 pub fn check_finite<M: crate::Model>(t: M::Float, x: &M::State) -> Result<(), IntegrationError> {
     use crate::Float;
-    match x.as_ref().iter().position(|v| !v.is_finite()) {
-        None => Ok(()),
-        Some(index) => Err(IntegrationError::NonFinite {
-            t: t.to_f64(),
-            index,
-            name: M::STATE_NAMES.get(index).copied().unwrap_or("?"),
-        }),
-    }
+    let Some(index) = first_non_finite(x.as_ref()) else {
+        return Ok(());
+    };
+    Err(IntegrationError::NonFinite {
+        t: t.to_f64(),
+        index,
+        name: M::STATE_NAMES.get(index).copied().unwrap_or("?"),
+    })
+}
+
+/// The index of the first NaN or infinite value.
+#[inline]
+pub(crate) fn first_non_finite<F: crate::Float>(values: &[F]) -> Option<usize> {
+    values.iter().position(|v| !v.is_finite())
 }

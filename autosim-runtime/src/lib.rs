@@ -129,7 +129,7 @@ pub use error::{IntegrationError, check_finite};
 pub use float::Float;
 pub use integrate::{StepInfo, Stepper};
 pub use linear::{Linear, Linearize};
-pub use model::{Model, ModelError, OpCount, StateArray};
+pub use model::{Model, ModelError, OpCount, StateArray, check_derivatives};
 pub use run::{Controller, Observer, RunError, RunSettings, RunSummary, run, run_at, run_sampled};
 
 /// Items used by generated code. Not a public API: it may change without notice.

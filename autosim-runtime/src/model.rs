@@ -58,6 +58,34 @@ pub enum ModelError {
         /// The dependent coordinate that jumped.
         coordinate: &'static str,
     },
+    /// A derivative came out NaN or infinite although the state was
+    /// finite: the model divides by zero or calls a function outside its
+    /// domain at this state (`-k/x^2` at `x = 0`, `sqrt` of a negative
+    /// number), a user function returned a non-finite value, or the state
+    /// is so large that a derivative overflows (an integration beyond its
+    /// stability limit). Generated models check their derivatives before
+    /// returning them ([`check_derivatives`]).
+    NonFiniteDerivative {
+        /// Index of the first non-finite derivative (state order).
+        index: usize,
+        /// Name of the state whose derivative it is.
+        name: &'static str,
+    },
+}
+
+/// `Ok` if every derivative in `dx` is finite, else
+/// [`ModelError::NonFiniteDerivative`] naming the first state whose
+/// derivative is not. Generated `derivatives` ends with it.
+///
+/// One pass over `dx` without early exit (the common case, all finite,
+/// is a vectorizable AND of comparisons); the index is searched only on
+/// failure.
+#[inline]
+pub fn check_derivatives<M: Model + ?Sized>(dx: &M::State) -> Result<(), ModelError> {
+    match crate::error::first_non_finite(dx.as_ref()) {
+        None => Ok(()),
+        Some(index) => Err(non_finite_derivative::<M>(index)),
+    }
 }
 
 impl core::fmt::Display for ModelError {
@@ -65,7 +93,7 @@ impl core::fmt::Display for ModelError {
         match self {
             ModelError::SingularMassMatrix { speed, name } => write!(
                 f,
-                "the mass matrix is singular at this state: pivot of speed {name} (#{speed}) is not positive"
+                "the mass matrix is singular at this state: pivot of speed {name} (#{speed}) is not positive (or is NaN: check that every mass, inertia and parameter is finite)"
             ),
             ModelError::SingularConstraints { constraint, name } => write!(
                 f,
@@ -73,11 +101,15 @@ impl core::fmt::Display for ModelError {
             ),
             ModelError::NotAssembled { name } => write!(
                 f,
-                "the position constraints could not be closed (constraint {name} has the largest residual): start nearer a configuration that satisfies them"
+                "the position constraints could not be closed (constraint {name} has the largest residual): no configuration near this one satisfies them, or none exists (a loop cannot close when one link is longer than all the others together: check the lengths), or the start is too far from one (start nearer)"
             ),
             ModelError::LostBranch { coordinate } => write!(
                 f,
                 "projection onto the position constraints moved {coordinate} too far: the mechanism jumped to another branch (take smaller steps, or avoid the singular configuration)"
+            ),
+            ModelError::NonFiniteDerivative { index, name } => write!(
+                f,
+                "the derivative of state {name} (#{index}) is not finite at this state: the model divides by zero or calls a function outside its domain here, a user function returned NaN or infinity, or the state is so large that the derivative overflows (an unstable step: try a smaller one)"
             ),
         }
     }
@@ -236,10 +268,29 @@ impl OpCount {
 
 impl core::fmt::Display for OpCount {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
-        write!(
-            f,
-            "{} adds, {} multiplies, {} divides, {} functions, {} user calls",
-            self.adds, self.muls, self.divs, self.funcs, self.user_calls
-        )
+        let names = [
+            (self.adds, "add", "adds"),
+            (self.muls, "multiply", "multiplies"),
+            (self.divs, "divide", "divides"),
+            (self.funcs, "function", "functions"),
+            (self.user_calls, "user call", "user calls"),
+        ];
+        for (k, (n, one, many)) in names.into_iter().enumerate() {
+            let separator = if k == 0 { "" } else { ", " };
+            let noun = if n == 1 { one } else { many };
+            write!(f, "{separator}{n} {noun}")?;
+        }
+        Ok(())
+    }
+}
+
+/// The error of a non-finite derivative (out of line: the check's hot path
+/// is only the comparisons).
+#[cold]
+#[inline(never)]
+fn non_finite_derivative<M: Model + ?Sized>(index: usize) -> ModelError {
+    ModelError::NonFiniteDerivative {
+        index,
+        name: M::STATE_NAMES.get(index).copied().unwrap_or("?"),
     }
 }

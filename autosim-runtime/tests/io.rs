@@ -172,19 +172,19 @@ fn svg_plot_has_labelled_axes_and_a_legend() {
     let svg = std::fs::read_to_string(&path).unwrap();
     assert!(svg.starts_with("<svg"), "{}", &svg[..100]);
     let texts = svg_texts(&svg);
-    // Title, y-axis label, x-axis label, and the two legend entries.
-    for text in [
-        "VanDerPol",
-        "x [1], v [1/s]",
-        "time [s]",
-        "x [1]",
-        "v [1/s]",
+    // Title, x-axis label, and for each unit its own panel: the y-axis
+    // label and the legend entry of x [1] and of v [1/s] (different units
+    // never share an axis).
+    for (text, times) in [
+        ("VanDerPol", 1),
+        ("time [s]", 2),
+        ("x [1]", 2),
+        ("v [1/s]", 2),
     ] {
-        assert!(
-            texts.iter().any(|t| t == text),
-            "missing {text:?} in {texts:?}"
-        );
+        let found = texts.iter().filter(|t| *t == text).count();
+        assert_eq!(found, times, "{text:?} in {texts:?}");
     }
+    assert!(!texts.iter().any(|t| t.contains(", ")), "{texts:?}");
     assert!(svg.matches("<polyline").count() >= 2);
 
     let err = rec
@@ -208,4 +208,26 @@ fn svg_texts(svg: &str) -> Vec<String> {
             Some(body[..body.find("</text>")?].trim().to_string())
         })
         .collect()
+}
+
+#[test]
+fn columns_without_a_unit_have_no_brackets() {
+    use autosim_runtime::io::{Series, svg_plot};
+    let time = [0.0, 1.0];
+    let series = [
+        Series {
+            name: "h",
+            unit: "",
+            values: &[0.0, 1.0],
+        },
+        Series {
+            name: "g",
+            unit: "",
+            values: &[1.0, 0.0],
+        },
+    ];
+    let svg = svg_plot("M", &time, &series).unwrap();
+    let texts = svg_texts(&svg);
+    assert!(texts.iter().any(|t| t == "h, g"), "{texts:?}");
+    assert!(!texts.iter().any(|t| t.contains("[]")), "{texts:?}");
 }

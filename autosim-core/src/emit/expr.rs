@@ -124,11 +124,30 @@ pub fn literal(x: f64, float: FloatType) -> TokenStream {
             quote!(#ty::NEG_INFINITY)
         };
     }
-    let lit = match float {
-        FloatType::F64 => Literal::f64_unsuffixed(x.abs()),
-        FloatType::F32 => Literal::f32_unsuffixed((x as f32).abs()),
-    };
-    if x < 0.0 { quote!(-#lit) } else { quote!(#lit) }
+    match magnitude_literal(x, float, false) {
+        Some(lit) if x < 0.0 => quote!(-#lit),
+        Some(lit) => quote!(#lit),
+        None => quote!(#ty::NAN),
+    }
+}
+
+/// The literal of `|x|` in the model's float type (`0.5f32` when
+/// `suffixed`), or `None` when that is not finite: proc-macro2 panics on a
+/// non-finite literal, so every float literal of generated code is made
+/// here. (The pipeline rejects models with such constants before emission;
+/// this keeps the emitter from panicking if one ever got through.)
+pub fn magnitude_literal(x: f64, float: FloatType, suffixed: bool) -> Option<Literal> {
+    match float {
+        FloatType::F64 if x.is_finite() => Some(match suffixed {
+            true => Literal::f64_suffixed(x.abs()),
+            false => Literal::f64_unsuffixed(x.abs()),
+        }),
+        FloatType::F32 if (x as f32).is_finite() => Some(match suffixed {
+            true => Literal::f32_suffixed((x as f32).abs()),
+            false => Literal::f32_unsuffixed((x as f32).abs()),
+        }),
+        _ => None,
+    }
 }
 
 /// The float type's tokens.
@@ -416,5 +435,16 @@ mod tests {
         let small = literal(-1e300, FloatType::F32).to_string();
         assert_eq!(small.replace(' ', ""), "f32::NEG_INFINITY");
         assert_eq!(literal(0.5, FloatType::F32).to_string(), "0.5");
+    }
+
+    #[test]
+    fn no_non_finite_literal_reaches_proc_macro2() {
+        // proc-macro2 asserts its literals are finite: 1e40 is finite in
+        // f64 but not in f32 (the fuzzer's panic, through a sum's receiver).
+        assert!(magnitude_literal(1e40, FloatType::F32, true).is_none());
+        assert!(magnitude_literal(f64::NAN, FloatType::F64, false).is_none());
+        assert!(magnitude_literal(f64::INFINITY, FloatType::F64, true).is_none());
+        let lit = magnitude_literal(-0.5, FloatType::F32, true).map(|l| l.to_string());
+        assert_eq!(lit.as_deref(), Some("0.5f32"));
     }
 }

@@ -1,6 +1,7 @@
 //! Numeric evaluation of expressions: the oracle every optimization and every
 //! generated program is checked against.
 
+use super::Number;
 use super::arena::{Arena, ExprId, Func, Node, SymId, UserFnId};
 use rustc_hash::FxHashSet;
 
@@ -109,6 +110,32 @@ impl Arena {
             values.insert(x, v);
         }
         roots.iter().map(|r| values[r]).collect()
+    }
+}
+
+impl Arena {
+    /// The value of a number, or of a function or power of numbers (what
+    /// constant folding leaves unevaluated when its value is not finite:
+    /// `sqrt(-1)`, `ln(0)`); `None` for anything that involves a symbol or
+    /// a user function. The resolver checks each value it builds with it,
+    /// so a non-finite constant is reported where it is written.
+    pub fn numeric_value(&self, e: ExprId) -> Option<f64> {
+        match self.node(e) {
+            Node::Num(n) => Some(n.to_f64()),
+            Node::Pow(b, x) => {
+                self.as_number(*b)?;
+                self.as_number(*x)?;
+                Some(self.eval(e, &Bindings::default(), &mut NoUserFunctions))
+            }
+            Node::Func(f, args) if !matches!(f, Func::User(_)) => {
+                let values: Option<Vec<f64>> = args
+                    .iter()
+                    .map(|a| self.as_number(*a).map(Number::to_f64))
+                    .collect();
+                f.eval_builtin(&values?)
+            }
+            _ => None,
+        }
     }
 }
 

@@ -224,6 +224,7 @@ impl System {
                 qdot: built.qdots[k],
                 initial_q,
                 initial_u,
+                initial_declared: spec.initial_coordinates.is_some(),
             });
         }
         coords

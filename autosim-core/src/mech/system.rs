@@ -121,6 +121,10 @@ pub struct Coordinate {
     pub initial_q: ExprId,
     /// Initial value of u.
     pub initial_u: ExprId,
+    /// Whether the model declared the initial value (its body's
+    /// `initial:`): the automatic choice of dependent coordinates avoids
+    /// moving it.
+    pub initial_declared: bool,
 }
 
 /// A body of the system.

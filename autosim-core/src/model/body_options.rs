@@ -156,6 +156,10 @@ impl Resolver<'_> {
                     );
                     ok = false;
                 }
+                Expr::Name(n) if super::scope::PRELUDE_VARIANTS.contains(&n.text.as_str()) => {
+                    self.reserved_variant(n);
+                    ok = false;
+                }
                 Expr::Name(n) => {
                     if self.names.contains_key(&n.text) || out.contains(&n.text) {
                         self.push(

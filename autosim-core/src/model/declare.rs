@@ -175,7 +175,8 @@ fn subroutine(r: &mut Resolver<'_>, out: &mut ResolvedModel, sub: &ast::ExternSu
 }
 
 /// The value of a parameter or input default, reported when it does not
-/// fit a float (`1e999` would become infinity in generated code).
+/// fit the model's float (`1e999` would become infinity in generated code,
+/// and `1e300` in an `f32` model).
 pub(super) fn finite_value(r: &mut Resolver<'_>, v: &ast::Value) -> f64 {
     let x = value_f64(v);
     if !x.is_finite() {
@@ -188,6 +189,18 @@ pub(super) fn finite_value(r: &mut Resolver<'_>, v: &ast::Value) -> f64 {
                 ),
             )
             .help("values must be finite: at most about 1.8e308"),
+        );
+    } else if r.float == super::FloatType::F32 && (x as f32).is_infinite() {
+        r.push(
+            Diagnostic::error(
+                v.span,
+                format!(
+                    "`{}` is too large for `f32` (at most about 3.4e38)",
+                    v.number.text
+                ),
+            )
+            .note("the model computes in `f32` (`float: f32`), where it would be infinite")
+            .help("rescale the quantity (other units), or compute in `f64`"),
         );
     }
     x

@@ -32,7 +32,8 @@ impl Resolver<'_> {
                     UnOp::Plus => Some(v),
                     UnOp::Neg => {
                         let r = value::negate(&mut self.sys, v);
-                        self.lift(*span, r)
+                        let v = self.lift(*span, r);
+                        self.finite(*span, v)
                     }
                 }
             }
@@ -64,14 +65,14 @@ impl Resolver<'_> {
             lhs,
             rhs,
             op_span,
-            ..
+            span,
         } = first
         {
-            spine.push((*op, rhs.as_ref(), *op_span));
+            spine.push((*op, rhs.as_ref(), *op_span, *span));
             first = lhs;
         }
         let mut value = self.eval(first);
-        for (op, rhs, op_span) in spine.into_iter().rev() {
+        for (op, rhs, op_span, span) in spine.into_iter().rev() {
             let b = self.eval(rhs);
             let (Some(a), Some(b)) = (value, b) else {
                 value = None;
@@ -85,7 +86,8 @@ impl Resolver<'_> {
                 BinOp::Pow => Op::Pow,
             };
             let r = value::binary(&mut self.sys, op, a, b);
-            value = self.lift(op_span, r);
+            let v = self.lift(op_span, r);
+            value = self.finite(span, v);
         }
         value
     }

@@ -9,6 +9,7 @@ mod bodies;
 mod body_options;
 mod declare;
 mod exprs;
+mod finite;
 mod items;
 mod lazy;
 mod loads;
@@ -85,6 +86,7 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
     check_model_name(&mut r, model_name);
     // Settings first: the threshold affects every expression built later.
     let outputs = settings::apply_settings(&mut r, &mut out, model, scene);
+    r.float = out.float;
     declare::declare_values(&mut r, &mut out, model);
     let bodies: Vec<&ast::Body> = model
         .items
@@ -110,7 +112,21 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
 
 /// Names the generated module defines beside the model type (see
 /// `emit::model`), or uses unqualified.
-const TAKEN_TYPE_NAMES: &[&str] = &["Parameters", "Inputs", "Externs", "Constants", "Default"];
+/// (`Result` and `Option` and their variants: the generated code writes
+/// them unqualified, as Rust's prelude names them.)
+const TAKEN_TYPE_NAMES: &[&str] = &[
+    "Parameters",
+    "Inputs",
+    "Externs",
+    "Constants",
+    "Default",
+    "Result",
+    "Option",
+    "Some",
+    "None",
+    "Ok",
+    "Err",
+];
 
 /// The model's name becomes a Rust type: `UpperCamelCase`, and not the name
 /// of another item of the generated module.
@@ -140,10 +156,14 @@ fn check_model_name(r: &mut Resolver<'_>, name: &ast::Name) {
             false => d.help("start it with an upper-case letter"),
         });
     } else if TAKEN_TYPE_NAMES.contains(&text) {
+        let why = match TAKEN_TYPE_NAMES.iter().position(|n| *n == text) {
+            Some(k) if k >= 5 => "the generated code uses Rust's prelude name unqualified",
+            _ => "the generated module has an item of that name",
+        };
         r.push(
             Diagnostic::error(
                 name.span,
-                format!("the model cannot be named `{text}`: the generated module has an item of that name"),
+                format!("the model cannot be named `{text}`: {why}"),
             )
             .help(format!("choose another name, such as `{text}Model`")),
         );

@@ -66,7 +66,8 @@ impl Resolver<'_> {
                 return None;
             }
             let xs = self.scalars(args, name)?;
-            return Some(Value::Scalar(self.sys.arena.func(f, &xs)));
+            let v = Some(Value::Scalar(self.sys.arena.func(f, &xs)));
+            return self.finite(span, v);
         }
         // User functions.
         if let Some((Named::Function(f), _)) = self.names.get(name).cloned() {
@@ -84,7 +85,8 @@ impl Resolver<'_> {
         if !self.check_arity(func, args.len(), min, max) {
             return None;
         }
-        handler(self, args, span, &format!("`{name}`"))
+        let v = handler(self, args, span, &format!("`{name}`"));
+        self.finite(span, v)
     }
 
     /// Reports a call of something that is not a function.

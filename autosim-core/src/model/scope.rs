@@ -62,9 +62,15 @@ pub(crate) struct Resolver<'a> {
     /// Parameters declared by the compiler (a body's default mass and
     /// inertia), with the span of the body that needs them.
     pub implicit_parameters: Vec<(String, Span)>,
+    /// The model's float type (constants must fit it).
+    pub float: super::FloatType,
 }
 
 pub(crate) use crate::limits::{MAX_NESTING, MAX_PENDING};
+
+/// Variants of Rust's prelude: a generated `let Some = ...` would be a
+/// pattern, not a binding, so no model name may be one of them.
+pub(crate) const PRELUDE_VARIANTS: [&str; 4] = ["Some", "None", "Ok", "Err"];
 
 impl<'a> Resolver<'a> {
     pub fn new(name: &str) -> Resolver<'a> {
@@ -90,6 +96,7 @@ impl<'a> Resolver<'a> {
             scene: super::Scene::default(),
             scene_matched: Vec::new(),
             implicit_parameters: Vec::new(),
+            float: super::FloatType::F64,
         }
     }
 
@@ -99,6 +106,20 @@ impl<'a> Resolver<'a> {
 
     pub fn push(&mut self, d: Diagnostic) {
         self.diags.push(d);
+    }
+
+    /// Reports a name that is a variant of Rust's prelude.
+    pub fn reserved_variant(&mut self, name: &ast::Name) {
+        self.push(
+            Diagnostic::error(
+                name.span,
+                format!(
+                    "`{}` is reserved (a variant of Rust's `Option` or `Result`: generated code could not name a value so)",
+                    name.text
+                ),
+            )
+            .help(format!("choose another name, such as `{}`", name.text.to_lowercase())),
+        );
     }
 
     /// Declares a name; reports a duplicate (pointing at both places).
@@ -119,6 +140,10 @@ impl<'a> Resolver<'a> {
                 )
                 .help("choose another name"),
             );
+            return false;
+        }
+        if PRELUDE_VARIANTS.contains(&name.text.as_str()) {
+            self.reserved_variant(name);
             return false;
         }
         if let Some((_, first)) = self.names.get(&name.text) {

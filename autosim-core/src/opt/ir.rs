@@ -104,6 +104,14 @@ impl Ir {
         }
     }
 
+    /// Every literal's value.
+    pub fn literals(&self) -> impl Iterator<Item = f64> + '_ {
+        self.nodes.iter().filter_map(|op| match op {
+            Op::Num(b) => Some(f64::from_bits(*b)),
+            _ => None,
+        })
+    }
+
     /// The children of a node.
     pub fn children(&self, n: Nid) -> Vec<Nid> {
         match self.op(n) {

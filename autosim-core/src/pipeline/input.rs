@@ -85,7 +85,7 @@ impl ResolvedModel {
             subroutines,
             constraints: self.constraint_infos(eqs),
             motions: self.motion_infos(),
-            cautions: self.singular_starts(),
+            cautions: [self.singular_starts(), self.moved_initials(eqs)].concat(),
         }
     }
 
@@ -124,6 +124,28 @@ impl ResolvedModel {
             }
         }
         notes
+    }
+
+    /// A note for every dependent coordinate whose `initial:` the model
+    /// declared and the compiler chose (no `dependent:`): assembly moves
+    /// it. Only where no other choice closes the constraints.
+    fn moved_initials(&self, eqs: &Equations) -> Vec<String> {
+        let sys = &self.system;
+        let c = &eqs.constraints;
+        c.positions
+            .iter()
+            .zip(&c.dependent_coordinates)
+            .filter(|&(&row, &k)| {
+                sys.coordinates()[k].initial_declared && sys.constraints()[row].dependent.is_none()
+            })
+            .map(|(&row, &k)| {
+                format!(
+                    "Assembly solves `{}` from the other coordinates (it is the dependent coordinate of constraint `{}`, and no other choice closes the constraints at the initial state): its declared `initial:` value is only a guess, moved unless it already closes them. Name another with `dependent:` to keep it.",
+                    sys.arena.symbol(sys.coordinates()[k].q).name,
+                    sys.constraints()[row].name
+                )
+            })
+            .collect()
     }
 
     /// The constraints with their dependents.

@@ -3,7 +3,7 @@
 
 use crate::diag::{Diagnostic, Diagnostics, SourceFile};
 use crate::mech::{Equations, ItemRef};
-use crate::model::{ResolvedModel, Scene, resolve_scene};
+use crate::model::{FloatType, ResolvedModel, Scene, resolve_scene};
 use crate::opt::{Program, build};
 use crate::syntax::{self, ast};
 
@@ -48,6 +48,7 @@ pub fn compile_scene(model: &ast::Model, scene: &Scene) -> Result<Compiled, Diag
         Ok(p) => p,
         Err(e) => return Err(at(&resolved, e.item(), e.to_string(), None)),
     };
+    check_literals(&resolved, &program)?;
     Ok(Compiled {
         model: resolved,
         equations,
@@ -84,6 +85,31 @@ fn check_mass_matrix(resolved: &ResolvedModel, equations: &Equations) -> Result<
         );
     }
     diags.finish(())
+}
+
+/// A constant the equations produced (`1e200 * 1e200` from two terms, or
+/// beyond `f32`'s range in an `f32` model) that is not finite in the
+/// model's float type. The resolver reports those the model writes; this
+/// catches the rest, so no generated literal is ever infinite or NaN.
+fn check_literals(resolved: &ResolvedModel, program: &Program) -> Result<(), Diagnostics> {
+    let fits = |x: f64| match resolved.float {
+        FloatType::F64 => x.is_finite(),
+        FloatType::F32 => (x as f32).is_finite(),
+    };
+    let Some(bad) = program.ir.literals().find(|&x| !fits(x)) else {
+        return Ok(());
+    };
+    let float = match resolved.float {
+        FloatType::F64 => "f64",
+        FloatType::F32 => "f32",
+    };
+    Err(Diagnostics::from(
+        Diagnostic::error(
+            resolved.spans.item(&resolved.system, ItemRef::Model),
+            format!("the equations of motion hold a constant, {bad:e}, that is not finite in `{float}`"),
+        )
+        .help("rescale the model's constants (other units) so their products stay in range, or compute in `f64`"),
+    ))
 }
 
 /// Compiles a model file's text.

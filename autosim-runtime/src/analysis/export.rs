@@ -6,7 +6,7 @@ use super::{LinearSystem, Named};
 use nalgebra::DMatrix;
 use std::fmt::Write;
 use std::format;
-use std::string::String;
+use std::string::{String, ToString};
 use std::vec::Vec;
 
 /// `[[a, b], [c, d]]`-style rows with `open`/`close` around each row and
@@ -153,9 +153,7 @@ impl LinearSystem {
             let _ = writeln!(s, "| | {} |", head.join(" | "));
             let _ = writeln!(s, "|---|{}", "---|".repeat(cols.len()));
             for (i, r) in rows.iter().enumerate() {
-                let v: Vec<String> = (0..m.ncols())
-                    .map(|j| format!("{:.6e}", m[(i, j)]))
-                    .collect();
+                let v: Vec<String> = (0..m.ncols()).map(|j| entry(m[(i, j)])).collect();
                 let _ = writeln!(s, "| `{}`′ | {} |", r.name, v.join(" | "));
             }
         };
@@ -169,10 +167,20 @@ impl LinearSystem {
             table(&mut s, &self.b, &self.states, &self.inputs);
         }
         let _ = writeln!(s, "\n**Modes**\n");
-        for m in self.modes() {
-            let _ = writeln!(s, "- {m}");
+        for line in self.mode_lines() {
+            let _ = writeln!(s, "- {line}");
         }
         s
+    }
+}
+
+/// A matrix entry for people: `0` for a zero (of either sign), seven
+/// significant digits otherwise.
+fn entry(x: f64) -> String {
+    if x == 0.0 {
+        "0".to_string()
+    } else {
+        format!("{x:.6e}")
     }
 }
 

@@ -35,19 +35,41 @@ impl Mode {
     }
 }
 
+/// `x` to `decimals` places, never `-0.000…` (a value that rounds to
+/// zero prints without a sign).
+pub(super) fn fixed(x: f64, decimals: usize) -> String {
+    let text = format!("{x:.decimals$}");
+    match text.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => text,
+    }
+}
+
 impl fmt::Display for Mode {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let l = self.eigenvalue;
         match self.time_constant {
             _ if l.norm() == 0.0 => write!(f, "λ = 0 (a rigid-body or ignorable motion)")?,
-            Some(tau) => write!(f, "λ = {:.6} 1/s, time constant {:.6} s", l.re, tau)?,
+            Some(tau) if tau < 0.0 => write!(
+                f,
+                "λ = {} 1/s, unstable: grows by a factor e every {} s",
+                fixed(l.re, 6),
+                fixed(-tau, 6)
+            )?,
+            Some(tau) => write!(
+                f,
+                "λ = {} 1/s, time constant {} s",
+                fixed(l.re, 6),
+                fixed(tau, 6)
+            )?,
             None => write!(
                 f,
-                "λ = {:.6} ± {:.6}i 1/s, ωn = {:.6} rad/s, ζ = {:.6}",
-                l.re,
-                l.im.abs(),
-                self.natural_frequency,
-                self.damping_ratio
+                "λ = {} ± {}i 1/s, ωn = {} rad/s, ζ = {}{}",
+                fixed(l.re, 6),
+                fixed(l.im.abs(), 6),
+                fixed(self.natural_frequency, 6),
+                fixed(self.damping_ratio, 6),
+                if self.is_unstable() { ", unstable" } else { "" }
             )?,
         }
         let mut main: Vec<&(String, Complex<f64>)> = self.shape.iter().collect();
@@ -137,13 +159,37 @@ impl LinearSystem {
     }
 
     /// A table of the modes, one per line (for reports).
+    /// Zero eigenvalues (rigid-body and ignorable motions) are one line
+    /// with their count: their shapes are any combination of the motions,
+    /// so listing one shape each says nothing.
     pub fn modes_report(&self) -> String {
         let mut s = String::new();
-        for m in self.modes() {
-            s.push_str(&m.to_string());
+        for line in self.mode_lines() {
+            s.push_str(&line);
             s.push('\n');
         }
         s
+    }
+
+    /// The modes as lines of text, the zero eigenvalues grouped in one.
+    pub(super) fn mode_lines(&self) -> Vec<String> {
+        let modes = self.modes();
+        let zeros = modes.iter().filter(|m| m.eigenvalue.norm() == 0.0).count();
+        let mut lines = Vec::new();
+        let mut grouped = false;
+        for m in &modes {
+            if m.eigenvalue.norm() == 0.0 && zeros > 1 {
+                if !grouped {
+                    lines.push(format!(
+                        "λ = 0, {zeros} times (rigid-body or ignorable motions; their shapes are any combination of them)"
+                    ));
+                    grouped = true;
+                }
+                continue;
+            }
+            lines.push(m.to_string());
+        }
+        lines
     }
 
     /// The names of the states, in order.

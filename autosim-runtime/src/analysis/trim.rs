@@ -31,6 +31,11 @@ pub struct Trim {
     pub tolerance: f64,
     /// Newton iterations allowed.
     pub max_iterations: usize,
+    /// Largest change of an unknown in one Newton iteration, relative to
+    /// `max(1, |value|)` (a step that would go further is shortened as a
+    /// whole, keeping its direction): a trust region, so a nearly flat
+    /// Jacobian far from the solution cannot throw the unknowns away.
+    pub max_step: f64,
 }
 
 impl Trim {
@@ -43,9 +48,15 @@ impl Trim {
             steady: own(steady),
             tolerance: 1e-10,
             max_iterations: 50,
+            max_step: 1.0,
         }
     }
 }
+
+/// A Newton step longer than this, relative to `1 + max |unknown|`, means
+/// the Jacobian is singular for all practical purposes (the linear model
+/// has no nearby solution): reported as [`TrimError::Singular`].
+const SINGULAR_STEP: f64 = 1e8;
 
 /// What a converged trim did.
 #[derive(Clone, Debug, PartialEq)]
@@ -59,8 +70,10 @@ pub struct TrimReport {
 /// Why a trim failed.
 #[derive(Clone, Debug, PartialEq)]
 pub enum TrimError {
-    /// A name that is not a state, input, or linear state; or more
-    /// unknowns or residuals than make sense.
+    /// A name that is not a state, input, or linear state; no unknown or
+    /// no residual; fewer unknowns than residuals (over-determined: in
+    /// general no point makes every residual vanish); a `max_step` or
+    /// `tolerance` that is not positive.
     Invalid(String),
     /// Newton's method did not bring the residuals below the tolerance:
     /// each steady state's derivative at the best point reached.
@@ -70,9 +83,11 @@ pub enum TrimError {
         /// `(state, dx/dt)` of every steady state.
         residuals: Vec<(String, f64)>,
     },
-    /// The Jacobian of the residuals by the unknowns is singular: the free
-    /// variables do not control the steady derivatives (or not
-    /// independently).
+    /// The Jacobian of the residuals by the unknowns is singular (or so
+    /// nearly that its Newton step would go more than 1e8 times the
+    /// unknowns' size): the free variables do not control the steady
+    /// derivatives there (or not independently). Start elsewhere, or free
+    /// other variables.
     Singular {
         /// The residuals at that point.
         residuals: Vec<(String, f64)>,
@@ -168,6 +183,20 @@ fn layout<M: Linearize<Float = f64>>(spec: &Trim) -> Result<Layout, TrimError> {
             "name at least one free state or input and one steady state".to_string(),
         ));
     }
+    let unknowns = states.len() + inputs.len();
+    if unknowns < steady.len() {
+        return Err(TrimError::Invalid(format!(
+            "{} steady derivative{} but {unknowns} free unknown{}: over-determined (free as many states or inputs as there are steady states)",
+            steady.len(),
+            if steady.len() == 1 { "" } else { "s" },
+            if unknowns == 1 { "" } else { "s" },
+        )));
+    }
+    if !(spec.max_step > 0.0 && spec.tolerance > 0.0) {
+        return Err(TrimError::Invalid(
+            "max_step and tolerance must be positive".to_string(),
+        ));
+    }
     Ok(Layout {
         states,
         inputs,
@@ -180,7 +209,8 @@ fn layout<M: Linearize<Float = f64>>(spec: &Trim) -> Result<Layout, TrimError> {
 ///
 /// Damped Newton: each step solves `J δ = −r` (least squares when the
 /// unknowns outnumber the residuals) with `J` from the model's generated
-/// `A` and `B`, and is halved until the residual decreases.
+/// `A` and `B`, is shortened to [`Trim::max_step`], and is halved until the
+/// residual decreases.
 ///
 /// # Errors
 /// [`TrimError`]: a bad name, no convergence (with the residuals), a
@@ -208,9 +238,20 @@ pub fn trim<M: Linearize<Float = f64>>(
         }
         let j = jacobian(model, t, x, &lay)?;
         let rhs = nalgebra::DVector::from_iterator(r.len(), r.iter().map(|v| -v));
-        let step = solve(&j, &rhs).ok_or_else(|| TrimError::Singular {
+        let singular = || TrimError::Singular {
             residuals: named::<M>(&lay, &r),
-        })?;
+        };
+        let mut step = solve(&j, &rhs).ok_or_else(singular)?;
+        let size_of_unknowns = unknowns(&lay, x, &w).fold(0.0, |m: f64, v| m.max(v.abs()));
+        if step.amax() > SINGULAR_STEP * (1.0 + size_of_unknowns) {
+            return Err(singular());
+        }
+        // The trust region: shorten the whole step to `max_step`.
+        let limit = unknowns(&lay, x, &w)
+            .zip(step.iter())
+            .map(|(v, d)| spec.max_step * v.abs().max(1.0) / d.abs())
+            .fold(1.0, f64::min);
+        step *= limit;
         let (mut lambda, mut accepted) = (1.0, false);
         for _ in 0..30 {
             let (mut xt, mut wt) = (*x, w.clone());
@@ -246,6 +287,17 @@ pub fn trim<M: Linearize<Float = f64>>(
         iterations: spec.max_iterations,
         residuals: named::<M>(&lay, &r),
     })
+}
+
+/// The unknowns' current values: the free states, then the free inputs.
+fn unknowns<'a>(
+    lay: &'a Layout,
+    x: &'a impl AsRef<[f64]>,
+    w: &'a [f64],
+) -> impl Iterator<Item = f64> + 'a {
+    let xs = x.as_ref();
+    let states = lay.states.iter().map(move |(k, _)| xs[*k]);
+    states.chain(lay.inputs.iter().map(move |k| w[*k]))
 }
 
 fn norm(r: &[f64]) -> f64 {

@@ -1,7 +1,7 @@
 //! CSV output of runs: one row per output time, flushed as it is written.
 
 use std::prelude::rust_2024::*;
-use std::{format, vec};
+use std::vec;
 
 use std::fmt::Write as _;
 use std::fs::File;
@@ -60,7 +60,7 @@ impl<M: Model, W: Write> CsvWriter<M, W> {
         let columns = named(M::STATE_NAMES, M::STATE_UNITS)
             .chain(named(M::INPUT_NAMES, M::INPUT_UNITS).take(crate::run::MAX_RECORDED_INPUTS))
             .chain(named(M::OUTPUT_NAMES, M::OUTPUT_UNITS));
-        header.extend(columns.map(|(name, unit)| format!("{name} [{unit}]")));
+        header.extend(columns.map(|(name, unit)| super::names::labelled(name, unit)));
         writer.write_record(&header)?;
         writer.flush().map_err(csv::Error::from)?;
         Ok(Self {

@@ -1,6 +1,16 @@
-//! Closest-name suggestions for misspelled keys and column names.
+//! Closest-name suggestions for misspelled keys and column names, and
+//! names labelled with their units.
 
 use std::prelude::rust_2024::*;
+
+/// `name [unit]`, or the bare name when it has no unit (a column or an
+/// axis of a dimensionless quantity is not headed `h []`).
+pub(crate) fn labelled(name: &str, unit: &str) -> String {
+    match unit.trim() {
+        "" => name.to_string(),
+        unit => std::format!("{name} [{unit}]"),
+    }
+}
 
 /// Levenshtein distance between `a` and `b`, counted in characters.
 pub(crate) fn edit_distance(a: &str, b: &str) -> usize {

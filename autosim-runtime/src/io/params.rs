@@ -31,12 +31,11 @@ pub fn parameters_to_string<M: Model>(model: &M) -> String {
     let _ = writeln!(out, "# Units are in the comments; edit values only.");
     for (i, (name, value)) in names.iter().zip(&values).enumerate() {
         let unit = M::PARAMETER_UNITS.get(i).copied().unwrap_or("");
-        let _ = writeln!(
-            out,
-            "{} = {} # [{unit}]",
-            toml_key(name),
-            toml_float(*value)
-        );
+        let (key, value) = (toml_key(name), toml_float(*value));
+        let _ = match unit {
+            "" => writeln!(out, "{key} = {value}"),
+            unit => writeln!(out, "{key} = {value} # [{unit}]"),
+        };
     }
     out
 }

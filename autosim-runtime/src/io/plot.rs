@@ -30,7 +30,9 @@ const SIZE: (u32, u32) = (900, 560);
 
 /// Draws `series` against `time` as an SVG document: the x axis labelled
 /// `time [s]`, the y axis with the series' names and units, and a legend.
-/// Non-finite values are left out of the lines.
+/// Non-finite values are left out of the lines. Series of different units
+/// never share an axis: each unit gets its own panel, stacked in the order
+/// the units first appear.
 ///
 /// Use it for a quick look at a run ([`Recording::plot_svg`] picks the
 /// columns by name); use the CSV output for anything quantitative.
@@ -38,11 +40,44 @@ const SIZE: (u32, u32) = (900, 560);
 /// # Errors
 /// [`OutputError::Plot`] if there is nothing to draw or drawing fails.
 pub fn svg_plot(title: &str, time: &[f64], series: &[Series<'_>]) -> Result<String, OutputError> {
-    let (x_range, y_range) = ranges(time, series)?;
+    ranges(time, series)?;
+    let mut units: Vec<&str> = Vec::new();
+    for s in series {
+        if !units.contains(&s.unit) {
+            units.push(s.unit);
+        }
+    }
+    let panels: Vec<Vec<Series<'_>>> = units
+        .iter()
+        .map(|u| series.iter().filter(|s| s.unit == *u).copied().collect())
+        .collect();
     let mut svg = String::new();
-    draw(&mut svg, title, time, series, x_range, y_range)
-        .map_err(|e| OutputError::Plot(e.to_string()))?;
+    draw_panels(&mut svg, title, time, &panels).map_err(|e| OutputError::Plot(e.to_string()))?;
     Ok(svg)
+}
+
+/// One chart per panel, stacked, the title over the first.
+fn draw_panels(
+    svg: &mut String,
+    title: &str,
+    time: &[f64],
+    panels: &[Vec<Series<'_>>],
+) -> Result<(), Box<dyn std::error::Error>> {
+    let rows = panels.len().max(1);
+    let height = match rows {
+        1 => SIZE.1,
+        n => 60 + 360 * n as u32,
+    };
+    let root = SVGBackend::with_string(svg, (SIZE.0, height)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let areas = root.split_evenly((rows, 1));
+    for (k, (area, series)) in areas.iter().zip(panels).enumerate() {
+        let (x_range, y_range) = ranges(time, series)?;
+        let caption = if k == 0 { title } else { "" };
+        draw(area, caption, time, series, x_range, y_range)?;
+    }
+    root.present()?;
+    Ok(())
 }
 
 /// Writes [`svg_plot`] to `path`.
@@ -237,37 +272,27 @@ fn ranges(time: &[f64], series: &[Series<'_>]) -> Result<(Range, Range), OutputE
     Ok((pad(x, 0.0), pad(y, 0.05)))
 }
 
-/// `a [u], b [u]` when units differ, `a, b [u]` when they agree.
+/// `a, b [u]` (one panel's series share their unit); `value [u]` when the
+/// names are long (the legend names them); no brackets without a unit.
 fn y_label(series: &[Series<'_>]) -> String {
-    let first_unit = series.first().map(|s| s.unit).unwrap_or("");
-    if series.iter().all(|s| s.unit == first_unit) {
-        let names: Vec<&str> = series.iter().map(|s| s.name).collect();
-        let joined = names.join(", ");
-        // Many lines: the legend names them, the axis gives the unit.
-        if joined.chars().count() > 40 {
-            format!("value [{first_unit}]")
-        } else {
-            format!("{joined} [{first_unit}]")
-        }
-    } else {
-        let parts: Vec<String> = series
-            .iter()
-            .map(|s| format!("{} [{}]", s.name, s.unit))
-            .collect();
-        parts.join(", ")
+    let unit = series.first().map(|s| s.unit).unwrap_or("");
+    let names: Vec<&str> = series.iter().map(|s| s.name).collect();
+    let joined = names.join(", ");
+    match joined.chars().count() > 40 {
+        true => super::names::labelled("value", unit),
+        false => super::names::labelled(&joined, unit),
     }
 }
 
 fn draw(
-    svg: &mut String,
+    root: &DrawingArea<SVGBackend<'_>, Shift>,
     title: &str,
     time: &[f64],
     series: &[Series<'_>],
     x_range: Range,
     y_range: Range,
 ) -> Result<(), Box<dyn std::error::Error>> {
-    let root = canvas(svg)?;
-    let mut chart = chart_frame(&root, title, 72)
+    let mut chart = chart_frame(root, title, 72)
         .build_cartesian_2d(x_range.0..x_range.1, y_range.0..y_range.1)?;
     chart
         .configure_mesh()
@@ -285,7 +310,7 @@ fn draw(
         for seg in segments {
             let drawn = chart.draw_series(LineSeries::new(seg, style))?;
             if first {
-                let label = format!("{} [{}]", s.name, s.unit);
+                let label = super::names::labelled(s.name, s.unit);
                 drawn
                     .label(label)
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
@@ -294,7 +319,6 @@ fn draw(
         }
     }
     draw_legend(&mut chart, 14, SeriesLabelPosition::UpperLeft)?;
-    root.present()?;
     Ok(())
 }
 
@@ -491,7 +515,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn y_label_merges_a_shared_unit() {
+    fn y_label_merges_a_panels_unit() {
         let v = [0.0];
         let a = Series {
             name: "x",
@@ -504,12 +528,12 @@ mod tests {
             values: &v,
         };
         let c = Series {
-            name: "v",
-            unit: "m/s",
+            name: "h",
+            unit: "",
             values: &v,
         };
         assert_eq!(y_label(&[a, b]), "x, y [m]");
-        assert_eq!(y_label(&[a, c]), "x [m], v [m/s]");
+        assert_eq!(y_label(&[c]), "h");
         let long = Series {
             name: "a rather long series name",
             unit: "rad",

@@ -61,7 +61,7 @@ impl<M: Model> Recording<M> {
         Self {
             time: Vec::new(),
             columns: states.chain(inputs).chain(outputs).collect(),
-            inputs: vec![0.0; n_inputs],
+            inputs: std::vec![0.0; n_inputs],
             model: PhantomData,
         }
     }

@@ -5,6 +5,7 @@
 use super::MAX_RECORDED_INPUTS;
 
 use super::{Observer, RunError, RunSettings, RunSummary};
+use crate::error::{check_finite_outputs, check_finite_parameters};
 use crate::integrate::Stepper;
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 
@@ -36,6 +37,7 @@ impl<M: Model> Driver<M> {
     ) -> Result<Driver<M>, IntegrationError> {
         settings.validate()?;
         check_finite::<M>(settings.start, x)?;
+        check_finite_parameters(model, settings.start)?;
         model
             .assemble(settings.start, x)
             .map_err(|error| IntegrationError::Model {
@@ -105,6 +107,7 @@ impl<M: Model> Driver<M> {
                 t: t.to_f64(),
                 error,
             })?;
+        check_finite_outputs::<M>(t, &self.y)?;
         Ok(&self.y)
     }
 

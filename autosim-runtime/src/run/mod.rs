@@ -235,8 +235,12 @@ impl<E: core::error::Error + 'static> core::error::Error for RunError<E> {
 ///
 /// # Errors
 /// [`RunError::Integration`] with the first [`IntegrationError`] (a
-/// non-finite state names the time and the state; `x` then holds the last
-/// good state), or [`RunError::Observer`] if the observer failed.
+/// non-finite state names the time and the state, checked after every
+/// step; `x` then holds the last good state; a non-finite output names the
+/// time and the output, checked at every output time; a non-finite
+/// derivative of a generated model is an [`IntegrationError::Model`] with
+/// [`ModelError::NonFiniteDerivative`](crate::ModelError::NonFiniteDerivative)),
+/// or [`RunError::Observer`] if the observer failed.
 pub fn run<M, S, O>(
     model: &mut M,
     stepper: &mut S,

@@ -12,10 +12,9 @@
 //! latencies from the block's inputs. Without fused instructions
 //! `a.fma(b, acc)` is `a * b + acc`: the same bits as the sum unfused.
 
-use super::{ExprPrinter, Prec};
-use crate::opt::FloatType;
+use super::{ExprPrinter, Prec, magnitude_literal};
 use crate::opt::{Nid, Op};
-use proc_macro2::{Literal, TokenStream};
+use proc_macro2::TokenStream;
 use quote::quote;
 use rustc_hash::FxHashMap;
 use std::cell::RefCell;
@@ -112,13 +111,9 @@ impl ExprPrinter<'_> {
         if receiver
             && !self.is_name(node)
             && let Some(x) = self.ir().as_num(node)
-            && x.is_finite()
+            && let Some(lit) = magnitude_literal(x, self.float, true)
         {
             let x = if negative { -x } else { x };
-            let lit = match self.float {
-                FloatType::F64 => Literal::f64_suffixed(x.abs()),
-                FloatType::F32 => Literal::f32_suffixed((x as f32).abs()),
-            };
             return match x < 0.0 {
                 true => (quote!(-#lit), Prec::Unary),
                 false => (quote!(#lit), Prec::Atom),

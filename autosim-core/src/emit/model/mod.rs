@@ -543,6 +543,14 @@ fn model_trait_impl(be: &BlockEmitter<'_>) -> TokenStream {
         quote!(#ly)
     };
     let deriv = functions::body(be, BlockKind::Derivatives);
+    // A derivative that is NaN or infinite at a finite state (a division by
+    // zero, a function outside its domain, a user function's result) is an
+    // error, not `Ok`: one vectorizable pass over `dx`.
+    let deriv_result = if prog.states().is_empty() {
+        quote!(Ok(()))
+    } else {
+        quote!(#rt::check_derivatives::<Self>(#ldx))
+    };
     let outs = functions::body(be, BlockKind::Outputs);
     let init = functions::body(be, BlockKind::Initial);
     let assembly = assembly::trait_methods(be);
@@ -559,7 +567,7 @@ fn model_trait_impl(be: &BlockEmitter<'_>) -> TokenStream {
 
             fn derivatives(&mut self, #dt: #ty, #dxx: &[#ty; #n_states], #d_arg: &mut [#ty; #n_states]) -> Result<(), #rt::ModelError> {
                 #deriv
-                Ok(())
+                #deriv_result
             }
 
             fn outputs(&mut self, #out_t: #ty, #out_x: &[#ty; #n_states], #out_y: &mut [#ty; #n_out]) -> Result<(), #rt::ModelError> {

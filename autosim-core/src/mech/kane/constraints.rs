@@ -219,9 +219,17 @@ impl System {
             })
             .collect();
         let excluded: Vec<usize> = prescribed.iter().map(|p| p.speed).collect();
-        let order = self.pivot(&g, nominal, &forced, &excluded, |i| {
-            ItemRef::Constraint(eqs.positions[i])
-        })?;
+        let item = |i: usize| ItemRef::Constraint(eqs.positions[i]);
+        // Assembly moves the dependent coordinates: choose them among the
+        // coordinates without a declared `initial:` where that closes the
+        // constraints, so a declared value stays as written.
+        let declared =
+            (0..n).filter(|&j| self.coordinates[j].initial_declared && !forced.contains(&Some(j)));
+        let avoiding: Vec<usize> = excluded.iter().copied().chain(declared).collect();
+        let order = match self.pivot(&g, nominal, &forced, &avoiding, item) {
+            Ok(order) => order,
+            Err(_) => self.pivot(&g, nominal, &forced, &excluded, item)?,
+        };
         eqs.dependent_coordinates = vec![0; np];
         for &(i, j) in &order {
             eqs.dependent_coordinates[i] = j;
@@ -329,12 +337,7 @@ impl System {
             });
             let Some((i, j)) = pick else {
                 let i = (0..rows).find(|&i| !row_done[i]).unwrap_or(0);
-                let e = ModelError::Option {
-                    item: String::new(),
-                    key: "",
-                    message: "the constraints are redundant at the initial state: this one restricts nothing the others do not".to_string(),
-                    help: "remove it, start from a state where the constraints are independent, or name the dependents with `dependent:`".to_string(),
-                };
+                let e = self.why_no_pivot(m, nominal, excluded, i);
                 return Err(LocatedError::new(item(i), e));
             };
             row_done[i] = true;
@@ -352,4 +355,84 @@ impl System {
         }
         Ok(order)
     }
+
+    /// Why row `i` of `m` found no pivot at the nominal state: the row is
+    /// zero whatever the state (it constrains nothing), the rows are
+    /// dependent at every configuration (one repeats the others), or only
+    /// at this one (a singular initial guess). The second and third are
+    /// told apart by the rank at another configuration.
+    fn why_no_pivot(
+        &self,
+        m: &[Vec<ExprId>],
+        nominal: &Bindings,
+        excluded: &[usize],
+        i: usize,
+    ) -> ModelError {
+        let option = |message: &str, help: &str| ModelError::Option {
+            item: String::new(),
+            key: "",
+            message: message.to_string(),
+            help: help.to_string(),
+        };
+        if m[i].iter().all(|e| self.arena.is_zero(*e)) {
+            return option(
+                "this constraint is identically zero: it restricts nothing, whatever the state",
+                "remove it (it holds for every motion: e.g. the vertical component of a rolling contact's slip when the body cannot leave the ground)",
+            );
+        }
+        let mut elsewhere = nominal.clone();
+        for (k, c) in self.coordinates.iter().enumerate() {
+            let shift = 0.37 + 0.11 * k as f64;
+            elsewhere.set(c.q, nominal.get(c.q) + shift);
+            elsewhere.set(c.u, nominal.get(c.u) + shift);
+        }
+        let values: Vec<Vec<f64>> = m
+            .iter()
+            .map(|r| {
+                let row = r.iter().enumerate().filter(|(j, _)| !excluded.contains(j));
+                row.map(|(_, e)| self.arena.eval(*e, &elsewhere, &mut NoUserFunctions))
+                    .collect()
+            })
+            .collect();
+        if numeric_rank(values) == m.len() {
+            option(
+                "the constraints are singular at the initial configuration: here this one restricts no speed, or only what the others do (elsewhere they are independent)",
+                "start from another configuration (the coordinates' `initial:`), or name other dependents with `dependent:`",
+            )
+        } else {
+            option(
+                "this constraint is redundant: at every configuration it restricts nothing the others do not",
+                "remove it: it repeats the others (a position constraint's time derivative is already a speed constraint: do not declare that again)",
+            )
+        }
+    }
+}
+
+/// The rank of a matrix by Gaussian elimination with complete pivoting
+/// (entries below 1e-10 of the largest count as zero).
+fn numeric_rank(mut v: Vec<Vec<f64>>) -> usize {
+    let scale = v.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
+    if !(scale > 0.0 && scale.is_finite()) {
+        return 0;
+    }
+    let mut rank = 0;
+    while !v.is_empty() {
+        let best = v
+            .iter()
+            .enumerate()
+            .flat_map(|(i, r)| r.iter().enumerate().map(move |(j, x)| (i, j, x.abs())))
+            .fold((0, 0, 0.0), |b, c| if c.2 > b.2 { c } else { b });
+        if best.2 <= 1e-10 * scale || best.2.is_nan() {
+            break;
+        }
+        let pivot_row = v.swap_remove(best.0);
+        for r in &mut v {
+            let f = r[best.1] / pivot_row[best.1];
+            for (x, p) in r.iter_mut().zip(&pivot_row) {
+                *x -= f * p;
+            }
+        }
+        rank += 1;
+    }
+    rank
 }

@@ -22,11 +22,14 @@ impl Program {
             BlockKind::Outputs => self.interface.outputs[k].name.clone(),
             BlockKind::Constants => format!("p{}", k + 1),
             BlockKind::Common => format!("s{}", k + 1),
-            BlockKind::MassMatrix => match self.mass_layout {
-                MassLayout::Entries => format!("M[{},{}]", k / n + 1, k % n + 1),
-                MassLayout::Products => format!("(M du/dt)[{}]", k + 1),
-            },
-            BlockKind::Forcing => format!("f[{}]", k + 1),
+            BlockKind::MassMatrix => {
+                let m = self.unused_name("M", "MassMatrix");
+                match self.mass_layout {
+                    MassLayout::Entries => format!("{m}[{},{}]", k / n + 1, k % n + 1),
+                    MassLayout::Products => format!("({m} du/dt)[{}]", k + 1),
+                }
+            }
+            BlockKind::Forcing => format!("{}[{}]", self.unused_name("f", "forcing"), k + 1),
             BlockKind::Linearize => self.linear_slot_name(k),
             BlockKind::Assembly => {
                 let closures = &self.interface.closures;
@@ -39,6 +42,19 @@ impl Program {
                 }
             }
         }
+    }
+
+    /// `short`, or `long` when the model has a quantity named `short` (a
+    /// parameter `M` and the mass matrix `M[1,1]` must not read alike).
+    fn unused_name<'a>(&self, short: &'a str, long: &'a str) -> &'a str {
+        let i = &self.interface;
+        let quantities = i.parameters.iter().chain(&i.inputs).chain(&i.outputs);
+        let states = (0..self.states().len()).map(|k| &self.states().state(k).name);
+        let taken = quantities
+            .map(|q| &q.name)
+            .chain(states)
+            .any(|n| n == short);
+        if taken { long } else { short }
     }
 
     /// `A[i,j]`, `B[i,j]`, `C[i,j]` or `D[i,j]` (1-based) of linearize slot

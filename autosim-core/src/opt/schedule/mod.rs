@@ -120,13 +120,25 @@ impl std::ops::AddAssign for Ops {
 
 impl fmt::Display for Ops {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        // "1 divide", "2 divides": counts read as English.
+        let counted = |n: usize, one: &str, many: &str| match n {
+            1 => format!("1 {one}"),
+            n => format!("{n} {many}"),
+        };
         write!(
             f,
-            "{} adds, {} multiplies, {} divides, {} functions",
-            self.adds, self.muls, self.divs, self.funcs
+            "{}, {}, {}, {}",
+            counted(self.adds, "add", "adds"),
+            counted(self.muls, "multiply", "multiplies"),
+            counted(self.divs, "divide", "divides"),
+            counted(self.funcs, "function", "functions")
         )?;
         if self.user_calls > 0 {
-            write!(f, ", {} user calls", self.user_calls)?;
+            write!(
+                f,
+                ", {}",
+                counted(self.user_calls, "user call", "user calls")
+            )?;
         }
         Ok(())
     }

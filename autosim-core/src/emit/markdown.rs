@@ -31,6 +31,16 @@ fn write_document(s: &mut String, prog: &Program, source: &str) -> std::fmt::Res
     write_equations(s, prog)
 }
 
+/// A unit as the tables show it: the declared one, else the one the unit
+/// check inferred, marked so.
+fn shown_unit(declared: &str, inferred: &str) -> String {
+    match (declared, inferred) {
+        ("", "") => String::new(),
+        ("", inferred) => format!("{inferred} (inferred)"),
+        (declared, _) => declared.to_string(),
+    }
+}
+
 /// Parameters, states, inputs, outputs and user code.
 fn write_tables(s: &mut String, prog: &Program) -> std::fmt::Result {
     let i = &prog.interface;
@@ -48,13 +58,18 @@ fn write_tables(s: &mut String, prog: &Program) -> std::fmt::Result {
             "| `{}` | {} | {} | {} |",
             p.name,
             p.default,
-            p.unit,
+            shown_unit(&p.unit, &p.inferred_unit),
             doc.trim()
         )?;
     }
     writeln!(s, "\n## States\n\n| # | name | unit |\n| --- | --- | --- |")?;
     for (k, st) in i.states.states().enumerate() {
-        writeln!(s, "| {k} | `{}` | {} |", st.name, st.unit)?;
+        writeln!(
+            s,
+            "| {k} | `{}` | {} |",
+            st.name,
+            shown_unit(&st.unit, &st.inferred_unit)
+        )?;
     }
     for (title, quantities) in [("Inputs", &i.inputs), ("Outputs", &i.outputs)] {
         if quantities.is_empty() {
@@ -66,7 +81,8 @@ fn write_tables(s: &mut String, prog: &Program) -> std::fmt::Result {
         )?;
         for q in quantities {
             let doc = q.docs.as_deref().unwrap_or_default().join(" ");
-            writeln!(s, "| `{}` | {} | {} |", q.name, q.unit, doc.trim())?;
+            let unit = shown_unit(&q.unit, &q.inferred_unit);
+            writeln!(s, "| `{}` | {unit} | {} |", q.name, doc.trim())?;
         }
     }
     if i.has_externs() {
@@ -109,7 +125,7 @@ fn write_constraints(s: &mut String, prog: &Program) -> std::fmt::Result {
                 s,
                 "| `{}` | {kind} | {} | `{}` | {} | {} |",
                 c.name,
-                c.unit,
+                shown_unit(&c.unit, &c.inferred_unit),
                 c.dependent_speed,
                 coordinate,
                 c.docs.join(" ").trim()

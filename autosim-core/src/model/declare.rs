@@ -56,15 +56,38 @@ fn parameters(r: &mut Resolver<'_>, out: &mut ResolvedModel, ps: &ast::Parameter
         if !r.declare(&p.name, Named::Load) {
             continue;
         }
-        let unit = p.unit.as_ref().map(|u| u.text.as_str());
-        let added = r.sys.add_parameter(&p.name.text, value, unit);
+        let (value, unit, converted) = coherent_value(p, value);
+        let added = r.sys.add_parameter(&p.name.text, value, unit.as_deref());
         bind_symbol(r, &p.name, added);
-        let docs = if p.docs.is_empty() {
+        let mut docs = if p.docs.is_empty() {
             ps.docs.clone()
         } else {
             p.docs.clone()
         };
+        docs.extend(converted);
         out.item_docs.insert(p.name.text.clone(), docs);
+    }
+}
+
+/// A parameter's value and unit in coherent SI units, the units generated
+/// code computes in: `a = 30 [deg]` is 0.5235987755982988 rad, and its
+/// documentation says what was written.
+fn coherent_value(p: &ast::Parameter, value: f64) -> (f64, Option<String>, Option<String>) {
+    let Some(unit) = &p.unit else {
+        return (value, None, None);
+    };
+    match super::units::unit_meaning(&unit.text) {
+        Some(u) if !u.is_coherent() => {
+            let si = u.dim.to_string();
+            let note = format!(
+                "Written `{} [{}]`: {} {si} in the generated code.",
+                p.value_text(),
+                unit.text,
+                value * u.factor
+            );
+            (value * u.factor, Some(si), Some(note))
+        }
+        _ => (value, Some(unit.text.clone()), None),
     }
 }
 

@@ -20,6 +20,7 @@ mod spans;
 #[cfg(test)]
 mod tests;
 mod typed;
+pub mod units;
 mod value;
 
 pub use scene::Scene;
@@ -112,6 +113,10 @@ pub struct ResolvedModel {
     /// How the accelerations are solved (`settings { formulation: ... }`
     /// or the scene's `formulation = ...`).
     pub formulation: Formulation,
+    /// The unit of each quantity declared without one that the unit check
+    /// inferred from its uses, by name (`units::UnitReport::inferred`):
+    /// shown in the documentation, not in the generated unit tables.
+    pub inferred_units: FxHashMap<String, String>,
 }
 
 /// Resolves a parsed model.
@@ -133,6 +138,7 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
         spans: ItemSpans::new(model_name.span),
         linearize: false,
         formulation: Formulation::Auto,
+        inferred_units: FxHashMap::default(),
     };
     check_model_name(&mut r, model_name);
     // Settings first: the threshold affects every expression built later.
@@ -147,6 +153,11 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
     declare::declare_names(&mut r, &mut out, model);
     items::resolve_items(&mut r, &mut out, model, outputs.as_deref());
     settings::check_scene_names(&mut r, model, scene, outputs.as_deref());
+    let units = units::check(&r, model);
+    for d in units.diagnostics {
+        r.push(d);
+    }
+    out.inferred_units = units.inferred;
     if !r.diags.is_empty() {
         return Err(r.diags);
     }

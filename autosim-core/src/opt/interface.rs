@@ -16,6 +16,9 @@ pub struct StateVar {
     pub name: String,
     /// Unit text (empty when unknown).
     pub unit: String,
+    /// The unit the unit check inferred, when none is declared (empty
+    /// otherwise): shown in the documentation only.
+    pub inferred_unit: String,
 }
 
 /// The state vector: generalized coordinates, then the independent
@@ -89,6 +92,9 @@ pub struct Quantity {
     pub name: String,
     /// Unit text (empty when none).
     pub unit: String,
+    /// The unit the unit check inferred, when none is declared (empty
+    /// otherwise): shown in the documentation only.
+    pub inferred_unit: String,
     /// Default value (0 for outputs).
     pub default: f64,
     /// The model's doc comments; `None` for a parameter the compiler
@@ -127,6 +133,9 @@ pub struct ConstraintInfo {
     pub dependent_coordinate: Option<String>,
     /// Unit of its expression (empty when not given).
     pub unit: String,
+    /// The unit the unit check inferred, when none is declared (empty
+    /// otherwise): shown in the documentation only.
+    pub inferred_unit: String,
     /// Doc comments.
     pub docs: Vec<String>,
     /// Where it is declared.
@@ -205,6 +214,7 @@ impl Interface {
         let state = |s: &SymId| StateVar {
             name: a.symbol(*s).name.clone(),
             unit: a.symbol(*s).unit.clone().unwrap_or_default(),
+            inferred_unit: model.inferred_unit(&a.symbol(*s).name, a.symbol(*s).unit.as_deref()),
         };
         let symbol = |s: &SymId| {
             let sym = a.symbol(*s);
@@ -340,6 +350,7 @@ impl ResolvedModel {
                     .position(|&p| p == k)
                     .map(|i| name(eqs.coordinates[c.dependent_coordinates[i]])),
                 unit: con.unit.clone().unwrap_or_default(),
+                inferred_unit: self.inferred_unit(&con.name, con.unit.as_deref()),
                 docs: self.item_docs.get(&con.name).cloned().unwrap_or_default(),
                 span: self.spans.named(&con.name),
             })
@@ -376,6 +387,7 @@ impl ResolvedModel {
             out.push(Quantity {
                 name: c.name.clone(),
                 unit: c.unit.clone().unwrap_or_default(),
+                inferred_unit: self.inferred_unit(&c.name, c.unit.as_deref()),
                 default: 0.0,
                 docs: Some(vec![format!(
                     "Residual of the position constraint `{}` (zero when the configuration satisfies it).",
@@ -395,6 +407,7 @@ impl ResolvedModel {
             out.push(Quantity {
                 name: m.name.clone(),
                 unit: unit.to_string(),
+                inferred_unit: String::new(),
                 default: 0.0,
                 docs: Some(vec![format!(
                     "Generalized force along `{q}` that enforces the motion `{}`.",
@@ -406,11 +419,21 @@ impl ResolvedModel {
         out
     }
 
+    /// The unit inferred for `name` when `declared` is none (empty
+    /// otherwise, and when its uses do not determine it).
+    fn inferred_unit(&self, name: &str, declared: Option<&str>) -> String {
+        match declared {
+            Some(_) => String::new(),
+            None => self.inferred_units.get(name).cloned().unwrap_or_default(),
+        }
+    }
+
     /// The interface entry of a named value declared by the model.
     fn quantity(&self, name: &str, unit: Option<&str>, default: f64) -> Quantity {
         Quantity {
             name: name.to_string(),
             unit: unit.unwrap_or_default().to_string(),
+            inferred_unit: self.inferred_unit(name, unit),
             default,
             docs: self.item_docs.get(name).cloned(),
             span: self.spans.named(name),

@@ -109,11 +109,11 @@ impl<'r, 'a> Checker<'r, 'a> {
                     Diagnostic::error(
                         unit.span,
                         format!(
-                            "`{}` is {} {}: generated code computes in coherent SI units, and this value is not converted",
-                            unit.text, u.factor, u.dim
+                            "`{}` is not a coherent SI unit (1 {} = {} {}): this value is computed in, or passed as, {}",
+                            unit.text, unit.text, u.factor, u.dim, u.dim
                         ),
                     )
-                    .help(format!("declare it in `[{}]`; a value written in `{}` is converted where a number is written: a parameter's value, or a number in an expression, `2 [{}]`", u.dim, unit.text, unit.text)),
+                    .help(format!("declare it in `[{}]`; a unit with a factor is converted only where a number is written: a parameter's value (`a = 30 [{}]`) or a number in an expression (`2 [{}]`)", u.dim, unit.text, unit.text)),
                 );
                 None
             }
@@ -215,15 +215,13 @@ impl<'r, 'a> Checker<'r, 'a> {
             (Measure::Dim(x), Measure::Dim(y)) => match self.solver.unify(&x, &y) {
                 Ok(()) => Measure::Dim(x),
                 Err(m) => {
+                    let (l, r) = (
+                        quantity(&self.show(&m.left)),
+                        quantity(&self.show(&m.right)),
+                    );
                     let verb = match op {
-                        BinOp::Add => {
-                            format!("adds {} to {}", self.show(&m.left), self.show(&m.right))
-                        }
-                        _ => format!(
-                            "subtracts {} from {}",
-                            self.show(&m.right),
-                            self.show(&m.left)
-                        ),
+                        BinOp::Add => format!("adds {l} to {r}"),
+                        _ => format!("subtracts {r} from {l}"),
                     };
                     self.diags.push(
                         Diagnostic::error(span, format!("`{}` {verb}", short(whole)))
@@ -251,7 +249,7 @@ impl<'r, 'a> Checker<'r, 'a> {
             (Measure::Dim(a), Some(p)) => Measure::Dim(a).map(|a| a.pow(p)),
             (Measure::Dim(a), None) => {
                 if let Err(m) = self.solver.unify(&a, &Affine::known(Dim::ONE)) {
-                    let found = self.show(&m.left);
+                    let found = quantity(&self.show(&m.left));
                     self.diags.push(
                         Diagnostic::error(
                             whole.span(),
@@ -297,7 +295,7 @@ impl<'r, 'a> Checker<'r, 'a> {
         }
     }
 
-    /// "{what} is in {need}, but `e` is in {found}".
+    /// "{what} must be in {need}, but `e` is in {found}".
     fn mismatch(&mut self, m: Mismatch, e: &Expr, what: &str) {
         let (found, need) = (self.show(&m.left), self.show(&m.right));
         let unit = self
@@ -305,20 +303,19 @@ impl<'r, 'a> Checker<'r, 'a> {
             .known(&m.right)
             .map_or(need.clone(), |d| d.to_string());
         self.diags.push(
-            Diagnostic::error(e.span(), format!("{what} is in {need}, but `{}` is in {found}", short(e)))
-                .help(format!("check the formula and the units declared for the names it uses; if it is right, say so with `({}) as [{unit}]`", short(e))),
+            Diagnostic::error(
+                e.span(),
+                format!("{what} must be {}, but `{}` is {}", in_unit(&need), short(e), in_unit(&found)),
+            )
+            .help(format!("check the formula and the units declared for the names it uses; if it is right, say so with `({}) as [{unit}]`", short(e))),
         );
     }
 
-    /// A dimension with unknowns, as said in messages.
+    /// A dimension with unknowns, as said in messages (`1` when
+    /// dimensionless).
     pub fn show(&self, a: &Affine) -> String {
         let a = self.solver.resolve(a).unwrap_or_else(|| a.clone());
-        let text = Shown(&a, &self.solver).to_string();
-        if text == "1" {
-            "a dimensionless number".to_string()
-        } else {
-            text
-        }
+        Shown(&a, &self.solver).to_string()
     }
 
     /// Arguments that must be dimensionless (or angles), for `name`.
@@ -400,7 +397,10 @@ impl<'r, 'a> Checker<'r, 'a> {
             (Measure::Dim(x), Measure::Dim(y)) => match self.solver.unify(&x, &y) {
                 Ok(()) => Measure::Dim(x),
                 Err(m) => {
-                    let (l, r) = (self.show(&m.left), self.show(&m.right));
+                    let (l, r) = (
+                        quantity(&self.show(&m.left)),
+                        quantity(&self.show(&m.right)),
+                    );
                     self.diags.push(
                         Diagnostic::error(
                             whole.span(),
@@ -413,6 +413,22 @@ impl<'r, 'a> Checker<'r, 'a> {
             },
             _ => Measure::Untracked,
         }
+    }
+}
+
+/// "N m", or "a dimensionless number" for `1`.
+pub(super) fn quantity(shown: &str) -> String {
+    match shown {
+        "1" => "a dimensionless number".to_string(),
+        unit => unit.to_string(),
+    }
+}
+
+/// "in N m", or "dimensionless" for `1`.
+pub(super) fn in_unit(shown: &str) -> String {
+    match shown {
+        "1" => "dimensionless".to_string(),
+        unit => format!("in {unit}"),
     }
 }
 

@@ -124,12 +124,12 @@ const MODELS: &[(&str, &str)] = &[
     ("force f { on: B, vector: -k*pos(B)*2 }", "OK"),
     (
         "force f { on: B, vector: -k*pos(B)*x }",
-        "error: a force's vector is in N, but",
+        "error: a force's vector must be in N, but",
     ),
     ("moment mt { on: R, about: r3, magnitude: -k*L*L*th }", "OK"),
     (
         "moment mt { on: R, about: r3, magnitude: -c*w }",
-        "error: the magnitude of a moment is in N m, but `-c*w` is in N rad/m",
+        "error: the magnitude of a moment must be in N m, but `-c*w` is in N rad/m",
     ),
     ("gravity = -g*n3;", "OK"),
     (
@@ -143,7 +143,7 @@ const MODELS: &[(&str, &str)] = &[
     ("gravity = -9.81*n3;", "OK"),
     (
         "gravity = -L*n3;",
-        "error: gravity is in m/s^2, but `-L*n3` is in m",
+        "error: gravity must be in m/s^2, but `-L*n3` is in m",
     ),
     ("output e [J] = m*v^2/2 + k*x^2/2;", "OK"),
     ("output e [J] = x + v;", "error: `x + v` adds m to m/s"),
@@ -154,7 +154,7 @@ const MODELS: &[(&str, &str)] = &[
     ("output a [rad] = th + 0.1;", "OK"),
     (
         "output a [deg] = th;",
-        "error: `deg` is 0.017453292519943295 rad",
+        "error: `deg` is not a coherent SI unit (1 deg = 0.017453292519943295 rad)",
     ),
     ("output s [m/s] = mag(vel(R.cm)) + L*mag(rot(R));", "OK"),
     ("output s [m/s^2] = dxdt(v);", "OK"),
@@ -166,12 +166,12 @@ const MODELS: &[(&str, &str)] = &[
     ("output y = sin(th) + cos(x/L);", "OK"),
     (
         "output y = sin(x);",
-        "error: the argument of `sin` is in a dimensionless number, but `x` is in m",
+        "error: the argument of `sin` must be dimensionless, but `x` is in m",
     ),
     ("output y [m] = sqrt(x*x + L^2);", "OK"),
     (
         "output y [m] = sqrt(x);",
-        "error: the output `y` [m] is in m, but `sqrt(x)` is in m^(1/2)",
+        "error: the output `y` [m] must be in m, but `sqrt(x)` is in m^(1/2)",
     ),
     ("output y [m] = min(x, L) + max(x, 0);", "OK"),
     (
@@ -181,7 +181,7 @@ const MODELS: &[(&str, &str)] = &[
     ("output y [rad] = atan2(x, L);", "OK"),
     (
         "output y = x^m;",
-        "error: an exponent is in a dimensionless number",
+        "error: an exponent must be dimensionless",
     ),
     (
         "output y = x^th;",
@@ -193,7 +193,7 @@ const MODELS: &[(&str, &str)] = &[
     ("let r = pos(R.cm, B);\noutput d [m] = mag(r) - 0.5;", "OK"),
     (
         "let r = pos(R.cm, B);\noutput d [s] = mag(r);",
-        "error: the output `d` [s] is in s, but `mag(r)` is in m",
+        "error: the output `d` [s] must be in s, but `mag(r)` is in m",
     ),
     // The escape, and numbers with units.
     (
@@ -213,7 +213,7 @@ const MODELS: &[(&str, &str)] = &[
     ),
     (
         "parameter kk = 3;\nforce f { on: B, along: n1, magnitude: -kk*x }\noutput y [m] = kk*x;",
-        "error: the output `y` [m] is in m, but `kk*x` is in N",
+        "error: the output `y` [m] must be in m, but `kk*x` is in N",
     ),
     // States, constraints, user functions.
     (
@@ -222,7 +222,7 @@ const MODELS: &[(&str, &str)] = &[
     ),
     (
         "input F [N];\nstate lag [N] { initial: 0, derivative: F - lag }",
-        "error: the derivative of `lag` is in N/s, but `F - lag` is in N",
+        "error: the derivative of `lag` must be in N/s, but `F - lag` is in N",
     ),
     (
         "extern fn fr(speed [m/s]) -> [N];\nforce f { on: B, along: n1, magnitude: fr(v) }",
@@ -230,11 +230,11 @@ const MODELS: &[(&str, &str)] = &[
     ),
     (
         "extern fn fr(speed [m/s]) -> [N];\nforce f { on: B, along: n1, magnitude: fr(x) }",
-        "error: argument 1 of `fr` is in m/s, but `x` is in m",
+        "error: argument 1 of `fr` must be in m/s, but `x` is in m",
     ),
     (
         "extern fn fr(speed);\nforce f { on: B, along: n1, magnitude: fr(v) }",
-        "error: the magnitude of a force is in N, but `fr(v)` is in a dimensionless number",
+        "error: the magnitude of a force must be in N, but `fr(v)` is dimensionless",
     ),
     ("constraint cc [m] { position: x - L*cos(th) }", "OK"),
     (
@@ -244,7 +244,7 @@ const MODELS: &[(&str, &str)] = &[
     // Bodies.
     (
         "body W { parent: R, mass: 2 [g], inertia: diag(1, 1, L), joint: [L, 0, 0] }",
-        "error: an inertia is in kg m^2, but `L` is in m",
+        "error: an inertia must be in kg m^2, but `L` is in m",
     ),
     (
         "body W { parent: R, translate: 2, rotate: 1, initial: [L, 0.1], initial_speeds: [0, 1 [rad/s]] }",
@@ -252,11 +252,11 @@ const MODELS: &[(&str, &str)] = &[
     ),
     (
         "body W { parent: R, translate: 2, rotate: 1, initial: [0.1, L] }",
-        "error: an initial coordinate is in rad, but `L` is in m",
+        "error: an initial coordinate must be in rad, but `L` is in m",
     ),
     (
         "motion mo { coordinate: x, value: L*sin(t) }",
-        "error: the argument of `sin` is in a dimensionless number, but `t` is in s",
+        "error: the argument of `sin` must be dimensionless, but `t` is in s",
     ),
     (
         "parameter om = 2 [rad/s];\nmotion mo { coordinate: th, value: om*t }",

@@ -304,3 +304,20 @@ fn a_parameter_in_a_unit_with_a_factor_is_converted() {
     );
     assert_eq!(value("d"), (5.0 * 1e-3, Some("m".to_string())));
 }
+
+/// docs/language.md lists every unit of the table, with its factor.
+#[test]
+fn the_language_reference_lists_every_unit() {
+    let doc = include_str!("../../../../docs/language.md");
+    for u in super::table::UNITS {
+        let row = format!("| `{}` | ", u.symbol);
+        let line = doc.lines().find(|l| l.starts_with(&row));
+        let line = line.unwrap_or_else(|| panic!("docs/language.md has no row for `{}`", u.symbol));
+        let factor = if u.factor == 1.0 { "| 1 |".to_string() } else { String::new() };
+        assert!(factor.is_empty() || line.contains(&factor), "{line}");
+        assert!(line.contains(if u.prefixable { "| yes |" } else { "| no |" }), "{line}");
+    }
+    for (prefix, _) in super::table::PREFIXES {
+        assert!(doc.contains(&format!("`{prefix}`")), "prefix {prefix}");
+    }
+}

@@ -222,3 +222,11 @@ test.sim:3:25: error: `formulation` is `auto`, `mass_matrix` or `recursive`
         "`auto` (the default) generates whichever is estimated faster",
     );
 }
+
+/// A quaternion body naming more coordinates than it has, one of them
+/// locked (found by the fuzzer: an index past the body's flags).
+#[test]
+fn a_lock_of_a_coordinate_a_quaternion_does_not_have_is_reported() {
+    let got = resolved("model M;\nbody E { rotate: quaternion, q: [a, b, c, d, e, f], lock: f }");
+    assert!(got.contains("`f` is not a coordinate of body `E`"), "{got}");
+}

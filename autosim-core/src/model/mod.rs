@@ -153,9 +153,13 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
     declare::declare_names(&mut r, &mut out, model);
     items::resolve_items(&mut r, &mut out, model, outputs.as_deref());
     settings::check_scene_names(&mut r, model, scene, outputs.as_deref());
+    // One mistake, one message: a unit error at text that already has an
+    // error (an acceleration in a load, a constant that is not) is left out.
     let units = units::check(&r, model);
     for d in units.diagnostics {
-        r.push(d);
+        if !r.diags.iter().any(|e| overlaps(e.span, d.span)) {
+            r.push(d);
+        }
     }
     out.inferred_units = units.inferred;
     if !r.diags.is_empty() {
@@ -169,6 +173,18 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
     }
     out.system = r.sys;
     Ok(out)
+}
+
+/// True when two spans of the model's text share a character (false when
+/// either has no position).
+fn overlaps(a: crate::diag::Span, b: crate::diag::Span) -> bool {
+    match (a.start(), a.end(), b.start(), b.end()) {
+        (Some(a0), Some(a1), Some(b0), Some(b1)) => {
+            let key = |p: crate::diag::LineCol| (p.line, p.col);
+            key(a0) < key(b1) && key(b0) < key(a1)
+        }
+        _ => false,
+    }
 }
 
 /// Names the generated module defines beside the model type (see

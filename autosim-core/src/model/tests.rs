@@ -101,7 +101,7 @@ test.sim:3:41: error: a moment cannot use an acceleration (`u1_dot`, the `dxdt` 
     // Outputs and state derivatives may.
     check(
         &format!(
-            "{HEADER}state s {{ initial: 0, derivative: dxdt(u(B)) }}\noutput a = dxdt(u(B)) + s;"
+            "{HEADER}state s {{ initial: 0, derivative: dxdt(u(B)) }}\noutput a = dxdt(u(B)) + s/(1 [s]);"
         ),
         "OK\n",
     );
@@ -189,7 +189,7 @@ fn long_chains_of_lets_and_points_are_refused_not_a_stack_overflow() {
     text.push_str("point P0 in B at [1, 0, 0];\n");
     for i in 1..=1_000 {
         text.push_str(&format!(
-            "point P{i} in B at [sin(dot(pos(P{}), b1)), 0, 0];\n",
+            "point P{i} in B at [sin(dot(pos(P{}), b1) as [1]) as [m], 0, 0];\n",
             i - 1
         ));
     }

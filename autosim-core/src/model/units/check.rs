@@ -8,7 +8,7 @@ use super::infer::{Affine, Mismatch, Shown, Solver, Var};
 use super::table::{decimal, parse_unit};
 use crate::diag::{Diagnostic, Span};
 use crate::expr::{Func, SymId, SymbolKind};
-use crate::model::scope::{Lazy, Named, Resolver};
+use crate::model::scope::{Lazy, MAX_PENDING, Named, Resolver};
 use crate::syntax::ast::{BinOp, Expr, Member, UnOp, Unit};
 use rustc_hash::FxHashMap;
 
@@ -56,6 +56,8 @@ pub(super) struct Checker<'r, 'a> {
     pub lets: Vec<Lazy<Measure>>,
     pub signatures: FxHashMap<String, Signature>,
     pub diags: Vec<Diagnostic>,
+    /// How many `let`s are being inferred, one inside another.
+    pub pending: usize,
 }
 
 /// The unit of one base quantity of mechanics.
@@ -161,15 +163,24 @@ impl<'r, 'a> Checker<'r, 'a> {
     }
 
     /// The dimension of `let` number `i`, inferred on first use.
+    ///
+    /// A `let` the resolver could not evaluate (a cycle, a chain of `let`s
+    /// waiting on one another past [`MAX_PENDING`]: both reported) is not
+    /// tracked, so the check recurses no deeper than the resolver.
     pub fn let_quantity(&mut self, i: usize) -> Measure {
         match &self.lets[i] {
             Lazy::Done(q) => return q.clone().unwrap_or(Measure::Untracked),
-            Lazy::InProgress => return Measure::Untracked, // a cycle, reported
+            Lazy::InProgress => return Measure::Untracked,
             Lazy::Pending => {}
         }
+        let (item, resolved) = &self.r.lets[i];
+        if !matches!(resolved, Lazy::Done(Some(_))) || self.pending >= MAX_PENDING {
+            return Measure::Untracked;
+        }
         self.lets[i] = Lazy::InProgress;
-        let item = self.r.lets[i].0;
+        self.pending += 1;
         let q = self.expr(&item.value);
+        self.pending -= 1;
         self.lets[i] = Lazy::Done(Some(q.clone()));
         q
     }

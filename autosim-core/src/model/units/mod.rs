@@ -60,6 +60,7 @@ pub(crate) fn check(r: &Resolver<'_>, model: &ast::Model) -> UnitReport {
         lets: vec![Lazy::Pending; r.lets.len()],
         signatures: FxHashMap::default(),
         diags: Vec::new(),
+        pending: 0,
     };
     c.signatures(model);
     let mut inferred = Vec::new();

@@ -313,9 +313,16 @@ fn the_language_reference_lists_every_unit() {
         let row = format!("| `{}` | ", u.symbol);
         let line = doc.lines().find(|l| l.starts_with(&row));
         let line = line.unwrap_or_else(|| panic!("docs/language.md has no row for `{}`", u.symbol));
-        let factor = if u.factor == 1.0 { "| 1 |".to_string() } else { String::new() };
+        let factor = if u.factor == 1.0 {
+            "| 1 |".to_string()
+        } else {
+            String::new()
+        };
         assert!(factor.is_empty() || line.contains(&factor), "{line}");
-        assert!(line.contains(if u.prefixable { "| yes |" } else { "| no |" }), "{line}");
+        assert!(
+            line.contains(if u.prefixable { "| yes |" } else { "| no |" }),
+            "{line}"
+        );
     }
     for (prefix, _) in super::table::PREFIXES {
         assert!(doc.contains(&format!("`{prefix}`")), "prefix {prefix}");

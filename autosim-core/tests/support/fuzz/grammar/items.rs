@@ -116,11 +116,7 @@ impl Grammar<'_> {
             items.push(s);
         } else {
             for p in &params {
-                items.push(format!(
-                    "parameter {p} = {}{};",
-                    self.value(),
-                    self.unit()
-                ));
+                items.push(format!("parameter {p} = {}{};", self.value(), self.unit()));
             }
         }
     }
@@ -142,10 +138,7 @@ impl Grammar<'_> {
                     }
                 })
                 .collect();
-            let outs: Vec<String> = outs
-                .iter()
-                .map(|o| format!("{o}{}", self.unit()))
-                .collect();
+            let outs: Vec<String> = outs.iter().map(|o| format!("{o}{}", self.unit())).collect();
             items.push(format!(
                 "extern sub {name}({}) -> ({});",
                 args.join(", "),

@@ -207,11 +207,11 @@ impl<'r, 'a> Checker<'r, 'a> {
                 }
                 BinOp::Mul => {
                     let b = self.expr(rhs);
-                    product(value, b, Affine::mul)
+                    product(value, b, Affine::times)
                 }
                 BinOp::Div => {
                     let b = self.expr(rhs);
-                    product(value, b, Affine::div)
+                    product(value, b, Affine::over)
                 }
                 BinOp::Pow => self.power(value, rhs, whole),
             };
@@ -307,7 +307,7 @@ impl<'r, 'a> Checker<'r, 'a> {
     }
 
     /// "{what} must be in {need}, but `e` is in {found}".
-    fn mismatch(&mut self, m: Mismatch, e: &Expr, what: &str) {
+    fn mismatch(&mut self, m: Box<Mismatch>, e: &Expr, what: &str) {
         let (found, need) = (self.show(&m.left), self.show(&m.right));
         let unit = self
             .solver
@@ -465,7 +465,7 @@ pub(super) fn constant_ratio(e: &Expr) -> Option<Ratio> {
             op: UnOp::Neg,
             operand,
             ..
-        } => constant_ratio(operand).map(Ratio::neg),
+        } => constant_ratio(operand).map(Ratio::negated),
         Expr::Unary {
             op: UnOp::Plus,
             operand,
@@ -474,10 +474,10 @@ pub(super) fn constant_ratio(e: &Expr) -> Option<Ratio> {
         Expr::Binary { op, lhs, rhs, .. } => {
             let (a, b) = (constant_ratio(lhs)?, constant_ratio(rhs)?);
             match op {
-                BinOp::Add => a.add(b),
-                BinOp::Sub => a.add(b.neg()),
-                BinOp::Mul => a.mul(b),
-                BinOp::Div => a.mul(b.recip()?),
+                BinOp::Add => a.plus(b),
+                BinOp::Sub => a.plus(b.negated()),
+                BinOp::Mul => a.times(b),
+                BinOp::Div => a.times(b.recip()?),
                 BinOp::Pow => None,
             }
         }

@@ -59,7 +59,7 @@ impl Ratio {
     }
 
     /// `self + other`.
-    pub fn add(self, other: Ratio) -> Option<Ratio> {
+    pub fn plus(self, other: Ratio) -> Option<Ratio> {
         let num = self
             .num
             .checked_mul(other.den)?
@@ -68,7 +68,7 @@ impl Ratio {
     }
 
     /// `self * other`.
-    pub fn mul(self, other: Ratio) -> Option<Ratio> {
+    pub fn times(self, other: Ratio) -> Option<Ratio> {
         Ratio::new(
             self.num.checked_mul(other.num)?,
             self.den.checked_mul(other.den)?,
@@ -76,7 +76,7 @@ impl Ratio {
     }
 
     /// `-self`.
-    pub fn neg(self) -> Ratio {
+    pub fn negated(self) -> Ratio {
         Ratio {
             num: -self.num,
             den: self.den,
@@ -132,25 +132,25 @@ impl Dim {
     }
 
     /// `self * other` (exponents add).
-    pub fn mul(self, other: Dim) -> Option<Dim> {
-        self.zip(other, Ratio::add)
+    pub fn times(self, other: Dim) -> Option<Dim> {
+        self.zip(other, Ratio::plus)
     }
 
     /// `self / other`.
-    pub fn div(self, other: Dim) -> Option<Dim> {
-        self.mul(other.recip())
+    pub fn over(self, other: Dim) -> Option<Dim> {
+        self.times(other.recip())
     }
 
     /// `1/self`.
     pub fn recip(self) -> Dim {
-        Dim(self.0.map(Ratio::neg))
+        Dim(self.0.map(Ratio::negated))
     }
 
     /// `self^p` for a rational power `p`.
     pub fn pow(self, p: Ratio) -> Option<Dim> {
         let mut out = Dim::ONE;
         for (o, e) in out.0.iter_mut().zip(self.0) {
-            *o = e.mul(p)?;
+            *o = e.times(p)?;
         }
         Some(out)
     }
@@ -191,11 +191,12 @@ impl fmt::Display for Dim {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let mut d = *self;
         let mut newtons = false;
-        if d.0[0] == Ratio::ONE && d.0[2].num() < 0 {
-            if let Some(rest) = d.div(Dim::of(NEWTON)) {
-                d = rest;
-                newtons = true;
-            }
+        if d.0[0] == Ratio::ONE
+            && d.0[2].num() < 0
+            && let Some(rest) = d.over(Dim::of(NEWTON))
+        {
+            d = rest;
+            newtons = true;
         }
         let mut up: Vec<String> = Vec::new();
         let mut down: Vec<String> = Vec::new();
@@ -209,7 +210,7 @@ impl fmt::Display for Dim {
             let (list, e) = if e.num() > 0 {
                 (&mut up, *e)
             } else {
-                (&mut down, e.neg())
+                (&mut down, e.negated())
             };
             list.push(match e == Ratio::ONE {
                 true => BASES[k].to_string(),

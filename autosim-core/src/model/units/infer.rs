@@ -39,17 +39,17 @@ impl Affine {
     }
 
     /// `self * other`.
-    pub fn mul(&self, other: &Affine) -> Option<Affine> {
+    pub fn times(&self, other: &Affine) -> Option<Affine> {
         let mut vars = self.vars.clone();
         for &(v, e) in &other.vars {
             match vars.binary_search_by_key(&v, |&(w, _)| w) {
-                Ok(k) => vars[k].1 = vars[k].1.add(e)?,
+                Ok(k) => vars[k].1 = vars[k].1.plus(e)?,
                 Err(k) => vars.insert(k, (v, e)),
             }
         }
         vars.retain(|(_, e)| !e.is_zero());
         Some(Affine {
-            dim: self.dim.mul(other.dim)?,
+            dim: self.dim.times(other.dim)?,
             vars,
         })
     }
@@ -61,7 +61,7 @@ impl Affine {
         }
         let mut vars = Vec::with_capacity(self.vars.len());
         for &(v, e) in &self.vars {
-            vars.push((v, e.mul(p)?));
+            vars.push((v, e.times(p)?));
         }
         Some(Affine {
             dim: self.dim.pow(p)?,
@@ -70,8 +70,8 @@ impl Affine {
     }
 
     /// `self / other`.
-    pub fn div(&self, other: &Affine) -> Option<Affine> {
-        self.mul(&other.pow(Ratio::int(-1))?)
+    pub fn over(&self, other: &Affine) -> Option<Affine> {
+        self.times(&other.pow(Ratio::int(-1))?)
     }
 }
 
@@ -114,7 +114,7 @@ impl Solver {
                     vars: vec![(v, e)],
                 },
             };
-            out = out.mul(&part)?;
+            out = out.times(&part)?;
         }
         Some(out)
     }
@@ -127,28 +127,28 @@ impl Solver {
 
     /// Requires `a` and `b` to be the same dimension (the radian aside):
     /// solves an unknown when one remains, else compares.
-    pub fn unify(&mut self, a: &Affine, b: &Affine) -> Result<(), Mismatch> {
+    pub fn unify(&mut self, a: &Affine, b: &Affine) -> Result<(), Box<Mismatch>> {
         let (Some(ra), Some(rb)) = (self.resolve(a), self.resolve(b)) else {
             return Ok(()); // exponents out of range: not tracked
         };
-        let Some(d) = ra.div(&rb) else {
+        let Some(d) = ra.over(&rb) else {
             return Ok(());
         };
         // Solve for the newest unknown: `v^e * rest = 1`.
         let Some(&(v, e)) = d.vars.last() else {
             return match d.dim.is_dimensionless() {
                 true => Ok(()),
-                false => Err(Mismatch {
+                false => Err(Box::new(Mismatch {
                     left: ra,
                     right: rb,
-                }),
+                })),
             };
         };
         let rest = Affine {
             dim: d.dim,
             vars: d.vars[..d.vars.len() - 1].to_vec(),
         };
-        let solution = e.recip().and_then(|r| rest.pow(r.neg()));
+        let solution = e.recip().and_then(|r| rest.pow(r.negated()));
         if let Some(s) = solution {
             self.vars[v].1 = Some(s);
         }

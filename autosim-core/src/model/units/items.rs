@@ -213,7 +213,7 @@ impl Checker<'_, '_> {
         let Some(m) = magnitude else { return };
         let d = direction.map(|d| self.expr(&d.value));
         let need = match d {
-            Some(Measure::Dim(a)) => Affine::known(unit_dim(unit)).div(&a),
+            Some(Measure::Dim(a)) => Affine::known(unit_dim(unit)).over(&a),
             _ => Some(Affine::known(unit_dim(unit))),
         };
         let q = self.expr(&m.value);
@@ -238,7 +238,7 @@ impl Checker<'_, '_> {
             self.require_affine(q, &dim, &o.value, &what);
         }
         if let Some(o) = s.options.get(StateKey::Derivative)
-            && let Some(rate) = dim.div(&Affine::known(unit_dim("s")))
+            && let Some(rate) = dim.over(&Affine::known(unit_dim("s")))
         {
             let q = self.expr(&o.value);
             let what = format!("the derivative of `{}`", s.name.text);

@@ -29,18 +29,18 @@ pub(super) fn operation(c: &mut Checker<'_, '_>, name: &str, args: &[Expr]) -> M
         "dot" | "cross" | "dot_plane" => {
             let qs = each(c);
             match &qs[..] {
-                [a, b] => times(a.clone(), b.clone(), Affine::mul),
+                [a, b] => times(a.clone(), b.clone(), Affine::times),
                 _ => Measure::Untracked,
             }
         }
         "dxdt" => match each(c).pop() {
-            Some(q) => times(q, Measure::known(unit_dim("s")), Affine::div),
+            Some(q) => times(q, Measure::known(unit_dim("s")), Affine::over),
             None => Measure::Untracked,
         },
         "partial" => {
             let qs = each(c);
             match &qs[..] {
-                [y, x] => times(y.clone(), x.clone(), Affine::div),
+                [y, x] => times(y.clone(), x.clone(), Affine::over),
                 _ => Measure::Untracked,
             }
         }
@@ -108,7 +108,7 @@ fn generalized(c: &mut Checker<'_, '_>, name: &str, args: &[Expr]) -> Measure {
         // unit per second.
         (Some(q), None) => match c.symbol(q) {
             Measure::Dim(a) => a
-                .div(&Affine::known(unit_dim("s")))
+                .over(&Affine::known(unit_dim("s")))
                 .map_or(Measure::Untracked, Measure::Dim),
             other => other,
         },

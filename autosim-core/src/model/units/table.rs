@@ -302,7 +302,7 @@ impl Parser {
         }
         self.at += 1;
         let down = self.product()?;
-        let dim = up.dim.div(down.dim).ok_or_else(too_large)?;
+        let dim = up.dim.over(down.dim).ok_or_else(too_large)?;
         Ok(UnitMeaning {
             dim,
             factor: up.factor / down.factor,
@@ -320,7 +320,7 @@ impl Parser {
             }
             let v = self.factor()?;
             u = UnitMeaning {
-                dim: u.dim.mul(v.dim).ok_or_else(too_large)?,
+                dim: u.dim.times(v.dim).ok_or_else(too_large)?,
                 factor: u.factor * v.factor,
             };
         }
@@ -371,7 +371,7 @@ impl Parser {
             )
         };
         match self.next() {
-            Some(Tok::Minus) => Ok(self.exponent()?.neg()),
+            Some(Tok::Minus) => Ok(self.exponent()?.negated()),
             Some(Tok::Number(n)) => decimal(&n).ok_or_else(bad),
             Some(Tok::Open) => {
                 let sign = if self.peek() == Some(&Tok::Minus) {
@@ -390,8 +390,8 @@ impl Parser {
                     return Err(bad());
                 };
                 let (a, b) = (decimal(&a).ok_or_else(bad)?, decimal(&b).ok_or_else(bad)?);
-                let q = a.mul(b.recip().ok_or_else(bad)?).ok_or_else(bad)?;
-                Ok(if sign < 0 { q.neg() } else { q })
+                let q = a.times(b.recip().ok_or_else(bad)?).ok_or_else(bad)?;
+                Ok(if sign < 0 { q.negated() } else { q })
             }
             _ => Err(bad()),
         }

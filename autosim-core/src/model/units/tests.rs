@@ -74,10 +74,10 @@ fn exponents_are_exact_ratios() {
     let m = Dim::base(1);
     let area = m.pow(Ratio::int(2)).unwrap();
     assert_eq!(area.pow(half), Some(m));
-    assert_eq!(m.mul(m.recip()), Some(Dim::ONE));
+    assert_eq!(m.times(m.recip()), Some(Dim::ONE));
     assert_eq!(Ratio::new(2, -4), Ratio::new(-1, 2));
     assert_eq!(Ratio::new(1, 0), None);
-    assert_eq!(Ratio::int(1 << 39).mul(Ratio::int(4)), None);
+    assert_eq!(Ratio::int(1 << 39).times(Ratio::int(4)), None);
     // The radian is tracked but dimensionless.
     let rad = Dim::base(super::dim::RAD);
     assert!(rad.is_dimensionless() && rad.compatible(Dim::ONE) && !rad.is_one());
@@ -91,7 +91,7 @@ fn unknowns_are_solved_by_the_first_equation_and_checked_by_the_next() {
     let newton = Affine::known(parse_unit("N").unwrap().dim);
     let metre = Affine::known(Dim::base(1));
     // k * m = N: k is N/m.
-    let km = Affine::var(k).mul(&metre).unwrap();
+    let km = Affine::var(k).times(&metre).unwrap();
     assert!(s.unify(&km, &newton).is_ok());
     assert_eq!(s.known(&Affine::var(k)).unwrap().to_string(), "N/m");
     // k = N/m now: k * m = kg fails.

@@ -221,23 +221,32 @@ impl<'r, 'a> Checker<'r, 'a> {
 
     /// `a + b` or `a - b`: both sides the same dimension.
     fn sum(&mut self, op: BinOp, a: Measure, b: Measure, whole: &Expr, span: Span) -> Measure {
+        self.one_unit(a, b, |l, r| {
+            let verb = match op {
+                BinOp::Add => format!("adds {l} to {r}"),
+                _ => format!("subtracts {r} from {l}"),
+            };
+            Diagnostic::error(span, format!("`{}` {verb}", short(whole)))
+                .help("the terms of a sum must have one unit: check the formula, and the units declared for the names it uses")
+        })
+    }
+
+    /// `a` and `b` in one dimension (a number takes the other's); when
+    /// they differ, `report` makes the diagnostic from the two units.
+    fn one_unit(
+        &mut self,
+        a: Measure,
+        b: Measure,
+        report: impl FnOnce(String, String) -> Diagnostic,
+    ) -> Measure {
         match (a, b) {
             (Measure::Free, q) | (q, Measure::Free) => q,
             (Measure::Dim(x), Measure::Dim(y)) => match self.solver.unify(&x, &y) {
                 Ok(()) => Measure::Dim(x),
                 Err(m) => {
-                    let (l, r) = (
-                        quantity(&self.show(&m.left)),
-                        quantity(&self.show(&m.right)),
-                    );
-                    let verb = match op {
-                        BinOp::Add => format!("adds {l} to {r}"),
-                        _ => format!("subtracts {r} from {l}"),
-                    };
-                    self.diags.push(
-                        Diagnostic::error(span, format!("`{}` {verb}", short(whole)))
-                            .help("the terms of a sum must have one unit: check the formula, and the units declared for the names it uses"),
-                    );
+                    let l = quantity(&self.show(&m.left));
+                    let r = quantity(&self.show(&m.right));
+                    self.diags.push(report(l, r));
                     Measure::Untracked
                 }
             },
@@ -403,27 +412,13 @@ impl<'r, 'a> Checker<'r, 'a> {
 
     /// The two arguments of `min`, `max`, `atan2`: one dimension.
     fn same(&mut self, a: Measure, b: Measure, whole: &Expr, name: &str) -> Measure {
-        match (a, b) {
-            (Measure::Free, q) | (q, Measure::Free) => q,
-            (Measure::Dim(x), Measure::Dim(y)) => match self.solver.unify(&x, &y) {
-                Ok(()) => Measure::Dim(x),
-                Err(m) => {
-                    let (l, r) = (
-                        quantity(&self.show(&m.left)),
-                        quantity(&self.show(&m.right)),
-                    );
-                    self.diags.push(
-                        Diagnostic::error(
-                            whole.span(),
-                            format!("`{}` compares {l} with {r}", short(whole)),
-                        )
-                        .help(format!("the two arguments of `{name}` must have one unit")),
-                    );
-                    Measure::Untracked
-                }
-            },
-            _ => Measure::Untracked,
-        }
+        self.one_unit(a, b, |l, r| {
+            Diagnostic::error(
+                whole.span(),
+                format!("`{}` compares {l} with {r}", short(whole)),
+            )
+            .help(format!("the two arguments of `{name}` must have one unit"))
+        })
     }
 }
 

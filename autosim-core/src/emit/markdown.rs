@@ -41,6 +41,19 @@ fn shown_unit(declared: &str, inferred: &str) -> String {
     }
 }
 
+/// `a [m/s], b`: names with their declared units, as a signature
+/// writes them.
+fn with_units(names: &[String], units: &[String]) -> String {
+    let with = names
+        .iter()
+        .enumerate()
+        .map(|(k, name)| match units.get(k).map(String::as_str) {
+            None | Some("") => name.clone(),
+            Some(unit) => format!("{name} [{unit}]"),
+        });
+    with.collect::<Vec<_>>().join(", ")
+}
+
 /// Parameters, states, inputs, outputs and user code.
 fn write_tables(s: &mut String, prog: &Program) -> std::fmt::Result {
     let i = &prog.interface;
@@ -89,7 +102,12 @@ fn write_tables(s: &mut String, prog: &Program) -> std::fmt::Result {
         writeln!(s, "\n## User code\n")?;
         for f in &i.extern_fns {
             let doc = f.docs.join(" ");
-            writeln!(s, "- `{}({})`: {}", f.name, f.params.join(", "), doc.trim())?;
+            let result = match f.result_units.first().map(String::as_str) {
+                None | Some("") => String::new(),
+                Some(unit) => format!(" -> [{unit}]"),
+            };
+            let params = with_units(&f.params, &f.param_units);
+            writeln!(s, "- `{}({params}){result}`: {}", f.name, doc.trim())?;
         }
         for sub in &i.subroutines {
             let doc = sub.docs.join(" ");
@@ -98,7 +116,7 @@ fn write_tables(s: &mut String, prog: &Program) -> std::fmt::Result {
                 "- `{}({}) -> ({})`: {}",
                 sub.name,
                 sub.params.join(", "),
-                sub.outputs.join(", "),
+                with_units(&sub.outputs, &sub.result_units),
                 doc.trim()
             )?;
         }

@@ -132,6 +132,10 @@ fn extern_fn(r: &mut Resolver<'_>, out: &mut ResolvedModel, f: &ast::ExternFn) {
     out.item_docs.insert(f.name.text.clone(), f.docs.clone());
     let params = f.params.iter().map(|p| p.text.clone()).collect();
     out.formal_params.insert(f.name.text.clone(), params);
+    let text = |u: &Option<ast::Unit>| u.as_ref().map(|u| u.text.clone()).unwrap_or_default();
+    let args = f.param_units.iter().map(text).collect();
+    out.user_code_units
+        .insert(f.name.text.clone(), (args, vec![text(&f.result_unit)]));
 }
 
 fn state(r: &mut Resolver<'_>, s: &ast::State) {
@@ -195,6 +199,13 @@ fn subroutine(r: &mut Resolver<'_>, out: &mut ResolvedModel, sub: &ast::ExternSu
         })
         .collect();
     out.formal_params.insert(sub.name.text.clone(), params);
+    let results = sub
+        .outputs
+        .iter()
+        .map(|o| o.unit.as_ref().map(|u| u.text.clone()).unwrap_or_default())
+        .collect();
+    out.user_code_units
+        .insert(sub.name.text.clone(), (Vec::new(), results));
 }
 
 /// The value of a parameter or input default, reported when it does not

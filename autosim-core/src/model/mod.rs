@@ -117,6 +117,10 @@ pub struct ResolvedModel {
     /// inferred from its uses, by name (`units::UnitReport::inferred`):
     /// shown in the documentation, not in the generated unit tables.
     pub inferred_units: FxHashMap<String, String>,
+    /// The declared units of user code, by name (for the documentation):
+    /// of each argument and each result (`""` where none is declared; a
+    /// function's one result, a subroutine's outputs).
+    pub user_code_units: FxHashMap<String, (Vec<String>, Vec<String>)>,
 }
 
 /// Resolves a parsed model.
@@ -139,6 +143,7 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
         linearize: false,
         formulation: Formulation::Auto,
         inferred_units: FxHashMap::default(),
+        user_code_units: FxHashMap::default(),
     };
     check_model_name(&mut r, model_name);
     // Settings first: the threshold affects every expression built later.

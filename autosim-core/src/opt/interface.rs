@@ -114,6 +114,12 @@ pub struct UserCode {
     pub params: Vec<String>,
     /// Names of the values a subroutine returns (empty for a function).
     pub outputs: Vec<String>,
+    /// The declared unit of each argument (empty where none, and for a
+    /// subroutine, whose arguments are expressions).
+    pub param_units: Vec<String>,
+    /// The declared unit of a function's result, or of each output of a
+    /// subroutine (empty where none).
+    pub result_units: Vec<String>,
     /// Doc comments.
     pub docs: Vec<String>,
     /// Where it is declared.
@@ -442,10 +448,14 @@ impl ResolvedModel {
 
     /// The interface entry of user code.
     fn user_code(&self, name: &str, outputs: Vec<String>) -> UserCode {
+        let (param_units, result_units) =
+            self.user_code_units.get(name).cloned().unwrap_or_default();
         UserCode {
             name: name.to_string(),
             params: self.formal_params.get(name).cloned().unwrap_or_default(),
             outputs,
+            param_units,
+            result_units,
             docs: self.item_docs.get(name).cloned().unwrap_or_default(),
             span: self.spans.named(name),
         }

@@ -137,9 +137,12 @@ impl Checker<'_, '_> {
         inferred: &mut Vec<(String, Affine)>,
         what: &str,
     ) {
+        // An output is converted to its declared unit; a constraint's
+        // residual is not.
+        let factor_allowed = what == "the output";
         match unit {
             Some(u) => {
-                if let Some(dim) = self.meaning(u, false) {
+                if let Some(dim) = self.meaning(u, factor_allowed) {
                     self.require(q, dim, e, &format!("{what} `{name}` [{}]", u.text));
                 }
             }

@@ -152,8 +152,9 @@ const MODELS: &[(&str, &str)] = &[
         "error: an output needs a scalar",
     ),
     ("output a [rad] = th + 0.1;", "OK"),
+    ("output a [deg] = th;", "OK"),
     (
-        "output a [deg] = th;",
+        "input ai [deg];",
         "error: `deg` is not a coherent SI unit (1 deg = 0.017453292519943295 rad)",
     ),
     ("output s [m/s] = mag(vel(R.cm)) + L*mag(rot(R));", "OK"),
@@ -327,4 +328,30 @@ fn the_language_reference_lists_every_unit() {
     for (prefix, _) in super::table::PREFIXES {
         assert!(doc.contains(&format!("`{prefix}`")), "prefix {prefix}");
     }
+}
+
+#[test]
+fn an_output_in_a_unit_with_a_factor_is_converted() {
+    use crate::expr::{Bindings, NoUserFunctions};
+    let text = format!("{HEAD}output a [deg] = th;\noutput d [mm] = x;\n");
+    let file = SourceFile::new("test.sim", &text);
+    let model = parse_source(&file).unwrap();
+    let r = resolve(&model).unwrap();
+    let arena = &r.system.arena;
+    let mut b = Bindings::with_defaults(arena);
+    b.set(arena.symbol_named("x").unwrap(), 0.25);
+    b.set(
+        arena.symbol_named("th").unwrap(),
+        std::f64::consts::FRAC_PI_2,
+    );
+    let y: Vec<f64> = r
+        .system
+        .outputs()
+        .iter()
+        .map(|o| arena.eval(o.expr, &b, &mut NoUserFunctions))
+        .collect();
+    assert!(
+        (y[0] - 90.0).abs() < 1e-12 && (y[1] - 250.0).abs() < 1e-12,
+        "{y:?}"
+    );
 }

@@ -92,7 +92,8 @@ pub(crate) const UNITS: &[&str] = &[
     " [m^(1/2)]",
 ];
 /// Units the unit check refuses somewhere: unknown, two `/`, a factor
-/// where none is allowed (all but a parameter's), `//` starting a comment.
+/// where none is allowed (inputs, states, subroutine outputs), `//` starting
+/// a comment.
 pub(crate) const BAD_UNITS: &[&str] = &[
     " [deg]",
     " [mm]",

@@ -96,7 +96,7 @@ autosim::model! {
     point T in R at [0, L3, 0];
     constraint loop_n2 [m] { position: dot(pos(E, T), n2) }
     constraint loop_n3 [m] { position: dot(pos(E, T), n3) }
-    motion crank { coordinate: q1, value: 2*t + 0.5*sin(3*t) }
+    motion crank { coordinate: q1, value: 2 [rad/s]*t + 0.5*sin(3 [rad/s]*t) }
     gravity = -g*n3;
     output energy [J] = m1*dot(vel(C.cm), vel(C.cm))/2 + m2*dot(vel(K.cm), vel(K.cm))/2
         + m3*dot(vel(R.cm), vel(R.cm))/2

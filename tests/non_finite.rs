@@ -10,7 +10,7 @@ use autosim::runtime::{IntegrationError, Model, ModelError, RunError, RunSetting
 autosim::model! {
     /// A particle pulled toward the origin by `k/x^2`: singular at x = 0.
     model Attract;
-    parameters { k = 1 [m^3/s^2] }
+    parameters { k = 1 [N m^2] }
     body P { translate: 1, q: [x], u: [v], mass: 1, inertia: 0 }
     force pull { on: P, vector: -k/x^2*n1 }
     output closeness = 1/(1 + x^2);
@@ -21,7 +21,7 @@ autosim::model! {
     model Root;
     parameters { m = 2 [kg] }
     body P { translate: 1, q: [x], mass: m, inertia: 0, initial: [1] }
-    output root [m] = sqrt(x - 2);
+    output root = sqrt(x - 2);
 }
 
 use attract::Attract;

@@ -31,6 +31,29 @@ fn write_document(s: &mut String, prog: &Program, source: &str) -> std::fmt::Res
     write_equations(s, prog)
 }
 
+/// A unit as the tables show it: the declared one, else the one the unit
+/// check inferred, marked so.
+fn shown_unit(declared: &str, inferred: &str) -> String {
+    match (declared, inferred) {
+        ("", "") => String::new(),
+        ("", inferred) => format!("{inferred} (inferred)"),
+        (declared, _) => declared.to_string(),
+    }
+}
+
+/// `a [m/s], b`: names with their declared units, as a signature
+/// writes them.
+fn with_units(names: &[String], units: &[String]) -> String {
+    let with = names
+        .iter()
+        .enumerate()
+        .map(|(k, name)| match units.get(k).map(String::as_str) {
+            None | Some("") => name.clone(),
+            Some(unit) => format!("{name} [{unit}]"),
+        });
+    with.collect::<Vec<_>>().join(", ")
+}
+
 /// Parameters, states, inputs, outputs and user code.
 fn write_tables(s: &mut String, prog: &Program) -> std::fmt::Result {
     let i = &prog.interface;
@@ -48,13 +71,18 @@ fn write_tables(s: &mut String, prog: &Program) -> std::fmt::Result {
             "| `{}` | {} | {} | {} |",
             p.name,
             p.default,
-            p.unit,
+            shown_unit(&p.unit, &p.inferred_unit),
             doc.trim()
         )?;
     }
     writeln!(s, "\n## States\n\n| # | name | unit |\n| --- | --- | --- |")?;
     for (k, st) in i.states.states().enumerate() {
-        writeln!(s, "| {k} | `{}` | {} |", st.name, st.unit)?;
+        writeln!(
+            s,
+            "| {k} | `{}` | {} |",
+            st.name,
+            shown_unit(&st.unit, &st.inferred_unit)
+        )?;
     }
     for (title, quantities) in [("Inputs", &i.inputs), ("Outputs", &i.outputs)] {
         if quantities.is_empty() {
@@ -66,14 +94,20 @@ fn write_tables(s: &mut String, prog: &Program) -> std::fmt::Result {
         )?;
         for q in quantities {
             let doc = q.docs.as_deref().unwrap_or_default().join(" ");
-            writeln!(s, "| `{}` | {} | {} |", q.name, q.unit, doc.trim())?;
+            let unit = shown_unit(&q.unit, &q.inferred_unit);
+            writeln!(s, "| `{}` | {unit} | {} |", q.name, doc.trim())?;
         }
     }
     if i.has_externs() {
         writeln!(s, "\n## User code\n")?;
         for f in &i.extern_fns {
             let doc = f.docs.join(" ");
-            writeln!(s, "- `{}({})`: {}", f.name, f.params.join(", "), doc.trim())?;
+            let result = match f.result_units.first().map(String::as_str) {
+                None | Some("") => String::new(),
+                Some(unit) => format!(" -> [{unit}]"),
+            };
+            let params = with_units(&f.params, &f.param_units);
+            writeln!(s, "- `{}({params}){result}`: {}", f.name, doc.trim())?;
         }
         for sub in &i.subroutines {
             let doc = sub.docs.join(" ");
@@ -82,7 +116,7 @@ fn write_tables(s: &mut String, prog: &Program) -> std::fmt::Result {
                 "- `{}({}) -> ({})`: {}",
                 sub.name,
                 sub.params.join(", "),
-                sub.outputs.join(", "),
+                with_units(&sub.outputs, &sub.result_units),
                 doc.trim()
             )?;
         }
@@ -109,7 +143,7 @@ fn write_constraints(s: &mut String, prog: &Program) -> std::fmt::Result {
                 s,
                 "| `{}` | {kind} | {} | `{}` | {} | {} |",
                 c.name,
-                c.unit,
+                shown_unit(&c.unit, &c.inferred_unit),
                 c.dependent_speed,
                 coordinate,
                 c.docs.join(" ").trim()

@@ -56,15 +56,38 @@ fn parameters(r: &mut Resolver<'_>, out: &mut ResolvedModel, ps: &ast::Parameter
         if !r.declare(&p.name, Named::Load) {
             continue;
         }
-        let unit = p.unit.as_ref().map(|u| u.text.as_str());
-        let added = r.sys.add_parameter(&p.name.text, value, unit);
+        let (value, unit, converted) = coherent_value(p, value);
+        let added = r.sys.add_parameter(&p.name.text, value, unit.as_deref());
         bind_symbol(r, &p.name, added);
-        let docs = if p.docs.is_empty() {
+        let mut docs = if p.docs.is_empty() {
             ps.docs.clone()
         } else {
             p.docs.clone()
         };
+        docs.extend(converted);
         out.item_docs.insert(p.name.text.clone(), docs);
+    }
+}
+
+/// A parameter's value and unit in coherent SI units, the units generated
+/// code computes in: `a = 30 [deg]` is 0.5235987755982988 rad, and its
+/// documentation says what was written.
+fn coherent_value(p: &ast::Parameter, value: f64) -> (f64, Option<String>, Option<String>) {
+    let Some(unit) = &p.unit else {
+        return (value, None, None);
+    };
+    match super::units::unit_meaning(&unit.text) {
+        Some(u) if !u.is_coherent() => {
+            let si = u.dim.to_string();
+            let note = format!(
+                "Written `{} [{}]`: {} {si} in the generated code.",
+                p.value_text(),
+                unit.text,
+                value * u.factor
+            );
+            (value * u.factor, Some(si), Some(note))
+        }
+        _ => (value, Some(unit.text.clone()), None),
     }
 }
 
@@ -109,6 +132,10 @@ fn extern_fn(r: &mut Resolver<'_>, out: &mut ResolvedModel, f: &ast::ExternFn) {
     out.item_docs.insert(f.name.text.clone(), f.docs.clone());
     let params = f.params.iter().map(|p| p.text.clone()).collect();
     out.formal_params.insert(f.name.text.clone(), params);
+    let text = |u: &Option<ast::Unit>| u.as_ref().map(|u| u.text.clone()).unwrap_or_default();
+    let args = f.param_units.iter().map(text).collect();
+    out.user_code_units
+        .insert(f.name.text.clone(), (args, vec![text(&f.result_unit)]));
 }
 
 fn state(r: &mut Resolver<'_>, s: &ast::State) {
@@ -172,6 +199,13 @@ fn subroutine(r: &mut Resolver<'_>, out: &mut ResolvedModel, sub: &ast::ExternSu
         })
         .collect();
     out.formal_params.insert(sub.name.text.clone(), params);
+    let results = sub
+        .outputs
+        .iter()
+        .map(|o| o.unit.as_ref().map(|u| u.text.clone()).unwrap_or_default())
+        .collect();
+    out.user_code_units
+        .insert(sub.name.text.clone(), (Vec::new(), results));
 }
 
 /// The value of a parameter or input default, reported when it does not

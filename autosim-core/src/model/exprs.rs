@@ -24,6 +24,20 @@ impl Resolver<'_> {
                     None
                 }
             },
+            Expr::Quantity { number, unit, .. } => {
+                let x = self.eval(&Expr::Number(number.clone()))?;
+                let factor = super::units::unit_meaning(&unit.text)
+                    .map_or(1.0, |u| u.factor)
+                    .to_string();
+                match Number::parse_decimal(&factor) {
+                    Some(f) if factor != "1" => {
+                        let f = self.sys.arena.num(f);
+                        Some(value::binary(&mut self.sys, Op::Mul, x, Value::Scalar(f)).ok()?)
+                    }
+                    _ => Some(x),
+                }
+            }
+            Expr::As { inner, .. } => self.eval(inner),
             Expr::Name(name) => self.eval_name(name),
             Expr::Paren { inner, .. } => self.eval(inner),
             Expr::Unary { op, operand, span } => {

@@ -118,6 +118,7 @@ fn output(
     }
     if let Some(x) = value {
         let unit = o.unit.as_ref().map(|u| u.text.as_str());
+        let x = in_declared_unit(r, x, unit);
         if let Err(e) = r.sys.add_output(&o.name.text, unit, x) {
             r.error(o.name.span, e.to_string());
         }
@@ -126,6 +127,25 @@ fn output(
         }
     }
     out.item_docs.insert(o.name.text.clone(), o.docs.clone());
+}
+
+/// An output's value `x` (computed in coherent SI units) in its declared
+/// unit: divided by the unit's factor (`[deg]`: times 180/π).
+fn in_declared_unit(
+    r: &mut Resolver<'_>,
+    x: crate::expr::ExprId,
+    unit: Option<&str>,
+) -> crate::expr::ExprId {
+    let factor = unit
+        .and_then(super::units::unit_meaning)
+        .map_or(1.0, |u| u.factor);
+    match crate::expr::Number::parse_decimal(&(1.0 / factor).to_string()) {
+        Some(f) if factor != 1.0 => {
+            let f = r.sys.arena.num(f);
+            r.sys.arena.mul(x, f)
+        }
+        _ => x,
+    }
 }
 
 /// Where a mistake in option `key` of an item is written (its value), or

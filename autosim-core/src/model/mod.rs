@@ -21,6 +21,7 @@ mod spans;
 #[cfg(test)]
 mod tests;
 mod typed;
+pub mod units;
 mod value;
 
 pub use scene::Scene;
@@ -61,6 +62,14 @@ pub struct ResolvedModel {
     /// How the accelerations are solved (`settings { formulation: ... }`
     /// or the scene's `formulation = ...`).
     pub formulation: Formulation,
+    /// The unit of each quantity declared without one that the unit check
+    /// inferred from its uses, by name (`units::UnitReport::inferred`):
+    /// shown in the documentation, not in the generated unit tables.
+    pub inferred_units: FxHashMap<String, String>,
+    /// The declared units of user code, by name (for the documentation):
+    /// of each argument and each result (`""` where none is declared; a
+    /// function's one result, a subroutine's outputs).
+    pub user_code_units: FxHashMap<String, (Vec<String>, Vec<String>)>,
 }
 
 /// Resolves a parsed model.
@@ -82,6 +91,8 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
         spans: ItemSpans::new(model_name.span),
         linearize: false,
         formulation: Formulation::Auto,
+        inferred_units: FxHashMap::default(),
+        user_code_units: FxHashMap::default(),
     };
     check_model_name(&mut r, model_name);
     // Settings first: the threshold affects every expression built later.
@@ -97,6 +108,15 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
     declare::declare_names(&mut r, &mut out, model);
     items::resolve_items(&mut r, &mut out, model, outputs.as_deref());
     settings::check_scene_names(&mut r, model, scene, outputs.as_deref());
+    // One mistake, one message: a unit error at text that already has an
+    // error (an acceleration in a load, a constant that is not) is left out.
+    let units = units::check(&r, model);
+    for d in units.diagnostics {
+        if !r.diags.iter().any(|e| overlaps(e.span, d.span)) {
+            r.push(d);
+        }
+    }
+    out.inferred_units = units.inferred;
     if !r.diags.is_empty() {
         return Err(r.diags);
     }
@@ -108,6 +128,18 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
     }
     out.system = r.sys;
     Ok(out)
+}
+
+/// True when two spans of the model's text share a character (false when
+/// either has no position).
+fn overlaps(a: crate::diag::Span, b: crate::diag::Span) -> bool {
+    match (a.start(), a.end(), b.start(), b.end()) {
+        (Some(a0), Some(a1), Some(b0), Some(b1)) => {
+            let key = |p: crate::diag::LineCol| (p.line, p.col);
+            key(a0) < key(b1) && key(b0) < key(a1)
+        }
+        _ => false,
+    }
 }
 
 /// Names the generated module defines beside the model type (see

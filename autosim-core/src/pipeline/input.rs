@@ -86,6 +86,11 @@ impl ResolvedModel {
             constraints: self.constraint_infos(eqs),
             motions: self.motion_infos(),
             cautions: [self.singular_starts(), self.moved_initials(eqs)].concat(),
+            inferred_state_units: self
+                .inferred_units
+                .iter()
+                .map(|(name, unit)| (name.clone(), unit.clone()))
+                .collect(),
         }
     }
 
@@ -166,6 +171,7 @@ impl ResolvedModel {
                     .position(|&p| p == k)
                     .map(|i| name(eqs.coordinates[c.dependent_coordinates[i]])),
                 unit: con.unit.clone().unwrap_or_default(),
+                inferred_unit: self.inferred_unit(&con.name, con.unit.as_deref()),
                 docs: self.item_docs.get(&con.name).cloned().unwrap_or_default(),
                 span: self.spans.named(&con.name),
             })
@@ -202,6 +208,7 @@ impl ResolvedModel {
             out.push(Quantity {
                 name: c.name.clone(),
                 unit: c.unit.clone().unwrap_or_default(),
+                inferred_unit: self.inferred_unit(&c.name, c.unit.as_deref()),
                 default: 0.0,
                 docs: Some(vec![format!(
                     "Residual of the position constraint `{}` (zero when the configuration satisfies it).",
@@ -221,6 +228,7 @@ impl ResolvedModel {
             out.push(Quantity {
                 name: m.name.clone(),
                 unit: unit.to_string(),
+                inferred_unit: String::new(),
                 default: 0.0,
                 docs: Some(vec![format!(
                     "Generalized force along `{q}` that enforces the motion `{}`.",
@@ -232,11 +240,21 @@ impl ResolvedModel {
         out
     }
 
+    /// The unit inferred for `name` when `declared` is none (empty
+    /// otherwise, and when its uses do not determine it).
+    fn inferred_unit(&self, name: &str, declared: Option<&str>) -> String {
+        match declared {
+            Some(_) => String::new(),
+            None => self.inferred_units.get(name).cloned().unwrap_or_default(),
+        }
+    }
+
     /// The interface entry of a named value declared by the model.
     fn quantity(&self, name: &str, unit: Option<&str>, default: f64) -> Quantity {
         Quantity {
             name: name.to_string(),
             unit: unit.unwrap_or_default().to_string(),
+            inferred_unit: self.inferred_unit(name, unit),
             default,
             docs: self.item_docs.get(name).cloned(),
             span: self.spans.named(name),
@@ -245,10 +263,14 @@ impl ResolvedModel {
 
     /// The interface entry of user code.
     fn user_code(&self, name: &str, outputs: Vec<String>) -> UserCode {
+        let (param_units, result_units) =
+            self.user_code_units.get(name).cloned().unwrap_or_default();
         UserCode {
             name: name.to_string(),
             params: self.formal_params.get(name).cloned().unwrap_or_default(),
             outputs,
+            param_units,
+            result_units,
             docs: self.item_docs.get(name).cloned().unwrap_or_default(),
             span: self.spans.named(name),
         }

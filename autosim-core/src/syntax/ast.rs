@@ -183,6 +183,14 @@ pub struct Parameters {
     pub params: Vec<Parameter>,
 }
 
+impl Parameter {
+    /// The value as written (`-0.5`).
+    pub fn value_text(&self) -> String {
+        let sign = if self.value.negative { "-" } else { "" };
+        format!("{sign}{}", self.value.number.text)
+    }
+}
+
 /// `KB = 2000 [N m/rad]`
 #[derive(Clone, Debug)]
 pub struct Parameter {
@@ -294,7 +302,7 @@ pub struct Input {
     pub default: Option<Value>,
 }
 
-/// `extern fn thrust(t, axis, error);`
+/// `extern fn thrust(t [s], axis, error [rad]) -> [N];`
 #[derive(Clone, Debug)]
 pub struct ExternFn {
     /// Doc comments.
@@ -305,6 +313,10 @@ pub struct ExternFn {
     pub name: Name,
     /// Formal argument names (they give the arity).
     pub params: Vec<Name>,
+    /// The unit of each argument, if given (`speed [m/s]`).
+    pub param_units: Vec<Option<Unit>>,
+    /// The unit of the result, if given (`-> [N]`; dimensionless without).
+    pub result_unit: Option<Unit>,
 }
 
 /// `extern sub cmd(t) -> (clkcmd2 [rad], camcmd2 [rad]);`
@@ -415,6 +427,25 @@ pub enum Expr {
         /// The brackets.
         span: Span,
     },
+    /// `2.5 [mm]`: a number in a unit.
+    Quantity {
+        /// The number.
+        number: Number,
+        /// Its unit.
+        unit: Unit,
+        /// Number and unit.
+        span: Span,
+    },
+    /// `(k*x) as [N]`: the value of `inner`, taken to be in `unit`
+    /// without checking (the escape from the unit check).
+    As {
+        /// The expression.
+        inner: Box<Expr>,
+        /// The unit it is taken to have.
+        unit: Unit,
+        /// Expression and unit.
+        span: Span,
+    },
     /// `(a)`
     Paren {
         /// The expression inside.
@@ -486,6 +517,8 @@ impl Expr {
             | Expr::Unary { span, .. }
             | Expr::Binary { span, .. }
             | Expr::List { span, .. }
+            | Expr::Quantity { span, .. }
+            | Expr::As { span, .. }
             | Expr::Paren { span, .. } => *span,
         }
     }
@@ -538,6 +571,8 @@ impl fmt::Display for Expr {
                 f.write_str("]")
             }
             Expr::Paren { inner, .. } => write!(f, "({inner})"),
+            Expr::Quantity { number, unit, .. } => write!(f, "{} [{}]", number.text, unit.text),
+            Expr::As { inner, unit, .. } => write!(f, "{inner} as [{}]", unit.text),
         }
     }
 }

@@ -37,10 +37,21 @@ fn peek_binop(input: ParseStream) -> Option<(BinOp, u8, u8)> {
     }
 }
 
+/// Binding power of `as [unit]`: as a prefix sign (tighter than `*`,
+/// looser than `^`), so `k*x as [N]` is `k*(x as [N])`, as in Rust.
+const AS_BP: u8 = 5;
+
 fn expr_bp(input: ParseStream, cx: &Cx, min_bp: u8) -> PResult<Expr> {
     cx.nested(input, || {
         let mut lhs = prefix(input, cx)?;
-        while let Some((op, left_bp, right_bp)) = peek_binop(input) {
+        loop {
+            if input.peek(Token![as]) && AS_BP >= min_bp {
+                lhs = as_unit(input, cx, lhs)?;
+                continue;
+            }
+            let Some((op, left_bp, right_bp)) = peek_binop(input) else {
+                break;
+            };
             if left_bp < min_bp {
                 break;
             }
@@ -64,6 +75,24 @@ fn expr_bp(input: ParseStream, cx: &Cx, min_bp: u8) -> PResult<Expr> {
             };
         }
         Ok(lhs)
+    })
+}
+
+/// `expr as [unit]`, after `expr`.
+fn as_unit(input: ParseStream, cx: &Cx, inner: Expr) -> PResult<Expr> {
+    let keyword: Token![as] = input.parse()?;
+    let Some(unit) = unit(input, cx)? else {
+        return cx.fail(
+            expected(cx, input, "a unit in brackets after `as`")
+                .help("`(expression) as [N m]` takes the expression to be in N m, unchecked"),
+        );
+    };
+    let _ = keyword;
+    let span = inner.span().to(unit.span);
+    Ok(Expr::As {
+        inner: Box::new(inner),
+        unit,
+        span,
     })
 }
 
@@ -161,7 +190,15 @@ fn primary(input: ParseStream, cx: &Cx) -> PResult<Expr> {
         return Ok(Expr::Call { func, args, span });
     }
     if input.peek(syn::LitInt) || input.peek(syn::LitFloat) {
-        return number(input, cx).map(Expr::Number);
+        let number = number(input, cx)?;
+        return Ok(match unit(input, cx)? {
+            Some(unit) => Expr::Quantity {
+                span: number.span.to(unit.span),
+                number,
+                unit,
+            },
+            None => Expr::Number(number),
+        });
     }
     // `true` and `false` (settings) read as names; elsewhere they are
     // unknown names.

@@ -360,22 +360,36 @@ fn extern_item(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Item> 
     if is_fn {
         let (params, group) = in_group(input, cx, Delimiter::Parenthesis, |content| {
             comma_list(content, cx, |content| {
-                self::name(content, cx, "an argument name")
+                let name = self::name(content, cx, "an argument name")?;
+                let unit = unit(content, cx)?;
+                Ok((name, unit))
             })
         })?;
+        let mut end = cx.span(group);
+        let mut result_unit = None;
         if input.peek(Token![->]) {
-            return cx.fail(
-                Diagnostic::error(cx.span(input.span()), "a user function has no return type")
-                    .help("it returns the model's float type; remove `-> ...`")
-                    .help("declare a subroutine (`extern sub`) for several results"),
-            );
+            input.parse::<Token![->]>()?;
+            result_unit = unit(input, cx)?;
+            match &result_unit {
+                Some(u) => end = u.span,
+                None => {
+                    return cx.fail(
+                        expected(cx, input, "the unit of the result in brackets, such as `-> [N]`")
+                            .help("a user function returns one number of the model's float type: give its unit, `-> [N]`, or leave out `-> ...` for a dimensionless result")
+                            .help("declare a subroutine (`extern sub`) for several results"),
+                    );
+                }
+            }
         }
-        semi(input, cx, "the function's arguments", cx.span(group))?;
+        semi(input, cx, "the function's arguments", end)?;
+        let (params, param_units) = params.into_iter().unzip();
         return Ok(Item::ExternFn(ExternFn {
             docs,
             span,
             name,
             params,
+            param_units,
+            result_unit,
         }));
     }
     let (args, _) = in_group(input, cx, Delimiter::Parenthesis, |content| {

@@ -106,6 +106,9 @@ fn lex_error(error: &proc_macro2::LexError, text: &str) -> Diagnostic {
             col: at.col + width,
         },
     );
+    if let Some(d) = comment_in_unit(text, offset) {
+        return d;
+    }
     match rest.chars().next() {
         None => Diagnostic::error(span, "unexpected end of file"),
         Some(open @ ('(' | '[' | '{')) => {
@@ -135,6 +138,44 @@ fn lex_error(error: &proc_macro2::LexError, text: &str) -> Diagnostic {
         Some(c) => Diagnostic::error(span, format!("unexpected character `{}`", c.escape_debug()))
             .help("model files are made of Rust tokens: names, numbers, strings and punctuation"),
     }
+}
+
+/// `[N//m]`: `//` starts a comment, which hides the `]` of the unit. When
+/// the delimiter left open where the lexer stopped (at `offset`) is a `[`
+/// with `//` after it on its line, says so at the `//`.
+fn comment_in_unit(text: &str, offset: usize) -> Option<Diagnostic> {
+    let open_at = match text.get(offset..)?.chars().next() {
+        Some('[') => offset,
+        _ => {
+            let (open, at) = unclosed_before(text, offset)?;
+            if open != '[' {
+                return None;
+            }
+            byte_offset(text, at)?
+        }
+    };
+    let line = text.get(open_at..)?.lines().next()?;
+    let slashes = open_at + line.find("//")?;
+    let start = line_col(text, slashes);
+    let end = LineCol {
+        line: start.line,
+        col: start.col + 2,
+    };
+    Some(
+        Diagnostic::error(
+            Span::from_file(start, end),
+            "`//` starts a comment, which hides the rest of the line: the `[` before it is never closed",
+        )
+        .help("in a unit, write one `/` before the denominator: `[N/m]`, `[N/(m s)]`, `[m/s^2]`"),
+    )
+}
+
+/// The line and column (1-based) of byte `offset` of `text`.
+fn line_col(text: &str, offset: usize) -> LineCol {
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    LineCol { line, col }
 }
 
 fn closing(open: char) -> char {

@@ -11,9 +11,9 @@ autosim::model! {
     // The named dependent speed is not in the constraint.
     constraint tie [rad/s] { speed: u1 - u2, dependent: u3 }
     // A rolling condition must be linear in the speeds.
-    constraint roll [m/s] { speed: u1*u2 }
+    constraint roll [rad^2/s^2] { speed: u1*u2 }
     // A motion is a function of time and parameters only.
-    motion drive { coordinate: q1, value: q2*t }
+    motion drive { coordinate: q1, value: q2 + 0.1 [rad/s]*t }
 }
 
 fn main() {}

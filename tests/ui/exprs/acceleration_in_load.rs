@@ -1,8 +1,8 @@
 autosim::model! {
     model Arm;
-    parameters { m = 1 [kg] }
+    parameters { J = 1 [kg m^2] }
     body Upper { rotate: 1 }
-    moment inertia_torque { on: Upper, about: n1, magnitude: -m*dxdt(u(Upper)) }
+    moment inertia_torque { on: Upper, about: n1, magnitude: -J*dxdt(u(Upper)) }
 }
 
 fn main() {}

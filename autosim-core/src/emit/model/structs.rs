@@ -26,10 +26,10 @@ fn values_struct(
             docs(&q.docs.clone().unwrap_or_else(|| {
                 vec![format!("{} (default mass or inertia of a body).", q.name)]
             }));
-        let unit = if q.unit.is_empty() {
-            String::new()
-        } else {
-            format!(" \\[{}\\]", q.unit)
+        let unit = match (q.unit.as_str(), q.inferred_unit.as_str()) {
+            ("", "") => String::new(),
+            ("", inferred) => format!(" \\[{inferred}, inferred\\]"),
+            (unit, _) => format!(" \\[{unit}\\]"),
         };
         d.extend(doc(&format!("Default: `{:?}`{unit}.", q.default)));
         let lit = literal(q.default, float);

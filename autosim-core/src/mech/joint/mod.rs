@@ -195,7 +195,7 @@ impl Joint {
     pub fn speed_of_coordinate(&self, k: usize) -> Option<usize> {
         match self.e0_position() {
             Some(e0) if k == e0 => None,
-            Some(e0) if k > e0 => Some(k - 1),
+            Some(e0) if k > e0 => (k - 1 < self.dofs()).then_some(k - 1),
             _ => (k < self.dofs()).then_some(k),
         }
     }

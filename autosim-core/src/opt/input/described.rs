@@ -31,6 +31,9 @@ pub struct Described {
     pub motions: Vec<MotionInfo>,
     /// Cautions for the user, printed in the model's documentation.
     pub cautions: Vec<String>,
+    /// The units the unit check inferred for states declared without one
+    /// (by name): shown in the documentation only.
+    pub inferred_state_units: std::collections::BTreeMap<String, String>,
 }
 
 /// A named value of the interface: a parameter (a field of `Parameters`),
@@ -41,6 +44,9 @@ pub struct Quantity {
     pub name: String,
     /// Unit text (empty when none).
     pub unit: String,
+    /// The unit the unit check inferred, when none is declared (empty
+    /// otherwise): shown in the documentation only.
+    pub inferred_unit: String,
     /// Default value (0 for outputs).
     pub default: f64,
     /// The model's doc comments; `None` for a parameter the compiler
@@ -60,6 +66,12 @@ pub struct UserCode {
     pub params: Vec<String>,
     /// Names of the values a subroutine returns (empty for a function).
     pub outputs: Vec<String>,
+    /// The declared unit of each argument (empty where none, and for a
+    /// subroutine, whose arguments are expressions).
+    pub param_units: Vec<String>,
+    /// The declared unit of a function's result, or of each output of a
+    /// subroutine (empty where none).
+    pub result_units: Vec<String>,
     /// Doc comments.
     pub docs: Vec<String>,
     /// Where it is declared.
@@ -79,6 +91,9 @@ pub struct ConstraintInfo {
     pub dependent_coordinate: Option<String>,
     /// Unit of its expression (empty when not given).
     pub unit: String,
+    /// The unit the unit check inferred, when none is declared (empty
+    /// otherwise): shown in the documentation only.
+    pub inferred_unit: String,
     /// Doc comments.
     pub docs: Vec<String>,
     /// Where it is declared.

@@ -15,6 +15,9 @@ pub struct StateVar {
     pub name: String,
     /// Unit text (empty when unknown).
     pub unit: String,
+    /// The unit the unit check inferred, when none is declared (empty
+    /// otherwise): shown in the documentation only.
+    pub inferred_unit: String,
 }
 
 /// The state vector: generalized coordinates, then the independent
@@ -135,9 +138,17 @@ impl Interface {
     /// split as `split` says.
     pub fn new(input: &Input, split: &Split) -> Interface {
         let (a, eqs, d) = (&input.arena, &input.equations, &input.described);
-        let state = |s: &SymId| StateVar {
-            name: a.symbol(*s).name.clone(),
-            unit: a.symbol(*s).unit.clone().unwrap_or_default(),
+        let state = |s: &SymId| {
+            let symbol = a.symbol(*s);
+            let inferred = match symbol.unit {
+                Some(_) => None,
+                None => d.inferred_state_units.get(&symbol.name).cloned(),
+            };
+            StateVar {
+                name: symbol.name.clone(),
+                unit: symbol.unit.clone().unwrap_or_default(),
+                inferred_unit: inferred.unwrap_or_default(),
+            }
         };
         Interface {
             name: d.name.clone(),

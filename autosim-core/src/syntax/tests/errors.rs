@@ -167,11 +167,11 @@ fn externs() {
     check(
         "model M;\nextern fn f(x) -> f64;",
         r#"
-test.sim:2:16: error: a user function has no return type
+test.sim:2:19: error: expected the unit of the result in brackets, such as `-> [N]`, found `f64`
   |
 2 | extern fn f(x) -> f64;
-  |                ^
-  = help: it returns the model's float type; remove `-> ...`
+  |                   ^^^
+  = help: a user function returns one number of the model's float type: give its unit, `-> [N]`, or leave out `-> ...` for a dimensionless result
   = help: declare a subroutine (`extern sub`) for several results
 "#,
     );

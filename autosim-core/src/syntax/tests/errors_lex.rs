@@ -5,6 +5,20 @@ use super::errors::check;
 
 #[test]
 fn bad_units() {
+    // `//` in a unit starts a comment: the `]` is never seen, whether the
+    // file ends there or another delimiter closes first.
+    let expect = r#"
+test.sim:2:22: error: `//` starts a comment, which hides the rest of the line: the `[` before it is never closed
+  |
+2 | parameters { k = 1 [N//m] }
+  |                      ^^
+  = help: in a unit, write one `/` before the denominator: `[N/m]`, `[N/(m s)]`, `[m/s^2]`
+"#;
+    check("model M;\nparameters { k = 1 [N//m] }", expect);
+    check(
+        "model M;\nparameters { k = 1 [N//m] }\nbody B { translate: 1 }",
+        expect,
+    );
     check(
         "model M;\nparameters { KB = 2000 [N m/rad, DB = 10 }",
         r#"

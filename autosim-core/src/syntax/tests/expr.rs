@@ -39,6 +39,8 @@ fn sexpr(expr: &Expr) -> String {
             items.iter().map(sexpr).collect::<Vec<_>>().join(" ")
         ),
         Expr::Paren { inner, .. } => sexpr(inner),
+        Expr::Quantity { number, unit, .. } => format!("({} [{}])", number.text, unit.text),
+        Expr::As { inner, unit, .. } => format!("(as {} [{}])", sexpr(inner), unit.text),
     }
 }
 
@@ -76,6 +78,12 @@ fn precedence() {
         ("a*-b", "(* a (neg b))"),
         ("2^-x^2", "(^ 2 (neg (^ x 2)))"),
         ("- -x", "(neg (neg x))"),
+        ("k*x as [N]", "(* k (as x [N]))"),
+        ("(k*x) as [N m/rad]", "(as (* k x) [N m/rad])"),
+        ("-x as [N]", "(neg (as x [N]))"),
+        ("x^2 as [N]", "(as (^ x 2) [N])"),
+        ("2.5 [mm] + x", "(+ (2.5 [mm]) x)"),
+        ("[1 [m], 0, L]", "[(1 [m]) 0 L]"),
         ("+x - 1", "(- (pos x) 1)"),
         ("-a^b*c", "(* (neg (^ a b)) c)"),
         ("a^-1", "(^ a (neg 1))"),

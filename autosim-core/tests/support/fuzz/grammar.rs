@@ -69,11 +69,17 @@ pub(crate) struct Grammar<'r> {
     visible_lets: usize,
     fns: Vec<(String, usize)>,
     outputs: Vec<String>,
+    /// Every expression is wrapped in the unit check's escape (`(e) as
+    /// [1]`, and the unit its item needs around an item's value), so that
+    /// random formulas pass the check and reach the later phases; without
+    /// it, most models mix units and stop at the check.
+    trust: bool,
 }
 
 impl<'r> Grammar<'r> {
     pub(crate) fn new(rng: &'r mut Rng) -> Grammar<'r> {
         let chaos = *rng.pick(&[0, 0, 0, 1, 2, 5, 10, 30]);
+        let trust = rng.chance(60);
         Grammar {
             rng,
             chaos,
@@ -86,6 +92,7 @@ impl<'r> Grammar<'r> {
             visible_lets: 0,
             fns: Vec::new(),
             outputs: Vec::new(),
+            trust,
         }
     }
 
@@ -253,6 +260,23 @@ impl<'r> Grammar<'r> {
             out.push('\n');
         }
         out
+    }
+
+    /// A unit to declare (or none); going wrong, one the check refuses.
+    fn unit(&mut self) -> String {
+        match self.wrong() {
+            true => self.rng.pick(BAD_UNITS).to_string(),
+            false => self.rng.pick(UNITS).to_string(),
+        }
+    }
+
+    /// `e` taken to be in `unit` (in trust mode, unless going wrong).
+    fn in_unit(&mut self, e: String, unit: &str) -> String {
+        if self.trust && !self.wrong() {
+            format!("({e}) as [{unit}]")
+        } else {
+            e
+        }
     }
 
     fn value(&mut self) -> String {

@@ -77,6 +77,7 @@ pub(crate) const ODD_NAMES: &[&str] = &[
     "M",
 ];
 pub(crate) const PARAM_NAMES: &[&str] = &["k", "m", "g", "L", "c", "I1", "I2", "p", "tau", "mu"];
+/// Units the unit check reads (declared where a unit is optional).
 pub(crate) const UNITS: &[&str] = &[
     "",
     " [m]",
@@ -85,6 +86,22 @@ pub(crate) const UNITS: &[&str] = &[
     " [m/s^2]",
     " [rad]",
     " [1/s]",
+    " [N]",
+    " [J]",
+    " [kg m^2/s]",
+    " [m^(1/2)]",
+];
+/// Units the unit check refuses somewhere: unknown, two `/`, a factor
+/// where none is allowed (inputs, states, subroutine outputs), `//` starting
+/// a comment.
+pub(crate) const BAD_UNITS: &[&str] = &[
+    " [deg]",
+    " [mm]",
+    " [m/s/s]",
+    " [furlong]",
+    " [N//m]",
+    " [m^x]",
+    " []",
 ];
 pub(crate) const SCALAR_FUNCS: &[&str] = &[
     "sin", "cos", "tan", "asin", "acos", "atan2", "exp", "ln", "abs", "sign", "min", "max", "sqrt",

@@ -13,7 +13,7 @@ impl Grammar<'_> {
             entries.push(format!("parent: {parent}"));
         }
         if self.rng.chance(50) {
-            let v = self.list3(true);
+            let v = self.list3(true, "m");
             entries.push(format!("joint: {v}"));
         }
         let r = self.bodies[i].rotations;
@@ -109,7 +109,7 @@ impl Grammar<'_> {
             let d = if self.wrong() {
                 "[0, 0, 0]".to_string()
             } else {
-                self.list3(true)
+                self.list3(true, "1")
             };
             format!("[{d}]")
         } else {
@@ -132,6 +132,7 @@ impl Grammar<'_> {
                 0 => "0".to_string(),
                 _ => self.positive(),
             };
+            let v = self.in_unit(v, "kg");
             entries.push(format!("mass: {v}"));
         }
         if self.rng.chance(60) {
@@ -139,7 +140,7 @@ impl Grammar<'_> {
             entries.push(format!("inertia: {v}"));
         }
         if self.rng.chance(50) {
-            let v = self.list3(true);
+            let v = self.list3(true, "m");
             entries.push(format!("cm: {v}"));
         }
     }
@@ -170,7 +171,17 @@ impl Grammar<'_> {
                 } else {
                     count
                 };
-                let vals: Vec<String> = (0..n).map(|_| self.constant(1)).collect();
+                let translations = self.bodies[i].translations;
+                let units = match key {
+                    "initial" => ["m", "rad"],
+                    _ => ["m/s", "rad/s"],
+                };
+                let vals: Vec<String> = (0..n)
+                    .map(|k| {
+                        let v = self.constant(1);
+                        self.in_unit(v, units[usize::from(k >= translations)])
+                    })
+                    .collect();
                 entries.push(format!("{key}: [{}]", vals.join(", ")));
             }
         }
@@ -195,7 +206,7 @@ impl Grammar<'_> {
                     format!("diag({})", args.join(", "))
                 }
                 1 => {
-                    let rows: Vec<String> = (0..3).map(|_| self.list3(true)).collect();
+                    let rows: Vec<String> = (0..3).map(|_| self.list3(true, "kg m^2")).collect();
                     format!("[{}]", rows.join(", "))
                 }
                 _ => self.any(1),
@@ -204,7 +215,7 @@ impl Grammar<'_> {
         match self.rng.below(6) {
             0 => "0".to_string(),
             1 | 2 => {
-                let args: Vec<String> = (0..3).map(|_| self.positive()).collect();
+                let args: Vec<String> = (0..3).map(|_| self.positive_inertia()).collect();
                 format!("diag({})", args.join(", "))
             }
             3 | 4 => {
@@ -212,9 +223,10 @@ impl Grammar<'_> {
                 for r in 0..3 {
                     for c in r..3 {
                         m[r][c] = if r == c {
-                            self.positive()
+                            self.positive_inertia()
                         } else {
-                            self.constant(1)
+                            let v = self.constant(1);
+                            self.in_unit(v, "kg m^2")
                         };
                         m[c][r] = m[r][c].clone();
                     }
@@ -226,7 +238,7 @@ impl Grammar<'_> {
                 format!("[{}]", rows.join(", "))
             }
             _ => {
-                let items: Vec<String> = (0..3).map(|_| self.positive()).collect();
+                let items: Vec<String> = (0..3).map(|_| self.positive_inertia()).collect();
                 format!("[{}]", items.join(", "))
             }
         }
@@ -243,6 +255,12 @@ impl Grammar<'_> {
         } else {
             a
         }
+    }
+
+    /// A positive constant, in kg m^2 in trust mode.
+    fn positive_inertia(&mut self) -> String {
+        let v = self.positive();
+        self.in_unit(v, "kg m^2")
     }
 
     fn positive_leaf(&mut self) -> String {

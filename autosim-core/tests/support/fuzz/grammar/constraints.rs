@@ -58,6 +58,7 @@ impl Grammar<'_> {
                 }
             }
         };
+        let value = self.in_unit(value, "m");
         let key = if position != self.wrong() {
             "position"
         } else {

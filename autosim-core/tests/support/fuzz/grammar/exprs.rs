@@ -8,7 +8,7 @@ impl Grammar<'_> {
     // Expressions: each typed generator returns an expression of its kind,
     // or (going wrong) anything at all.
 
-    pub(super) fn constant(&mut self, depth: usize) -> String {
+    fn constant_expr(&mut self, depth: usize) -> String {
         if self.wrong() {
             return self.scalar(depth);
         }
@@ -45,7 +45,7 @@ impl Grammar<'_> {
         (!names.is_empty()).then(|| (*self.rng.pick(&names)).clone())
     }
 
-    pub(super) fn scalar(&mut self, depth: usize) -> String {
+    fn scalar_expr(&mut self, depth: usize) -> String {
         if self.wrong() {
             return self.any(depth);
         }
@@ -169,7 +169,7 @@ impl Grammar<'_> {
         }
     }
 
-    pub(super) fn vector(&mut self, depth: usize) -> String {
+    fn vector_expr(&mut self, depth: usize) -> String {
         if self.wrong() {
             return self.any(depth);
         }
@@ -231,7 +231,26 @@ impl Grammar<'_> {
     /// Three constants (or scalars) in brackets: a point's or a mass
     /// center's coordinates, a joint's position, a direction; going wrong,
     /// anything, or a list of another length.
-    pub(super) fn list3(&mut self, constant: bool) -> String {
+    /// A constant scalar (dimensionless in trust mode).
+    pub(super) fn constant(&mut self, depth: usize) -> String {
+        let e = self.constant_expr(depth);
+        self.in_unit(e, "1")
+    }
+
+    /// A scalar (dimensionless in trust mode).
+    pub(super) fn scalar(&mut self, depth: usize) -> String {
+        let e = self.scalar_expr(depth);
+        self.in_unit(e, "1")
+    }
+
+    /// A vector (dimensionless in trust mode).
+    pub(super) fn vector(&mut self, depth: usize) -> String {
+        let e = self.vector_expr(depth);
+        self.in_unit(e, "1")
+    }
+
+    /// `[x, y, z]`, each entry in `unit` in trust mode.
+    pub(super) fn list3(&mut self, constant: bool, unit: &str) -> String {
         if self.wrong() {
             return match self.rng.below(2) {
                 0 => self.any(1),
@@ -244,11 +263,12 @@ impl Grammar<'_> {
         }
         let items: Vec<String> = (0..3)
             .map(|_| {
-                if constant {
+                let e = if constant {
                     self.constant(1)
                 } else {
                     self.scalar(1)
-                }
+                };
+                self.in_unit(e, unit)
             })
             .collect();
         format!("[{}]", items.join(", "))

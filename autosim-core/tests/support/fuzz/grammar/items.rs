@@ -26,7 +26,7 @@ impl Grammar<'_> {
             } else {
                 String::new()
             };
-            items.push(format!("input {input}{}{default};", self.rng.pick(UNITS)));
+            items.push(format!("input {input}{}{default};", self.unit()));
         }
         self.extern_items(names, &mut items);
         for i in 0..self.bodies.len() {
@@ -45,7 +45,9 @@ impl Grammar<'_> {
             } else {
                 self.scalar(3)
             };
-            items.push(format!("output {name}{} = {value};", self.rng.pick(UNITS)));
+            let unit = self.unit();
+            let value = self.in_unit(value, unit_text(&unit));
+            items.push(format!("output {name}{unit} = {value};"));
         }
         items
     }
@@ -107,18 +109,14 @@ impl Grammar<'_> {
                     s,
                     "    /// Doc.\n    {p} = {}{},",
                     self.value(),
-                    self.rng.pick(UNITS)
+                    self.unit()
                 );
             }
             s.push('}');
             items.push(s);
         } else {
             for p in &params {
-                items.push(format!(
-                    "parameter {p} = {}{};",
-                    self.value(),
-                    self.rng.pick(UNITS)
-                ));
+                items.push(format!("parameter {p} = {}{};", self.value(), self.unit()));
             }
         }
     }
@@ -140,10 +138,7 @@ impl Grammar<'_> {
                     }
                 })
                 .collect();
-            let outs: Vec<String> = outs
-                .iter()
-                .map(|o| format!("{o}{}", self.rng.pick(UNITS)))
-                .collect();
+            let outs: Vec<String> = outs.iter().map(|o| format!("{o}{}", self.unit())).collect();
             items.push(format!(
                 "extern sub {name}({}) -> ({});",
                 args.join(", "),
@@ -164,7 +159,7 @@ impl Grammar<'_> {
             let at = if self.wrong() {
                 self.any(2)
             } else {
-                self.list3(false)
+                self.list3(false, "m")
             };
             items.push(format!("point {name}{label} in {body} at {at};"));
         }
@@ -182,19 +177,24 @@ impl Grammar<'_> {
     }
 
     fn state(&mut self, name: &str) -> String {
+        let unit = self.unit();
         let mut entries = Vec::new();
         if self.rng.chance(80) {
             let v = self.constant(1);
+            let v = self.in_unit(v, unit_text(&unit));
             entries.push(format!("initial: {v}"));
         }
         if !self.wrong() {
             let v = self.scalar(3);
+            let v = self.in_unit(v, &format!("({})/s", unit_text(&unit)));
             entries.push(format!("derivative: {v}"));
         }
-        format!(
-            "state {name}{} {{ {} }}",
-            self.rng.pick(UNITS),
-            entries.join(", ")
-        )
+        format!("state {name}{unit} {{ {} }}", entries.join(", "))
     }
+}
+
+/// The text inside the brackets of a unit from [`UNITS`] (`1` for none).
+fn unit_text(unit: &str) -> &str {
+    let inner = unit.trim().trim_start_matches('[').trim_end_matches(']');
+    if inner.is_empty() { "1" } else { inner }
 }

@@ -19,6 +19,7 @@ impl Grammar<'_> {
         };
         for _ in 0..gravities {
             let g = self.vector(2);
+            let g = self.in_unit(g, "m/s^2");
             items.push(format!("gravity = {g};"));
         }
     }
@@ -29,6 +30,7 @@ impl Grammar<'_> {
             |g| g.point(1),
             ["vector", "along", "magnitude", "about"],
             ("along", 2),
+            "N",
         );
         format!("force {name} {{ {} }}", entries.join(", "))
     }
@@ -39,18 +41,20 @@ impl Grammar<'_> {
             |g| g.body_ref(),
             ["vector", "about", "magnitude", "along"],
             ("about", 1),
+            "N m",
         );
         format!("moment {name} {{ {} }}", entries.join(", "))
     }
 
     /// A load's entries: what it acts on (`target`), a reaction, then a
     /// vector or a direction (`axis`: its key and depth) with a
-    /// magnitude; going wrong, any of `wrong_keys` with any expression.
+    /// magnitude (in `unit`); going wrong, any of `wrong_keys` with any expression.
     fn load_entries(
         &mut self,
         target: impl Fn(&mut Self) -> String,
         wrong_keys: [&str; 4],
         axis: (&str, usize),
+        unit: &str,
     ) -> Vec<String> {
         let mut entries = Vec::new();
         if !self.wrong() {
@@ -70,10 +74,12 @@ impl Grammar<'_> {
             }
         } else if self.rng.chance(50) {
             let v = self.vector(3);
+            let v = self.in_unit(v, unit);
             entries.push(format!("vector: {v}"));
         } else {
             let a = self.vector(axis.1);
             let m = self.scalar(3);
+            let m = self.in_unit(m, unit);
             entries.push(format!("{}: {a}", axis.0));
             entries.push(format!("magnitude: {m}"));
         }

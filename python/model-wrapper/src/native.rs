@@ -393,7 +393,7 @@ impl NativeModel {
     /// vanish (the runtime's damped Newton). Returns the state, the
     /// iterations and the residual; the model keeps the trimmed inputs.
     /// `None` without a generated linearization.
-    #[pyo3(signature = (t, x, free_states, free_inputs, steady, tolerance, max_iterations))]
+    #[pyo3(signature = (t, x, free_states, free_inputs, steady, tolerance, max_iterations, max_step))]
     #[allow(clippy::too_many_arguments)]
     fn trim<'py>(
         &mut self,
@@ -405,6 +405,7 @@ impl NativeModel {
         steady: Vec<String>,
         tolerance: f64,
         max_iterations: usize,
+        max_step: f64,
     ) -> PyResult<Option<Trimmed<'py>>> {
         let mut x = vector(&x, self.sizes.states, "x")?.into_owned();
         let spec = Trim {
@@ -413,6 +414,7 @@ impl NativeModel {
             steady,
             tolerance,
             max_iterations,
+            max_step,
         };
         let engine = &mut self.engine;
         let done = py

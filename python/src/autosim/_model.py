@@ -300,6 +300,7 @@ class Model:
         t: float = 0.0,
         tolerance: float = 1e-10,
         max_iterations: int = 50,
+        max_step: float = 1.0,
     ) -> TrimResult:
         """Trims the model (the runtime's damped Newton on the symbolic
         linearization, as SD/FAST's ``sdstatic``/``sdsteady``): from ``x``
@@ -307,8 +308,9 @@ class Model:
         states named in ``free_states`` and the inputs in ``free_inputs``
         until the time derivatives of the states in ``steady`` vanish
         (to ``tolerance``); everything else is held. Static equilibrium:
-        the coordinates free, the speeds steady. The model keeps the trimmed
-        inputs. Raises :class:`autosim.errors.SimulationError` naming the
+        the coordinates free, the speeds steady. Each Newton step moves an
+        unknown by at most ``max_step`` times ``max(1, |value|)``. The model
+        keeps the trimmed inputs. Raises :class:`autosim.errors.SimulationError` naming the
         residuals when Newton's method does not converge or the free
         variables do not control the steady derivatives."""
         xv = self.initial_state() if x is None else as_vector(x, self._nx, "x")
@@ -325,6 +327,7 @@ class Model:
             list(steady),
             float(tolerance),
             int(max_iterations),
+            float(max_step),
         )
         if done is None:
             raise ValueError(f"{self.name} was loaded without its linearization: load it with linearize=True")

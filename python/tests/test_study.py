@@ -21,6 +21,7 @@ from typing import Callable
 import autosim
 import numpy as np
 import pytest
+from conftest import install_model_wheel
 
 Load = Callable[..., autosim.Model]
 
@@ -39,7 +40,9 @@ def reference_study(model: autosim.Model) -> autosim.Study:
         )
     )
     keep = autosim.Keep().final_state().at([1.0], ["height"]).statistic("height", "max").history(["q"])
-    return model.study(cases, keep, t_end=2.0, h=0.01, output_interval=0.1, method="dopri", rtol=1e-9, atol=1e-12)
+    return model.study(
+        cases, keep, t_end=2.0, h=0.01, output_interval=0.1, method="dopri", rtol=1e-9, atol=1e-12
+    )
 
 
 @pytest.fixture(scope="module")
@@ -69,7 +72,9 @@ def test_a_study_from_python_is_the_rust_study_bit_for_bit(
     assert autosim.StudyResults.concat(chunks) == rust_results
     # Equal bits are not a vacuous check: a different seed differs.
     other = study.model.study(
-        autosim.Cases().grid("torque", [0.0, 0.5]).random(
+        autosim.Cases()
+        .grid("torque", [0.0, 0.5])
+        .random(
             40, 2027, m=autosim.uniform(0.5, 2.0), L=autosim.normal(0.7, 0.05), q=autosim.uniform(-1.0, 1.0)
         ),
         study.keep,
@@ -91,7 +96,9 @@ def test_results_are_the_model_simulated_case_by_case(study: autosim.Study) -> N
         torque, m, length, q = results.case_values[case]
         model.parameters.set(m=m, L=length)
         model.inputs["torque"] = torque
-        sim = model.simulate(2.0, model.state(q=q), method="dopri", rtol=1e-9, atol=1e-12, h=0.01, t_eval=study.output_times)
+        sim = model.simulate(
+            2.0, model.state(q=q), method="dopri", rtol=1e-9, atol=1e-12, h=0.01, t_eval=study.output_times
+        )
         assert np.allclose(results["history:q"][case], sim["q"], rtol=1e-7, atol=1e-8)
         assert results["final:q"][case] == pytest.approx(sim["q"][-1], rel=1e-7, abs=1e-8)
         assert results["height@1"][case] == pytest.approx(sim["height"][10], rel=1e-7, abs=1e-8)
@@ -120,7 +127,12 @@ def test_failed_cases_carry_their_error_and_the_others_are_exact(load_model: Loa
     assert list(results.ok) == [True, False, True, False]
     assert results.errors[1] is not None and "mass matrix" in results.errors[1].lower()
     assert np.isnan(results.values[1]).all()
-    alone = [study.model.study(autosim.Cases().rows(["m", "q"], rows[k : k + 1]), study.keep, t_end=1.0, h=0.01, method="rk4").run() for k in (0, 2)]
+    alone = [
+        study.model.study(
+            autosim.Cases().rows(["m", "q"], rows[k : k + 1]), study.keep, t_end=1.0, h=0.01, method="rk4"
+        ).run()
+        for k in (0, 2)
+    ]
     assert np.array_equal(results.values[[0, 2]], np.vstack([a.values for a in alone]))
 
 
@@ -165,9 +177,12 @@ def test_dask_local_cluster_gives_the_same_bits(
     study: autosim.Study, rust_results: autosim.StudyResults
 ) -> None:
     distributed = pytest.importorskip("distributed")
-    with distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
-    ) as cluster, distributed.Client(cluster) as client:
+    with (
+        distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+        ) as cluster,
+        distributed.Client(cluster) as client,
+    ):
         assert len(client.nthreads()) == 2
         assert study.run_dask(client, chunk_size=7) == rust_results
         assert study.run_dask(client) == rust_results  # the default chunks
@@ -186,36 +201,44 @@ def test_loopback_scheduler_and_workers_without_a_compiler_get_the_model_from_it
 ) -> None:
     distributed = pytest.importorskip("distributed")
     # The model as a wheel, installed where the workers (and this driver) import it.
-    made = subprocess.run(
-        [sys.executable, "-m", "autosim", "wheel", str(repo / "examples/models/pendulum.sim"), "-o", str(tmp_path / "dist")],
-        capture_output=True,
-        text=True,
-        check=True,
-    )
-    site = tmp_path / "site"
-    subprocess.run(
-        [sys.executable, "-m", "pip", "install", "--quiet", "--no-deps", "--disable-pip-version-check",
-         "--target", str(site), made.stdout.strip()],
-        check=True,
-    )
+    _, site = install_model_wheel(repo / "examples/models/pendulum.sim", tmp_path)
     dask = str(Path(sys.executable).parent / "dask")
     env = dict(os.environ)
-    env.update(PATH=str(tmp_path), HOME=str(tmp_path), PYTHONPATH=str(site), AUTOSIM_CACHE=str(tmp_path / "empty-cache"))
+    env.update(
+        PATH=str(tmp_path),
+        HOME=str(tmp_path),
+        PYTHONPATH=str(site),
+        AUTOSIM_CACHE=str(tmp_path / "empty-cache"),
+    )
     env.pop("CARGO", None)  # no Rust toolchain on the workers
     scheduler_file = tmp_path / "scheduler.json"
     loopback = ["--host", "127.0.0.1", "--no-dashboard"]
     processes = [
         subprocess.Popen(
             [dask, "scheduler", "--port", "0", "--scheduler-file", str(scheduler_file), *loopback],
-            env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+            env=env,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
         )
     ]
     try:
         _wait_for(scheduler_file, "the scheduler")
         processes.append(
             subprocess.Popen(
-                [dask, "worker", "--scheduler-file", str(scheduler_file), "--nworkers", "2", "--nthreads", "1", *loopback],
-                env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                [
+                    dask,
+                    "worker",
+                    "--scheduler-file",
+                    str(scheduler_file),
+                    "--nworkers",
+                    "2",
+                    "--nthreads",
+                    "1",
+                    *loopback,
+                ],
+                env=env,
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
             )
         )
         sys.path.insert(0, str(site))

@@ -183,6 +183,21 @@ impl InputSource for Callable {
 }
 
 impl NativeModel {
+    /// Runs `request` on the study `spec` of copies of this model with the
+    /// GIL released.
+    fn run_study(
+        &self,
+        py: Python<'_>,
+        spec: &Bound<'_, PyDict>,
+        request: study::Request<'_>,
+    ) -> PyResult<Outcome> {
+        let plan = plan(spec)?;
+        let engine = &self.engine;
+        py.detach(|| unpanicked(|| engine.study(&plan, request)))
+            .map_err(|message| simulation_error(py, message))?
+            .map_err(PyValueError::new_err)
+    }
+
     /// `dx/dt` (or the outputs, `outputs = true`) at `(t, x)`.
     fn evaluate<'py>(
         &mut self,
@@ -548,13 +563,7 @@ impl NativeModel {
         start: u64,
         end: u64,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let plan = plan(spec)?;
-        let engine = &self.engine;
-        let done = py
-            .detach(|| unpanicked(|| engine.study(&plan, study::Request::Run(start..end))))
-            .map_err(|message| simulation_error(py, message))?
-            .map_err(PyValueError::new_err)?;
-        match done {
+        match self.run_study(py, spec, study::Request::Run(start..end))? {
             Outcome::Results(results) => results_dict(py, &results),
             Outcome::Summary(_) => Err(PyRuntimeError::new_err("a run gave a summary")),
         }
@@ -570,15 +579,7 @@ impl NativeModel {
         folder: PathBuf,
         shard_size: u64,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let plan = plan(spec)?;
-        let engine = &self.engine;
-        let done = py
-            .detach(|| {
-                unpanicked(|| engine.study(&plan, study::Request::RunIn(&folder, shard_size)))
-            })
-            .map_err(|message| simulation_error(py, message))?
-            .map_err(PyValueError::new_err)?;
-        match done {
+        match self.run_study(py, spec, study::Request::RunIn(&folder, shard_size))? {
             Outcome::Summary(summary) => summary_dict(py, &summary),
             Outcome::Results(_) => Err(PyRuntimeError::new_err("a run in a folder gave results")),
         }

@@ -15,7 +15,7 @@ import math
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, NamedTuple, Optional, Union
+from typing import TYPE_CHECKING, Any, NamedTuple, Union
 
 import numpy as np
 
@@ -161,7 +161,9 @@ class Keep:
     def history(self, quantities: Iterable[str]) -> Keep:
         """Keep the whole time history of ``quantities`` (one value per
         output time)."""
-        return Keep(self.final, self.times, self.statistics, self.histories + tuple(str(q) for q in quantities))
+        return Keep(
+            self.final, self.times, self.statistics, self.histories + tuple(str(q) for q in quantities)
+        )
 
 
 class StudySummary(NamedTuple):
@@ -197,7 +199,7 @@ class StudyResults:
     fields: tuple[tuple[str, int], ...]
     case_values: np.ndarray
     values: np.ndarray
-    errors: tuple[Optional[str], ...]
+    errors: tuple[str | None, ...]
 
     @classmethod
     def _from_native(cls, raw: Mapping[str, Any]) -> StudyResults:
@@ -341,7 +343,7 @@ class Study:
     t_end: float
     t0: float = 0.0
     h: float = 1e-3
-    output_interval: Optional[float] = None
+    output_interval: float | None = None
     method: str = "dopri"
     rtol: float = 1e-9
     atol: float = 1e-12
@@ -350,7 +352,9 @@ class Study:
 
     def __post_init__(self) -> None:
         if self.method not in STUDY_METHODS:
-            raise ValueError(f"a study's method must be one of {', '.join(STUDY_METHODS)}, not {self.method!r}")
+            raise ValueError(
+                f"a study's method must be one of {', '.join(STUDY_METHODS)}, not {self.method!r}"
+            )
         object.__setattr__(self, "model", self.model.copy())
         description, times, columns, fields = self.model._native.study_describe(self._spec(None, False))
         checked = (description, times, tuple(columns), tuple((n, int(k)) for n, k in fields))

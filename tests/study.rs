@@ -303,6 +303,7 @@ fn shards_read_back_equal_the_results_in_memory() {
             (20, 20, 0, 13)
         );
         let on_disk = StudyDir::open(&dir).unwrap();
+        assert_eq!(on_disk.description(), study.describe());
         assert_eq!(on_disk.shard_count(), 4);
         assert!(on_disk.is_complete());
         let read = on_disk.read_all().unwrap();

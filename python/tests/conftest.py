@@ -4,6 +4,8 @@ the Rust test that runs this suite points into ``target/``)."""
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from pathlib import Path
 from typing import Callable
 
@@ -33,3 +35,33 @@ def load_model() -> Callable[..., autosim.Model]:
         return loaded[key].copy()
 
     return load
+
+
+def install_model_wheel(model: Path, folder: Path) -> tuple[Path, Path]:
+    """Builds the wheel of ``model`` with ``python -m autosim wheel`` into
+    ``folder/dist`` and installs it (alone) into ``folder/site``; returns
+    the wheel and the site folder (to put on ``PYTHONPATH``)."""
+    made = subprocess.run(
+        [sys.executable, "-m", "autosim", "wheel", str(model), "-o", str(folder / "dist")],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    wheel = Path(made.stdout.strip())
+    site = folder / "site"
+    subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "install",
+            "--quiet",
+            "--no-deps",
+            "--disable-pip-version-check",
+            "--target",
+            str(site),
+            str(wheel),
+        ],
+        check=True,
+    )
+    return wheel, site

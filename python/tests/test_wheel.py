@@ -10,44 +10,15 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import install_model_wheel
 
 
 def test_a_model_wheel_works_without_cargo_or_cache(repo: Path, tmp_path: Path) -> None:
-    made = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "autosim",
-            "wheel",
-            str(repo / "examples/models/pendulum.sim"),
-            "-o",
-            str(tmp_path / "dist"),
-        ],
-        capture_output=True,
-        text=True,
-        check=True,
-    )
-    wheel = Path(made.stdout.strip())
+    wheel, site = install_model_wheel(repo / "examples/models/pendulum.sim", tmp_path)
     assert (
         wheel.name.startswith("autosim_model_pendulum-0.1.0+")
         and wheel.name.endswith("-cp39-abi3-linux_x86_64.whl")
         or sys.platform != "linux"
-    )
-    site = tmp_path / "site"
-    subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "pip",
-            "install",
-            "--quiet",
-            "--no-deps",
-            "--disable-pip-version-check",
-            "--target",
-            str(site),
-            str(wheel),
-        ],
-        check=True,
     )
     env = dict(os.environ)
     env["PATH"] = str(tmp_path)  # no cargo anywhere

@@ -212,6 +212,13 @@ impl StudyDir {
         &self.layout
     }
 
+    /// The description of the study written there
+    /// ([`Study::describe`]): a program that reads a folder checks it is
+    /// the study it expects.
+    pub fn description(&self) -> &str {
+        &self.description
+    }
+
     /// The number of cases of the study.
     pub fn cases(&self) -> u64 {
         self.cases

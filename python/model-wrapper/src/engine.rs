@@ -6,7 +6,9 @@
 use crate::Generated;
 use crate::inputs::InputSource;
 use crate::simulate::{Request, Trajectory, simulate};
+use crate::study::{self, Outcome, Plan};
 use autosim_runtime::analysis::Trim;
+use autosim_runtime::study::Layout;
 use autosim_runtime::{Model, ModelError, StateArray};
 
 /// Sizes of a model's vectors.
@@ -85,6 +87,12 @@ pub trait Engine: Send + Sync {
         request: &Request,
         inputs: Box<dyn InputSource>,
     ) -> Result<Trajectory, String>;
+    /// Runs a study of copies of this model (its parameters and inputs as
+    /// they are now).
+    fn study(&self, plan: &Plan, request: study::Request<'_>) -> Result<Outcome, String>;
+    /// A study's description, output times and layout (its columns
+    /// checked).
+    fn describe_study(&self, plan: &Plan) -> Result<(String, Vec<f64>, Layout), String>;
 }
 
 /// A generated model as an [`Engine`].
@@ -235,5 +243,13 @@ impl<M: Generated> Engine for Adapter<M> {
         inputs: Box<dyn InputSource>,
     ) -> Result<Trajectory, String> {
         simulate(&self.0, request, inputs)
+    }
+
+    fn study(&self, plan: &Plan, request: study::Request<'_>) -> Result<Outcome, String> {
+        study::run(&self.0, plan, request)
+    }
+
+    fn describe_study(&self, plan: &Plan) -> Result<(String, Vec<f64>, Layout), String> {
+        study::describe(&self.0, plan)
     }
 }

@@ -22,6 +22,8 @@ mod engine;
 mod inputs;
 mod native;
 mod simulate;
+pub mod study;
+mod study_args;
 
 pub use engine::{Adapter, Engine};
 pub use native::NativeModel;

@@ -9,6 +9,8 @@ use crate::Generated;
 use crate::engine::{Adapter, Engine, RowError, Sizes};
 use crate::inputs::{Held, InputSource, Table};
 use crate::simulate::{Request, Trajectory};
+use crate::study::{self, Outcome};
+use crate::study_args::{plan, results_dict, summary_dict};
 use autosim_runtime::ModelError;
 use autosim_runtime::analysis::Trim;
 use numpy::ndarray::Array2;
@@ -19,7 +21,16 @@ use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::borrow::Cow;
+use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
+
+/// A study's description, output times, case columns and fields.
+type Described<'py> = (
+    String,
+    Bound<'py, PyArray1<f64>>,
+    Vec<String>,
+    Vec<(String, usize)>,
+);
 
 /// A trimmed state, the Newton iterations and the final residual.
 type Trimmed<'py> = (Bound<'py, PyArray1<f64>>, usize, f64);
@@ -119,7 +130,7 @@ fn matrix<'a>(
 }
 
 /// `values` as an `n × width` array.
-fn rows<'py>(
+pub(crate) fn rows<'py>(
     py: Python<'py>,
     values: Vec<f64>,
     n: usize,
@@ -172,6 +183,21 @@ impl InputSource for Callable {
 }
 
 impl NativeModel {
+    /// Runs `request` on the study `spec` of copies of this model with the
+    /// GIL released.
+    fn run_study(
+        &self,
+        py: Python<'_>,
+        spec: &Bound<'_, PyDict>,
+        request: study::Request<'_>,
+    ) -> PyResult<Outcome> {
+        let plan = plan(spec)?;
+        let engine = &self.engine;
+        py.detach(|| unpanicked(|| engine.study(&plan, request)))
+            .map_err(|message| simulation_error(py, message))?
+            .map_err(PyValueError::new_err)
+    }
+
     /// `dx/dt` (or the outputs, `outputs = true`) at `(t, x)`.
     fn evaluate<'py>(
         &mut self,
@@ -498,5 +524,74 @@ impl NativeModel {
         out.set_item("rejected_steps", run.rejected_steps)?;
         out.set_item("evaluations", run.evaluations)?;
         Ok(out)
+    }
+
+    /// A study's description, the output times of its runs and its
+    /// layout `(case_columns, [(field, length)])`, from the specification
+    /// dict `autosim.Study` sends; checks every column sets something.
+    fn study_describe<'py>(
+        &self,
+        py: Python<'py>,
+        spec: &Bound<'py, PyDict>,
+    ) -> PyResult<Described<'py>> {
+        let plan = plan(spec)?;
+        let (description, times, layout) = self
+            .engine
+            .describe_study(&plan)
+            .map_err(PyValueError::new_err)?;
+        let fields = layout
+            .fields
+            .iter()
+            .map(|f| (f.name.clone(), f.len))
+            .collect();
+        Ok((
+            description,
+            PyArray1::from_vec(py, times),
+            layout.case_columns,
+            fields,
+        ))
+    }
+
+    /// Runs cases `start..end` of the study `spec` on copies of this model,
+    /// the GIL released; returns the results as a dict of arrays. Failed
+    /// cases carry their error; a study that cannot run raises
+    /// `ValueError`.
+    fn study_run<'py>(
+        &self,
+        py: Python<'py>,
+        spec: &Bound<'py, PyDict>,
+        start: u64,
+        end: u64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        match self.run_study(py, spec, study::Request::Run(start..end))? {
+            Outcome::Results(results) => results_dict(py, &results),
+            Outcome::Summary(_) => Err(PyRuntimeError::new_err("a run gave a summary")),
+        }
+    }
+
+    /// Runs the study `spec` into `folder` (CSV shards of `shard_size`
+    /// cases, resuming a study already there), the GIL released; returns
+    /// the summary as a dict.
+    fn study_run_in<'py>(
+        &self,
+        py: Python<'py>,
+        spec: &Bound<'py, PyDict>,
+        folder: PathBuf,
+        shard_size: u64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        match self.run_study(py, spec, study::Request::RunIn(&folder, shard_size))? {
+            Outcome::Summary(summary) => summary_dict(py, &summary),
+            Outcome::Results(_) => Err(PyRuntimeError::new_err("a run in a folder gave results")),
+        }
+    }
+
+    /// The results of the study in `folder` (every shard) and the
+    /// description in its manifest.
+    #[staticmethod]
+    fn study_read<'py>(py: Python<'py>, folder: PathBuf) -> PyResult<(Bound<'py, PyDict>, String)> {
+        let (results, description) = py
+            .detach(|| study::read(&folder))
+            .map_err(PyValueError::new_err)?;
+        Ok((results_dict(py, &results)?, description))
     }
 }

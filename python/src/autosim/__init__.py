@@ -24,6 +24,7 @@ from ._interface import Constraint, Interface, Quantity
 from ._linear import LinearModel
 from ._model import Model, TrimResult
 from ._simulation import METHODS, Simulation
+from ._study import STUDY_METHODS, Cases, Distribution, Keep, Study, StudyResults, StudySummary, normal, uniform
 from .errors import AutosimError, BuildError, CompileError, SimulationError
 
 __version__ = "0.1.0"
@@ -31,20 +32,29 @@ __version__ = "0.1.0"
 __all__ = [
     "AutosimError",
     "BuildError",
+    "Cases",
     "CompileError",
     "Constraint",
+    "Distribution",
     "Interface",
+    "Keep",
     "LinearModel",
     "METHODS",
+    "STUDY_METHODS",
     "Model",
     "Quantity",
     "Simulation",
     "SimulationError",
+    "Study",
+    "StudyResults",
+    "StudySummary",
     "TrimResult",
     "cache_dir",
     "find_cargo",
     "load",
     "loads",
+    "normal",
+    "uniform",
 ]
 
 

@@ -391,6 +391,17 @@ class Model:
         """
         return simulate(self, t_end, x0, t0, method, rtol, atol, h, t_eval, inputs, max_steps)
 
+    def study(self, cases: Any, keep: Any, t_end: float, **settings: Any) -> Any:
+        """A :class:`autosim.Study` of this model (its parameters and inputs
+        as they are now): ``cases`` (:class:`autosim.Cases`), ``keep``
+        (:class:`autosim.Keep`), ``t_end`` and the settings of
+        :class:`autosim.Study` (``t0``, ``h``, ``output_interval``,
+        ``method``, ``rtol``, ``atol``, ``max_steps``). Run it with
+        :meth:`autosim.Study.run`."""
+        from ._study import Study
+
+        return Study(self, cases, keep, t_end, **settings)
+
     def to_control(self, t: float = 0.0, x: ArrayLike | None = None, u: Any = None) -> Any:
         """The linear model as a python-control ``StateSpace`` (needs the
         ``control`` package)."""

@@ -1,0 +1,266 @@
+"""Studies from Python (autosim.Study): the runtime's study of the model,
+one call with the GIL released, its results as NumPy arrays and pandas;
+failed cases; shards on disk; and the same bits serially, on threads, in
+chunks, through a Dask LocalCluster and through a loopback scheduler with
+worker processes (which get the model from its wheel, with no compiler).
+
+The reference is the same study run in Rust by ``tests/python.rs``
+(serially and on 2 threads) and written to the folder in
+``AUTOSIM_STUDY_REFERENCE`` (``cargo test`` sets it)."""
+
+from __future__ import annotations
+
+import os
+import pickle
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Callable
+
+import autosim
+import numpy as np
+import pytest
+from conftest import install_model_wheel
+
+Load = Callable[..., autosim.Model]
+
+
+def reference_study(model: autosim.Model) -> autosim.Study:
+    """The study `reference_study()` of tests/python.rs builds in Rust."""
+    cases = (
+        autosim.Cases()
+        .grid("torque", [0.0, 0.5])
+        .random(
+            40,
+            2026,
+            m=autosim.uniform(0.5, 2.0),
+            L=autosim.normal(0.7, 0.05),
+            q=autosim.uniform(-1.0, 1.0),
+        )
+    )
+    keep = autosim.Keep().final_state().at([1.0], ["height"]).statistic("height", "max").history(["q"])
+    return model.study(
+        cases, keep, t_end=2.0, h=0.01, output_interval=0.1, method="dopri", rtol=1e-9, atol=1e-12
+    )
+
+
+@pytest.fixture(scope="module")
+def study(load_model: Load) -> autosim.Study:
+    return reference_study(load_model("examples/models/pendulum.sim"))
+
+
+@pytest.fixture(scope="module")
+def rust_results(study: autosim.Study) -> autosim.StudyResults:
+    """The study as Rust ran it (serially; equal to 2 threads there)."""
+    folder = os.environ.get("AUTOSIM_STUDY_REFERENCE")
+    if not folder:
+        pytest.skip("AUTOSIM_STUDY_REFERENCE is not set (cargo test --test python sets it)")
+    return study.read(folder)
+
+
+def test_a_study_from_python_is_the_rust_study_bit_for_bit(
+    study: autosim.Study, rust_results: autosim.StudyResults
+) -> None:
+    assert len(study) == 80
+    assert study.case_columns == ("torque", "m", "L", "q")
+    serial = study.run(threads=1)
+    assert serial == rust_results
+    assert study.run(threads=2) == rust_results
+    assert study.run() == rust_results  # every core
+    chunks = [study.run((a, b), threads=1) for a, b in [(0, 13), (13, 50), (50, 80)]]
+    assert autosim.StudyResults.concat(chunks) == rust_results
+    # Equal bits are not a vacuous check: a different seed differs.
+    other = study.model.study(
+        autosim.Cases()
+        .grid("torque", [0.0, 0.5])
+        .random(
+            40, 2027, m=autosim.uniform(0.5, 2.0), L=autosim.normal(0.7, 0.05), q=autosim.uniform(-1.0, 1.0)
+        ),
+        study.keep,
+        t_end=2.0,
+        h=0.01,
+        output_interval=0.1,
+    )
+    assert other.run() != rust_results
+
+
+def test_results_are_the_model_simulated_case_by_case(study: autosim.Study) -> None:
+    results = study.run()
+    assert results.failures == 0 and results.ok.all()
+    assert results.case_values.shape == (80, 4)
+    assert results["history:q"].shape == (80, 21)
+    assert np.allclose(study.output_times, np.arange(21) * 0.1, rtol=0, atol=1e-14)
+    model = study.model.copy()
+    for case in (0, 41, 79):
+        torque, m, length, q = results.case_values[case]
+        model.parameters.set(m=m, L=length)
+        model.inputs["torque"] = torque
+        sim = model.simulate(
+            2.0, model.state(q=q), method="dopri", rtol=1e-9, atol=1e-12, h=0.01, t_eval=study.output_times
+        )
+        assert np.allclose(results["history:q"][case], sim["q"], rtol=1e-7, atol=1e-8)
+        assert results["final:q"][case] == pytest.approx(sim["q"][-1], rel=1e-7, abs=1e-8)
+        assert results["height@1"][case] == pytest.approx(sim["height"][10], rel=1e-7, abs=1e-8)
+        assert results["max:height"][case] == pytest.approx(sim["height"].max(), rel=1e-7, abs=1e-8)
+        assert results["torque"][case] == torque
+
+
+def test_pandas_table(study: autosim.Study) -> None:
+    pd = pytest.importorskip("pandas")
+    frame = study.run((10, 20)).to_pandas()
+    assert isinstance(frame, pd.DataFrame)
+    assert list(frame.index) == list(range(10, 20)) and frame.index.name == "case"
+    assert list(frame.columns[:7]) == ["torque", "m", "L", "q", "final:q", "final:u", "height@1"]
+    assert "history:q[20]" in frame.columns and frame["ok"].all()
+    assert frame["error"].isna().all()
+
+
+def test_failed_cases_carry_their_error_and_the_others_are_exact(load_model: Load) -> None:
+    model = load_model("examples/models/pendulum.sim")
+    rows = np.array([[1.0, 0.5], [0.0, 0.5], [2.0, -0.3], [0.0, 1.0]])  # m = 0: a singular mass matrix
+    study = model.study(
+        autosim.Cases().rows(["m", "q"], rows), autosim.Keep().final_state(), t_end=1.0, h=0.01, method="rk4"
+    )
+    results = study.run()
+    assert results.failures == 2
+    assert list(results.ok) == [True, False, True, False]
+    assert results.errors[1] is not None and "mass matrix" in results.errors[1].lower()
+    assert np.isnan(results.values[1]).all()
+    alone = [
+        study.model.study(
+            autosim.Cases().rows(["m", "q"], rows[k : k + 1]), study.keep, t_end=1.0, h=0.01, method="rk4"
+        ).run()
+        for k in (0, 2)
+    ]
+    assert np.array_equal(results.values[[0, 2]], np.vstack([a.values for a in alone]))
+
+
+def test_mistakes_are_value_errors_naming_the_thing(load_model: Load) -> None:
+    model = load_model("examples/models/pendulum.sim")
+    keep = autosim.Keep().final_state()
+    with pytest.raises(ValueError, match="column `mass`"):
+        model.study(autosim.Cases().grid("mass", [1.0]), keep, t_end=1.0)
+    with pytest.raises(ValueError, match="`speed` is not a state or output"):
+        model.study(autosim.Cases(), autosim.Keep().history(["speed"]), t_end=1.0)
+    with pytest.raises(ValueError, match="not an output time"):
+        model.study(autosim.Cases(), autosim.Keep().at([0.3], ["q"]), t_end=1.0, output_interval=0.25)
+    with pytest.raises(ValueError, match="given twice"):
+        model.study(autosim.Cases().grid("m", [1.0]).grid("m", [2.0]), keep, t_end=1.0)
+    with pytest.raises(ValueError, match="sdirk3"):
+        model.study(autosim.Cases(), keep, t_end=1.0, method="sdirk3")
+    with pytest.raises(ValueError, match="not all in the table"):
+        model.study(autosim.Cases().grid("m", [1.0, 2.0]), keep, t_end=1.0).run((1, 3))
+
+
+def test_shards_on_disk_resume_and_read_back(study: autosim.Study, tmp_path: Path) -> None:
+    folder = tmp_path / "study"
+    summary = study.run_in(folder, shard_size=16)
+    assert (summary.cases, summary.ran, summary.skipped, summary.failed) == (80, 80, 0, 0)
+    assert sorted(p.name for p in folder.glob("part-*.csv")) == [f"part-{k:06}.csv" for k in range(5)]
+    (folder / "part-000003.csv").unlink()  # lost in a crash
+    again = study.run_in(folder, shard_size=16)
+    assert (again.ran, again.skipped) == (16, 64)
+    assert study.read(folder) == study.run()
+    other = study.model.study(study.cases, autosim.Keep().final_state(), t_end=2.0)
+    with pytest.raises(ValueError, match="different study"):
+        other.read(folder)
+
+
+def test_a_study_pickles_as_its_recipe(study: autosim.Study) -> None:
+    again = pickle.loads(pickle.dumps(study))
+    assert again.describe() == study.describe()
+    assert again.run((0, 10)) == study.run((0, 10))
+
+
+def test_dask_local_cluster_gives_the_same_bits(
+    study: autosim.Study, rust_results: autosim.StudyResults
+) -> None:
+    distributed = pytest.importorskip("distributed")
+    with (
+        distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+        ) as cluster,
+        distributed.Client(cluster) as client,
+    ):
+        assert len(client.nthreads()) == 2
+        assert study.run_dask(client, chunk_size=7) == rust_results
+        assert study.run_dask(client) == rust_results  # the default chunks
+
+
+def _wait_for(path: Path, what: str, seconds: float = 60.0) -> None:
+    deadline = time.monotonic() + seconds
+    while not path.exists():
+        if time.monotonic() > deadline:
+            raise TimeoutError(f"{what} did not start within {seconds} s")
+        time.sleep(0.2)
+
+
+def test_loopback_scheduler_and_workers_without_a_compiler_get_the_model_from_its_wheel(
+    repo: Path, tmp_path: Path, study: autosim.Study, rust_results: autosim.StudyResults
+) -> None:
+    distributed = pytest.importorskip("distributed")
+    # The model as a wheel, installed where the workers (and this driver) import it.
+    _, site = install_model_wheel(repo / "examples/models/pendulum.sim", tmp_path)
+    dask = str(Path(sys.executable).parent / "dask")
+    env = dict(os.environ)
+    env.update(
+        PATH=str(tmp_path),
+        HOME=str(tmp_path),
+        PYTHONPATH=str(site),
+        AUTOSIM_CACHE=str(tmp_path / "empty-cache"),
+    )
+    env.pop("CARGO", None)  # no Rust toolchain on the workers
+    scheduler_file = tmp_path / "scheduler.json"
+    loopback = ["--host", "127.0.0.1", "--no-dashboard"]
+    processes = [
+        subprocess.Popen(
+            [dask, "scheduler", "--port", "0", "--scheduler-file", str(scheduler_file), *loopback],
+            env=env,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+    ]
+    try:
+        _wait_for(scheduler_file, "the scheduler")
+        processes.append(
+            subprocess.Popen(
+                [
+                    dask,
+                    "worker",
+                    "--scheduler-file",
+                    str(scheduler_file),
+                    "--nworkers",
+                    "2",
+                    "--nthreads",
+                    "1",
+                    *loopback,
+                ],
+                env=env,
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )
+        )
+        sys.path.insert(0, str(site))
+        try:
+            import autosim_model_pendulum
+
+            from_wheel = autosim_model_pendulum.load()
+        finally:
+            sys.path.remove(str(site))
+        wheel_study = reference_study(from_wheel)
+        assert wheel_study.describe() == study.describe()
+        with distributed.Client(scheduler_file=str(scheduler_file), timeout=60) as client:
+            client.wait_for_workers(2, timeout=60)
+            addresses = list(client.scheduler_info()["workers"])
+            assert len(addresses) == 2 and all(a.startswith("tcp://127.0.0.1:") for a in addresses)
+            assert wheel_study.run_dask(client, chunk_size=9) == rust_results
+        assert not (tmp_path / "empty-cache").exists(), "the workers built nothing"
+    finally:
+        for p in reversed(processes):
+            p.terminate()
+        for p in processes:
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                p.kill()

@@ -186,8 +186,8 @@ impl<M: Thrusted> Model for EventSlew<M> {
         let modes = self.model.modes_mut();
         let k = index / 3;
         match index % 3 {
-            0 | 1 => {
-                let fire = if index % 3 == 0 { 1.0 } else { -1.0 };
+            kind @ (0 | 1) => {
+                let fire = if kind == 0 { 1.0 } else { -1.0 };
                 if modes.fire[k] != fire {
                     modes.toff[k] = t + Figure8::TMIN;
                 }

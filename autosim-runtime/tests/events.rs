@@ -572,3 +572,73 @@ fn a_thermostat_with_a_dead_band_switches_at_the_analytic_times() {
         );
     }
 }
+
+/// A pendulum, linearized (θ'' = −ω²θ), with an end stop at θ = −s that
+/// reverses its rate with restitution e: event `stop` (θ + s falling),
+/// action θ' := −e·θ'.
+struct EndStop {
+    omega: f64,
+    s: f64,
+    e: f64,
+}
+
+impl Model for EndStop {
+    autosim_test_support::model_header!(f64, "EndStop", states: ["theta" in "rad", "rate" in "rad/s"], outputs: 0);
+    const EVENT_INDICATORS: &'static [EventIndicator] = &[EventIndicator {
+        name: "stop",
+        direction: Direction::Falling,
+    }];
+    fn derivatives(&mut self, _t: f64, x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
+        dx[0] = x[1];
+        dx[1] = -self.omega * self.omega * x[0];
+        Ok(())
+    }
+    fn event_indicators(&mut self, _t: f64, x: &[f64; 2], g: &mut [f64]) -> Result<(), ModelError> {
+        g[0] = x[0] + self.s;
+        Ok(())
+    }
+    fn event(
+        &mut self,
+        _index: usize,
+        _t: f64,
+        x: &mut [f64; 2],
+    ) -> Result<EventOutcome, ModelError> {
+        x[1] *= -self.e;
+        Ok(EventOutcome::Continue)
+    }
+    fn initial_state(&self) -> [f64; 2] {
+        [1.0, 0.0]
+    }
+}
+
+#[test]
+fn a_pendulum_against_an_end_stop_strikes_at_the_analytic_times() {
+    // Released at θ = 1 from rest: the first strike where cos ωt = −s, at
+    // rate ω√(1 − s²). After a strike at rate v (reversed: e·v, away from
+    // the stop) θ = −s cos ωτ + (v/ω) sin ωτ returns to −s after
+    // τ = 2·atan2(v/ω, −s)/ω, at rate −v.
+    let (omega, s, e): (f64, f64, f64) = (2.0 * std::f64::consts::PI, 0.2, 0.7);
+    let mut t = (-s).acos() / omega;
+    let mut v = omega * (1.0 - s * s).sqrt();
+    let mut exact = Vec::new();
+    for _ in 0..10 {
+        exact.push((t, v));
+        v *= e;
+        t += 2.0 * (v / omega).atan2(-s) / omega;
+    }
+    let mut model = EndStop { omega, s, e };
+    let mut dopri = DormandPrince::new(DopriSettings::new(1e-12, 1e-12)).unwrap();
+    let settings = RunSettings::new(0.0, exact[9].0 + 0.1, 1e-3, 0.1);
+    let (result, recording) = record(&mut model, &mut dopri, &settings);
+    result.unwrap();
+    let strikes = recording.events();
+    assert_eq!(strikes.len(), 10);
+    let mut worst: f64 = 0.0;
+    for (strike, (t, v)) in strikes.iter().zip(&exact) {
+        worst = worst
+            .max((strike.t - t).abs())
+            .max((strike.before[1] + v).abs());
+    }
+    println!("end stop, Dormand-Prince 1e-12: 10 strike times and rates within {worst:.1e}");
+    assert!(worst < 1e-9, "{worst:e}");
+}

@@ -278,6 +278,11 @@ impl<M: Model> Driver<M> {
             while self.fixed_steps < last {
                 let next = self.start + M::Float::from_f64((self.fixed_steps + 1) as f64) * step;
                 let grid = self.start + M::Float::from_f64(self.fixed_steps as f64) * step;
+                if self.t >= next {
+                    // An event at the very end of the step: it is done.
+                    self.fixed_steps += 1;
+                    continue;
+                }
                 let h = if self.t == grid { step } else { next - self.t };
                 match self.step(model, stepper, x, h, next, observer)? {
                     None => self.fixed_steps += 1,

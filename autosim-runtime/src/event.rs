@@ -65,6 +65,32 @@ pub struct EventIndicator {
     pub direction: Direction,
 }
 
+impl EventIndicator {
+    /// An event when the indicator rises from negative to positive.
+    pub const fn rising(name: &'static str) -> Self {
+        Self {
+            name,
+            direction: Direction::Rising,
+        }
+    }
+
+    /// An event when the indicator falls from positive to negative.
+    pub const fn falling(name: &'static str) -> Self {
+        Self {
+            name,
+            direction: Direction::Falling,
+        }
+    }
+
+    /// An event when the indicator changes sign either way.
+    pub const fn either(name: &'static str) -> Self {
+        Self {
+            name,
+            direction: Direction::Either,
+        }
+    }
+}
+
 /// What the run does after an event's action.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum EventOutcome {

@@ -6,9 +6,7 @@
 
 use autosim_runtime::integrate::{DopriSettings, DormandPrince, Rk4};
 use autosim_runtime::io::Recording;
-use autosim_runtime::{
-    Direction, EventIndicator, EventOutcome, Model, ModelError, RunSettings, Stepper, run,
-};
+use autosim_runtime::{EventIndicator, EventOutcome, Model, ModelError, RunSettings, Stepper, run};
 use autosim_test_support::{floats, load};
 use serde_json::Value;
 
@@ -47,7 +45,7 @@ impl QuarterCar {
     }
 
     /// Compression beyond the bump stop's gap.
-    fn into_stop(&self, x: &[f64; 4]) -> f64 {
+    fn past_the_gap(&self, x: &[f64; 4]) -> f64 {
         self.ls - (x[1] - x[0]) - self.gap
     }
 }
@@ -55,21 +53,15 @@ impl QuarterCar {
 impl Model for QuarterCar {
     autosim_test_support::model_header!(f64, "QuarterCarBumpStop", states: ["zu" in "m", "zs" in "m", "vu" in "m/s", "vs" in "m/s"], outputs: 0);
     const EVENT_INDICATORS: &'static [EventIndicator] = &[
-        EventIndicator {
-            name: "bump",
-            direction: Direction::Rising,
-        },
-        EventIndicator {
-            name: "rebound",
-            direction: Direction::Falling,
-        },
+        EventIndicator::rising("bump"),
+        EventIndicator::falling("rebound"),
     ];
     const DISCRETE_NAMES: &'static [&'static str] = &["contact"];
     const DISCRETE_UNITS: &'static [&'static str] = &["1"];
 
     fn derivatives(&mut self, _t: f64, x: &[f64; 4], dx: &mut [f64; 4]) -> Result<(), ModelError> {
         let [zu, zs, vu, vs] = *x;
-        let stop = self.contact * self.kb * self.into_stop(x);
+        let stop = self.contact * self.kb * self.past_the_gap(x);
         let suspension = self.ks * (self.ls - (zs - zu)) - self.cs * (vs - vu) + stop;
         dx[0] = vu;
         dx[1] = vs;
@@ -78,7 +70,7 @@ impl Model for QuarterCar {
         Ok(())
     }
     fn event_indicators(&mut self, _t: f64, x: &[f64; 4], g: &mut [f64]) -> Result<(), ModelError> {
-        let c = self.into_stop(x);
+        let c = self.past_the_gap(x);
         g[0] = c;
         g[1] = c;
         Ok(())

@@ -11,105 +11,10 @@ use autosim_runtime::integrate::{
 };
 use autosim_runtime::io::{CsvWriter, Recording};
 use autosim_runtime::{
-    Direction, EventIndicator, EventOutcome, EventSettings, IntegrationError, Model, ModelError,
-    RunError, RunSettings, Stepper, run,
+    EventIndicator, EventOutcome, EventSettings, IntegrationError, Model, ModelError, RunError,
+    RunSettings, Stepper, run, run_at, run_sampled,
 };
-use common::Oscillator;
-
-/// A ball dropped from `h0` onto the floor at h = 0: h'' = -g, and at
-/// every impact (h falling through 0) v := -e·v. The event `apex` (v
-/// falling through 0, no action) marks the tops. Below `min_speed` the
-/// ball comes to rest: the discrete variable `resting` becomes 1 and
-/// freezes the motion (the documented fix for Zeno).
-#[derive(Clone, Debug)]
-struct Ball {
-    g: f64,
-    e: f64,
-    min_speed: f64,
-    resting: f64,
-}
-
-impl Ball {
-    fn new(e: f64, min_speed: f64) -> Self {
-        Self {
-            g: 9.81,
-            e,
-            min_speed,
-            resting: 0.0,
-        }
-    }
-
-    /// The analytic n-th bounce (n = 1, 2, ...) from rest at `H0`: its time
-    /// and the apex height after it.
-    fn exact_bounce(&self, n: u32) -> (f64, f64) {
-        let t1 = (2.0 * H0 / self.g).sqrt();
-        let v1 = self.g * t1;
-        // t_n = t1 + Σ_{i=1}^{n-1} 2 eⁱ v1 / g; apex after bounce n: e^{2n} H0.
-        let t = t1
-            + (1..n)
-                .map(|i| 2.0 * self.e.powi(i as i32) * v1 / self.g)
-                .sum::<f64>();
-        (t, self.e.powi(2 * n as i32) * H0)
-    }
-}
-
-const H0: f64 = 1.0;
-
-impl Model for Ball {
-    autosim_test_support::model_header!(f64, "Ball", states: ["h" in "m", "v" in "m/s"], outputs: ["energy" in "J/kg"]);
-    const EVENT_INDICATORS: &'static [EventIndicator] = &[
-        EventIndicator {
-            name: "bounce",
-            direction: Direction::Falling,
-        },
-        EventIndicator {
-            name: "apex",
-            direction: Direction::Falling,
-        },
-    ];
-    const DISCRETE_NAMES: &'static [&'static str] = &["resting"];
-    const DISCRETE_UNITS: &'static [&'static str] = &["1"];
-
-    fn derivatives(&mut self, _t: f64, x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
-        let moving = 1.0 - self.resting;
-        dx[0] = moving * x[1];
-        dx[1] = -moving * self.g;
-        Ok(())
-    }
-    fn outputs(&mut self, _t: f64, x: &[f64; 2], y: &mut [f64; 1]) -> Result<(), ModelError> {
-        y[0] = 0.5 * x[1] * x[1] + self.g * x[0];
-        Ok(())
-    }
-    fn event_indicators(&mut self, _t: f64, x: &[f64; 2], g: &mut [f64]) -> Result<(), ModelError> {
-        g[0] = x[0];
-        g[1] = x[1];
-        Ok(())
-    }
-    fn event(
-        &mut self,
-        index: usize,
-        _t: f64,
-        x: &mut [f64; 2],
-    ) -> Result<EventOutcome, ModelError> {
-        if index == 0 {
-            x[1] *= -self.e;
-            if x[1].abs() < self.min_speed {
-                self.resting = 1.0;
-                x[1] = 0.0;
-            }
-        }
-        Ok(EventOutcome::Continue)
-    }
-    fn discrete_values(&self, values: &mut [f64]) {
-        values[0] = self.resting;
-    }
-    fn set_discrete_values(&mut self, values: &[f64]) {
-        self.resting = values[0];
-    }
-    fn initial_state(&self) -> [f64; 2] {
-        [H0, 0.0]
-    }
-}
+use common::{Ball, Oscillator};
 
 /// Runs `model` from its initial state over `[0, stop]` keeping everything.
 fn record<M: Model<Float = f64>, S: Stepper<M> + ?Sized>(
@@ -201,10 +106,7 @@ struct NearPeak(Oscillator);
 
 impl Model for NearPeak {
     autosim_test_support::model_header!(f64, "NearPeak", states: ["x" in "m", "v" in "m/s"], outputs: 0);
-    const EVENT_INDICATORS: &'static [EventIndicator] = &[EventIndicator {
-        name: "near_peak",
-        direction: Direction::Rising,
-    }];
+    const EVENT_INDICATORS: &'static [EventIndicator] = &[EventIndicator::rising("near_peak")];
     fn derivatives(&mut self, t: f64, x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
         self.0.derivatives(t, x, dx)
     }
@@ -310,18 +212,9 @@ struct Clock;
 impl Model for Clock {
     autosim_test_support::model_header!(f64, "Clock", states: ["x" in "s", "count" in "1"], outputs: 0);
     const EVENT_INDICATORS: &'static [EventIndicator] = &[
-        EventIndicator {
-            name: "late",
-            direction: Direction::Rising,
-        },
-        EventIndicator {
-            name: "early",
-            direction: Direction::Either,
-        },
-        EventIndicator {
-            name: "end",
-            direction: Direction::Rising,
-        },
+        EventIndicator::rising("late"),
+        EventIndicator::either("early"),
+        EventIndicator::rising("end"),
     ];
     fn derivatives(&mut self, _t: f64, _x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
         dx[0] = 1.0;
@@ -506,14 +399,8 @@ const HIGH: f64 = 21.0;
 impl Model for Thermostat {
     autosim_test_support::model_header!(f64, "Thermostat", states: ["T" in "degC"], outputs: 0);
     const EVENT_INDICATORS: &'static [EventIndicator] = &[
-        EventIndicator {
-            name: "heater_on",
-            direction: Direction::Falling,
-        },
-        EventIndicator {
-            name: "heater_off",
-            direction: Direction::Rising,
-        },
+        EventIndicator::falling("heater_on"),
+        EventIndicator::rising("heater_off"),
     ];
     const DISCRETE_NAMES: &'static [&'static str] = &["on"];
     const DISCRETE_UNITS: &'static [&'static str] = &["1"];
@@ -584,10 +471,7 @@ struct EndStop {
 
 impl Model for EndStop {
     autosim_test_support::model_header!(f64, "EndStop", states: ["theta" in "rad", "rate" in "rad/s"], outputs: 0);
-    const EVENT_INDICATORS: &'static [EventIndicator] = &[EventIndicator {
-        name: "stop",
-        direction: Direction::Falling,
-    }];
+    const EVENT_INDICATORS: &'static [EventIndicator] = &[EventIndicator::falling("stop")];
     fn derivatives(&mut self, _t: f64, x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
         dx[0] = x[1];
         dx[1] = -self.omega * self.omega * x[0];
@@ -641,4 +525,178 @@ fn a_pendulum_against_an_end_stop_strikes_at_the_analytic_times() {
     }
     println!("end stop, Dormand-Prince 1e-12: 10 strike times and rates within {worst:.1e}");
     assert!(worst < 1e-9, "{worst:e}");
+}
+
+/// A held input `level` (set by a sampled controller) and the event
+/// `threshold` when it rises through 0.5, which stops the run.
+#[derive(Default)]
+struct Level {
+    level: f64,
+}
+
+impl Model for Level {
+    autosim_test_support::model_header!(f64, "Level", states: ["x" in "1"], outputs: 0);
+    const INPUT_NAMES: &'static [&'static str] = &["level"];
+    const INPUT_UNITS: &'static [&'static str] = &["1"];
+    const EVENT_INDICATORS: &'static [EventIndicator] = &[EventIndicator::rising("threshold")];
+    fn derivatives(&mut self, _t: f64, _x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
+        dx[0] = self.level;
+        Ok(())
+    }
+    fn event_indicators(
+        &mut self,
+        _t: f64,
+        _x: &[f64; 1],
+        g: &mut [f64],
+    ) -> Result<(), ModelError> {
+        g[0] = self.level - 0.5;
+        Ok(())
+    }
+    fn event(
+        &mut self,
+        _index: usize,
+        _t: f64,
+        _x: &mut [f64; 1],
+    ) -> Result<EventOutcome, ModelError> {
+        Ok(EventOutcome::Stop)
+    }
+    fn input_values(&self, values: &mut [f64]) {
+        values[0] = self.level;
+    }
+    fn set_input_values(&mut self, values: &[f64]) {
+        self.level = values[0];
+    }
+}
+
+#[test]
+fn an_input_set_by_a_sampled_controller_fires_its_event_at_the_sample() {
+    // The controller raises the level by 0.2 at every sample (0, 0.3,
+    // 0.6, ...): it passes 0.5 at the sample t = 0.6 (0.4 → 0.6), where the
+    // terminal event stops the run; x integrates the held levels 0.2, 0.4
+    // over 0.3 s each.
+    let mut model = Level::default();
+    let mut x = [0.0];
+    let settings = RunSettings::new(0.0, 5.0, 0.1, 1.0);
+    let mut recording = Recording::new();
+    let mut controller = |_t: f64, _x: &[f64; 1], _y: &[f64; 0], inputs: &mut [f64]| {
+        inputs[0] += 0.2;
+    };
+    let summary = run_sampled(
+        &mut model,
+        &mut Rk4::new(),
+        &mut x,
+        &settings,
+        0.3,
+        &mut controller,
+        &mut recording,
+    )
+    .unwrap();
+    assert_eq!(summary.terminal_event, Some(0));
+    assert!((summary.end_time - 0.6).abs() < 1e-12, "{summary:?}");
+    assert_eq!(recording.events().len(), 1);
+    assert!((recording.events()[0].t - 0.6).abs() < 1e-12);
+    assert!((x[0] - 0.18).abs() < 1e-12, "{x:?}");
+    assert!((recording.time().last().unwrap() - 0.6).abs() < 1e-12);
+}
+
+#[test]
+fn run_at_stops_at_a_terminal_event_with_an_output_there() {
+    let settings = RunSettings::new(0.0, 5.0, 0.25, 1.0);
+    let mut recording = Recording::new();
+    let mut x = Clock.initial_state();
+    let times = [0.0, 1.0, 2.0, 3.0, 4.0];
+    let summary = run_at(
+        &mut Clock,
+        &mut Rk4::new(),
+        &mut x,
+        &settings,
+        &times,
+        &mut recording,
+    )
+    .unwrap();
+    assert_eq!(summary.terminal_event, Some(2));
+    let outputs: Vec<f64> = recording.time().to_vec();
+    // 0, 1, 2 as asked, the rows of the three events, and 2.5 at the end.
+    assert!((outputs.last().unwrap() - 2.5).abs() < 1e-12, "{outputs:?}");
+    assert_eq!(summary.outputs, 4, "{outputs:?}");
+    assert_eq!(x[1], 20.0);
+}
+
+/// The bouncing ball in `f32`.
+struct BallF32 {
+    e: f32,
+}
+
+impl Model for BallF32 {
+    autosim_test_support::model_header!(f32, "BallF32", states: ["h" in "m", "v" in "m/s"], outputs: 0);
+    const EVENT_INDICATORS: &'static [EventIndicator] = Ball::EVENT_INDICATORS;
+    fn derivatives(&mut self, _t: f32, x: &[f32; 2], dx: &mut [f32; 2]) -> Result<(), ModelError> {
+        dx[0] = x[1];
+        dx[1] = -9.81;
+        Ok(())
+    }
+    fn event_indicators(&mut self, _t: f32, x: &[f32; 2], g: &mut [f32]) -> Result<(), ModelError> {
+        g[0] = x[0];
+        g[1] = x[1];
+        Ok(())
+    }
+    fn event(
+        &mut self,
+        index: usize,
+        _t: f32,
+        x: &mut [f32; 2],
+    ) -> Result<EventOutcome, ModelError> {
+        if index == 0 {
+            x[1] *= -self.e;
+        }
+        Ok(EventOutcome::Continue)
+    }
+    fn initial_state(&self) -> [f32; 2] {
+        [1.0, 0.0]
+    }
+}
+
+#[test]
+fn events_of_an_f32_model_are_located_to_f32_precision() {
+    let exact = Ball::new(0.8, 0.0);
+    let mut model = BallF32 { e: 0.8 };
+    let mut x = model.initial_state();
+    let settings = RunSettings::new(0.0f32, 3.8, 0.01, 0.1);
+    let mut bounces = Vec::new();
+    let mut observer = BounceTimes(&mut bounces);
+    run(
+        &mut model,
+        &mut Rk4::new(),
+        &mut x,
+        &settings,
+        &mut observer,
+    )
+    .unwrap();
+    assert!(bounces.len() >= 10, "{bounces:?}");
+    for (n, t) in (1..=10).zip(&bounces) {
+        let (exact_t, _) = exact.exact_bounce(n);
+        assert!(
+            (f64::from(*t) - exact_t).abs() < 2e-5,
+            "bounce {n}: {t} against {exact_t}"
+        );
+    }
+}
+
+/// Keeps the times of the `bounce` events.
+struct BounceTimes<'a>(&'a mut Vec<f32>);
+
+impl autosim_runtime::Observer<BallF32> for BounceTimes<'_> {
+    type Error = std::convert::Infallible;
+    fn observe(&mut self, _t: f32, _x: &[f32; 2], _y: &[f32; 0]) -> Result<(), Self::Error> {
+        Ok(())
+    }
+    fn observe_event(
+        &mut self,
+        event: &autosim_runtime::EventRecord<'_, BallF32>,
+    ) -> Result<(), Self::Error> {
+        if event.name == "bounce" {
+            self.0.push(event.t);
+        }
+        Ok(())
+    }
 }

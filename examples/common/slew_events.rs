@@ -26,7 +26,7 @@
 //! off inside it only after TMIN), the modes `fire_k` and `toff_k` are the
 //! model's discrete variables (saved with the state, in the CSV).
 
-use autosim::runtime::{Direction, EventIndicator, EventOutcome, Model, ModelError};
+use autosim::runtime::{EventIndicator, EventOutcome, Model, ModelError};
 
 use crate::figure8::Figure8;
 
@@ -81,25 +81,17 @@ pub trait Thrusted: Model<Float = f64, State = [f64; 20]> {
     fn modes_mut(&mut self) -> &mut Modes;
 }
 
-/// An event on a rising indicator.
-const fn rising(name: &'static str) -> EventIndicator {
-    EventIndicator {
-        name,
-        direction: Direction::Rising,
-    }
-}
-
 /// The nine events, three per axis.
 const EVENTS: [EventIndicator; 9] = [
-    rising("fire_plus_1"),
-    rising("fire_minus_1"),
-    rising("coast_1"),
-    rising("fire_plus_2"),
-    rising("fire_minus_2"),
-    rising("coast_2"),
-    rising("fire_plus_3"),
-    rising("fire_minus_3"),
-    rising("coast_3"),
+    EventIndicator::rising("fire_plus_1"),
+    EventIndicator::rising("fire_minus_1"),
+    EventIndicator::rising("coast_1"),
+    EventIndicator::rising("fire_plus_2"),
+    EventIndicator::rising("fire_minus_2"),
+    EventIndicator::rising("coast_2"),
+    EventIndicator::rising("fire_plus_3"),
+    EventIndicator::rising("fire_minus_3"),
+    EventIndicator::rising("coast_3"),
 ];
 
 /// The satellite with its thrusters switched by events.

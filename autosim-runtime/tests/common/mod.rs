@@ -3,7 +3,10 @@
 
 use std::convert::Infallible;
 
-use autosim_runtime::{Model, ModelError, RunError, RunSettings, RunSummary, Stepper, run};
+use autosim_runtime::{
+    EventIndicator, EventOutcome, Model, ModelError, RunError, RunSettings, RunSummary, Stepper,
+    run,
+};
 
 /// x'' = -ω²x as [x, v]; with x(0) = 1, v(0) = 0: x = cos ωt, v = -ω sin ωt.
 #[derive(Clone, Debug)]
@@ -178,6 +181,96 @@ impl Model for BlowUp {
     }
     fn initial_state(&self) -> [f64; 1] {
         [1.0]
+    }
+}
+
+/// A ball dropped from `h0` onto the floor at h = 0: h'' = -g, and at
+/// every impact (h falling through 0) v := -e·v. The event `apex` (v
+/// falling through 0, no action) marks the tops. Below `min_speed` the
+/// ball comes to rest: the discrete variable `resting` becomes 1 and
+/// freezes the motion (the documented fix for Zeno).
+#[derive(Clone, Debug)]
+pub struct Ball {
+    pub g: f64,
+    pub e: f64,
+    pub min_speed: f64,
+    pub resting: f64,
+}
+
+impl Ball {
+    pub fn new(e: f64, min_speed: f64) -> Self {
+        Self {
+            g: 9.81,
+            e,
+            min_speed,
+            resting: 0.0,
+        }
+    }
+
+    /// The analytic n-th bounce (n = 1, 2, ...) from rest at `H0`: its time
+    /// and the apex height after it.
+    pub fn exact_bounce(&self, n: u32) -> (f64, f64) {
+        let t1 = (2.0 * H0 / self.g).sqrt();
+        let v1 = self.g * t1;
+        // t_n = t1 + Σ_{i=1}^{n-1} 2 eⁱ v1 / g; apex after bounce n: e^{2n} H0.
+        let t = t1
+            + (1..n)
+                .map(|i| 2.0 * self.e.powi(i as i32) * v1 / self.g)
+                .sum::<f64>();
+        (t, self.e.powi(2 * n as i32) * H0)
+    }
+}
+
+/// The ball's drop height (m).
+pub const H0: f64 = 1.0;
+
+impl Model for Ball {
+    autosim_test_support::model_header!(f64, "Ball", states: ["h" in "m", "v" in "m/s"], outputs: ["energy" in "J/kg"]);
+    const EVENT_INDICATORS: &'static [EventIndicator] = &[
+        EventIndicator::falling("bounce"),
+        EventIndicator::falling("apex"),
+    ];
+    const DISCRETE_NAMES: &'static [&'static str] = &["resting"];
+    const DISCRETE_UNITS: &'static [&'static str] = &["1"];
+
+    fn derivatives(&mut self, _t: f64, x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
+        let moving = 1.0 - self.resting;
+        dx[0] = moving * x[1];
+        dx[1] = -moving * self.g;
+        Ok(())
+    }
+    fn outputs(&mut self, _t: f64, x: &[f64; 2], y: &mut [f64; 1]) -> Result<(), ModelError> {
+        y[0] = 0.5 * x[1] * x[1] + self.g * x[0];
+        Ok(())
+    }
+    fn event_indicators(&mut self, _t: f64, x: &[f64; 2], g: &mut [f64]) -> Result<(), ModelError> {
+        g[0] = x[0];
+        g[1] = x[1];
+        Ok(())
+    }
+    fn event(
+        &mut self,
+        index: usize,
+        _t: f64,
+        x: &mut [f64; 2],
+    ) -> Result<EventOutcome, ModelError> {
+        if index == 0 {
+            x[1] *= -self.e;
+            if x[1].abs() < self.min_speed {
+                self.resting = 1.0;
+                x[1] = 0.0;
+            }
+        }
+        Ok(EventOutcome::Continue)
+    }
+    fn discrete_values(&self, values: &mut [f64]) {
+        values[0] = self.resting;
+    }
+    fn set_discrete_values(&mut self, values: &[f64]) {
+        self.resting = values[0];
+    }
+    fn initial_state(&self) -> [f64; 2] {
+        [H0, 0.0]
     }
 }
 

@@ -622,44 +622,10 @@ fn run_at_stops_at_a_terminal_event_with_an_output_there() {
     assert_eq!(x[1], 20.0);
 }
 
-/// The bouncing ball in `f32`.
-struct BallF32 {
-    e: f32,
-}
-
-impl Model for BallF32 {
-    autosim_test_support::model_header!(f32, "BallF32", states: ["h" in "m", "v" in "m/s"], outputs: 0);
-    const EVENT_INDICATORS: &'static [EventIndicator] = Ball::EVENT_INDICATORS;
-    fn derivatives(&mut self, _t: f32, x: &[f32; 2], dx: &mut [f32; 2]) -> Result<(), ModelError> {
-        dx[0] = x[1];
-        dx[1] = -9.81;
-        Ok(())
-    }
-    fn event_indicators(&mut self, _t: f32, x: &[f32; 2], g: &mut [f32]) -> Result<(), ModelError> {
-        g[0] = x[0];
-        g[1] = x[1];
-        Ok(())
-    }
-    fn event(
-        &mut self,
-        index: usize,
-        _t: f32,
-        x: &mut [f32; 2],
-    ) -> Result<EventOutcome, ModelError> {
-        if index == 0 {
-            x[1] *= -self.e;
-        }
-        Ok(EventOutcome::Continue)
-    }
-    fn initial_state(&self) -> [f32; 2] {
-        [1.0, 0.0]
-    }
-}
-
 #[test]
 fn events_of_an_f32_model_are_located_to_f32_precision() {
     let exact = Ball::new(0.8, 0.0);
-    let mut model = BallF32 { e: 0.8 };
+    let mut model = Ball::in_f32(0.8);
     let mut x = model.initial_state();
     let settings = RunSettings::new(0.0f32, 3.8, 0.01, 0.1);
     let mut bounces = Vec::new();
@@ -685,14 +651,14 @@ fn events_of_an_f32_model_are_located_to_f32_precision() {
 /// Keeps the times of the `bounce` events.
 struct BounceTimes<'a>(&'a mut Vec<f32>);
 
-impl autosim_runtime::Observer<BallF32> for BounceTimes<'_> {
+impl autosim_runtime::Observer<Ball<f32>> for BounceTimes<'_> {
     type Error = std::convert::Infallible;
-    fn observe(&mut self, _t: f32, _x: &[f32; 2], _y: &[f32; 0]) -> Result<(), Self::Error> {
+    fn observe(&mut self, _t: f32, _x: &[f32; 2], _y: &[f32; 1]) -> Result<(), Self::Error> {
         Ok(())
     }
     fn observe_event(
         &mut self,
-        event: &autosim_runtime::EventRecord<'_, BallF32>,
+        event: &autosim_runtime::EventRecord<'_, Ball<f32>>,
     ) -> Result<(), Self::Error> {
         if event.name == "bounce" {
             self.0.push(event.t);

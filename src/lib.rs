@@ -87,6 +87,8 @@ pub mod guide {
     #[doc = include_str!("../docs/guide/10_studies.md")]
     #[cfg(feature = "study")]
     pub mod studies {}
+    #[doc = include_str!("../docs/guide/11_events.md")]
+    pub mod events {}
 }
 
 /// The README's example, compiled and run as a doctest.

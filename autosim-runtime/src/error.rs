@@ -101,6 +101,22 @@ pub enum IntegrationError {
         /// End of the last step.
         end: f64,
     },
+    /// Events chattered (Zeno behaviour): more than
+    /// [`EventSettings::zeno_events`](crate::run::EventSettings::zeno_events)
+    /// events followed each other, each within
+    /// [`EventSettings::zeno_interval`](crate::run::EventSettings::zeno_interval)
+    /// of the one before, as a bouncing ball without a minimum rebound speed
+    /// does before it comes to rest. Fix the model (e.g. stop the bounces
+    /// below a minimum speed: a second event, or a condition in the action)
+    /// or, if the events are real, raise the limits.
+    Zeno {
+        /// Time of the last event.
+        t: f64,
+        /// The event that fired last.
+        name: &'static str,
+        /// Events in the chain.
+        events: u32,
+    },
     /// The run reached its step limit before the stop time.
     TooManySteps {
         /// Time reached.
@@ -122,6 +138,7 @@ impl IntegrationError {
             | IntegrationError::SingularNewtonMatrix { t, .. }
             | IntegrationError::Model { t, .. }
             | IntegrationError::OutsideLastStep { t, .. }
+            | IntegrationError::Zeno { t, .. }
             | IntegrationError::TooManySteps { t, .. } => Some(t),
             IntegrationError::InvalidSettings { .. } => None,
         }
@@ -163,6 +180,10 @@ impl core::fmt::Display for IntegrationError {
             IntegrationError::OutsideLastStep { t, start, end } => write!(
                 f,
                 "cannot interpolate at t = {t}: outside the last step [{start}, {end}]"
+            ),
+            IntegrationError::Zeno { t, name, events } => write!(
+                f,
+                "events chatter at t = {t}: {events} events each within the Zeno interval of the one before, the last one {name}; stop the chattering in the model (e.g. a minimum rebound speed) or raise EventSettings::zeno_events"
             ),
             IntegrationError::TooManySteps { t, steps } => write!(
                 f,

@@ -115,6 +115,7 @@ extern crate std;
 pub mod analysis;
 pub mod assembly;
 mod error;
+pub mod event;
 mod float;
 pub mod integrate;
 #[cfg(feature = "std")]
@@ -126,11 +127,15 @@ pub mod run;
 pub mod study;
 
 pub use error::{IntegrationError, check_finite};
+pub use event::{Direction, EventIndicator, EventOutcome, EventRecord};
 pub use float::Float;
 pub use integrate::{StepInfo, Stepper};
 pub use linear::{Linear, Linearize};
 pub use model::{Model, ModelError, OpCount, StateArray, check_derivatives};
-pub use run::{Controller, Observer, RunError, RunSettings, RunSummary, run, run_at, run_sampled};
+pub use run::{
+    Controller, EventSettings, Observer, RunError, RunSettings, RunSummary, run, run_at,
+    run_sampled,
+};
 
 /// Items used by generated code. Not a public API: it may change without notice.
 #[doc(hidden)]

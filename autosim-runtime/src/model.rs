@@ -1,6 +1,7 @@
 //! The interface between generated models and everything that runs them.
 
 use crate::Float;
+use crate::event::{EventIndicator, EventOutcome};
 
 /// A fixed-size state (or output) vector: implemented for `[F; N]` only.
 ///
@@ -238,6 +239,64 @@ pub trait Model {
     /// was given; all zeros by default).
     fn initial_state(&self) -> Self::State {
         Self::State::zeros()
+    }
+
+    /// The model's event indicators, in the order
+    /// [`Model::event_indicators`] writes them (none by default: a model
+    /// without events). At most
+    /// [`MAX_EVENT_INDICATORS`](crate::event::MAX_EVENT_INDICATORS).
+    const EVENT_INDICATORS: &'static [EventIndicator] = &[];
+    /// Names of the discrete variables (modes the equations read, changed
+    /// only by event actions; none by default).
+    const DISCRETE_NAMES: &'static [&'static str] = &[];
+    /// Units of the discrete variables.
+    const DISCRETE_UNITS: &'static [&'static str] = &[];
+
+    /// Writes the value of every event indicator `g_k(t, x, discrete)` at
+    /// time `t` and state `x` into `g` ([`Model::EVENT_INDICATORS`] order;
+    /// `g` has that length). An event is a sign change of `g_k` in its
+    /// direction. The default writes nothing: for models without events.
+    ///
+    /// # Errors
+    /// Any [`ModelError`] of evaluating the indicators.
+    fn event_indicators(
+        &mut self,
+        t: Self::Float,
+        x: &Self::State,
+        g: &mut [Self::Float],
+    ) -> Result<(), ModelError> {
+        let _ = (t, x, g);
+        Ok(())
+    }
+
+    /// The action of event `index` at its located instant `t`: set discrete
+    /// variables, reset states in `x`, call user code; return
+    /// [`EventOutcome::Stop`] to end the run there. The default does
+    /// nothing.
+    ///
+    /// # Errors
+    /// Any [`ModelError`] of the action.
+    fn event(
+        &mut self,
+        index: usize,
+        t: Self::Float,
+        x: &mut Self::State,
+    ) -> Result<EventOutcome, ModelError> {
+        let _ = (index, t, x);
+        Ok(EventOutcome::Continue)
+    }
+
+    /// Copies the discrete variables, in [`Model::DISCRETE_NAMES`] order,
+    /// into `values` (what fits): with the state, what a saved run must keep.
+    /// The default copies nothing.
+    fn discrete_values(&self, values: &mut [Self::Float]) {
+        let _ = values;
+    }
+
+    /// Sets the discrete variables, in [`Model::DISCRETE_NAMES`] order (what
+    /// is given), e.g. to restore a saved run. The default sets nothing.
+    fn set_discrete_values(&mut self, values: &[Self::Float]) {
+        let _ = values;
     }
 }
 

@@ -10,7 +10,7 @@ use autosim_runtime::integrate::{
     SdirkSettings,
 };
 use autosim_runtime::{Float, Model, RunSettings, Stepper, run};
-use common::{Oscillator, StiffLinear, VanDerPol};
+use common::{Ball, Oscillator, StiffLinear, VanDerPol};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -63,4 +63,21 @@ fn steppers_and_driver_do_not_allocate() {
         );
     });
     assert_eq!(n, 0, "allocations during stepping");
+}
+
+#[test]
+fn events_do_not_allocate() {
+    // A ball that bounces and comes to rest: located crossings, actions,
+    // restarts, with and without dense output.
+    let ball = || Ball::new(0.8, 0.5);
+    let n = allocations(|| {
+        run_quietly(ball(), Rk4::new(), 0.01);
+        run_quietly(ball(), AdamsBashforthMoulton::new(AbmOrder::Four), 0.01);
+        run_quietly(
+            ball(),
+            DormandPrince::new(DopriSettings::new(1e-8, 1e-8)).unwrap(),
+            0.01,
+        );
+    });
+    assert_eq!(n, 0, "allocations while handling events");
 }

@@ -14,6 +14,7 @@
 //! | `satellite` | `satellite.sim`, Figure 8 commands, thrusters off | 15 s | max abs error of the bus attitude q4, q5, q6 at 15 s |
 //! | `satellite-small` | the same with `small = [B, E, F]` | 15 s | the same, against the **full** model's reference (model + integration error) |
 //! | `satellite-thrusters` | `satellite.sim` with the Figure 8 thrusters on | 15 s | the same, against RK4 at h = 10 µs |
+//! | `satellite-events` | `satellite.sim` with the thrusters as events (`common/slew_events.rs`) | 15 s | the same, against Dormand–Prince at 1e-12 |
 //! | `chain-spatial-5` | `chain_spatial_5.sim`, released from q = (0.6, -0.5, 0.4, 0.7, -0.3) | 5 s | max abs error of q1..q5 at 5 s |
 //! | `chain-spatial-3-stiff` | `chain_spatial_3_stiff.sim` (k × 10⁴), released from q1 = 0.1 | 1 s | max abs error of q1..q3 at 1 s |
 //!
@@ -24,7 +25,9 @@
 //! times depend on where each method evaluates the model (stage times,
 //! rejected steps, Jacobian columns), so with them on no method converges
 //! faster than first order and the error floor depends on the method; the
-//! `satellite-thrusters` study shows exactly that. With the thrusters off,
+//! `satellite-thrusters` study shows exactly that; `satellite-events`
+//! flies the same thrusters with their switching located as events, which
+//! converges again like a smooth model. With the thrusters off,
 //! the commanded slew of the clock and camera still swings the bus through
 //! the reaction torques and the boom.
 //!
@@ -71,6 +74,11 @@ use std::time::Instant;
 #[path = "../common/figure8.rs"]
 mod figure8;
 use figure8::Figure8;
+// The thrusters as events (the paper's Figure 8 decisions at located
+// instants), shared with `tests/satellite_events.rs`.
+#[macro_use]
+#[path = "../common/slew_events.rs"]
+mod slew_events;
 
 mod method;
 mod report;
@@ -131,6 +139,10 @@ figure8_externs!(
     scene::rigid_boom => f64,
 );
 
+slew_events_externs!(wp::satellite);
+
+/// The satellite with its thrusters switched by events.
+type SatEvents = slew_events::EventSlew<wp::satellite::Satellite<slew_events::Modes>>;
 /// The satellite with the Figure 8 user code, in `f64`.
 type Sat = wp::satellite::Satellite<Figure8>;
 /// The satellite in `f32`.

@@ -92,15 +92,17 @@ where
     let settings = RunSettings::new(f(0.0), f(t_end), f(step), f(t_end)).with_max_steps(20_000_000);
     let mut x = x0;
     let result = run(model, stepper, &mut x, &settings, &mut |_, _: &_, _: &_| {});
-    let (steps, rejected, failure) = match result {
-        Ok(s) => (s.steps, s.rejected_steps, None),
-        Err(e) => (0, 0, Some(IntegrationError::from(e))),
+    // The run's evaluations include those the driver makes for events (the
+    // end-point derivatives of a fixed step's interpolant).
+    let (steps, rejected, evaluations, failure) = match result {
+        Ok(s) => (s.steps, s.rejected_steps, s.evaluations, None),
+        Err(e) => (0, 0, stepper.evaluations(), Some(IntegrationError::from(e))),
     };
     Outcome {
         x: x.iter().map(|v| v.to_f64()).collect(),
         steps,
         rejected,
-        evaluations: stepper.evaluations(),
+        evaluations,
         failure,
     }
 }

@@ -9,7 +9,8 @@ use autosim::runtime::Model;
 use crate::figure8::Figure8;
 use crate::method::{Method, integrate, reference, short};
 use crate::report::{print_header, print_row};
-use crate::{Chain5, Chain5F32, Sat, SatF32, Small, SmallF32, Stiff, StiffF32};
+use crate::slew_events::{EventSlew, Modes};
+use crate::{Chain5, Chain5F32, Sat, SatEvents, SatF32, Small, SmallF32, Stiff, StiffF32};
 
 /// Runs costing more evaluations than this are skipped.
 const MAX_EVALUATIONS: f64 = 1e6;
@@ -190,6 +191,11 @@ fn sat_x0() -> <Sat as Model>::State {
     Sat::new(Figure8::commands_only()).initial_state()
 }
 
+/// The satellite with its thrusters as events, all pairs off.
+fn sat_events() -> SatEvents {
+    EventSlew::new(crate::wp::satellite::Satellite::new(Modes::default()))
+}
+
 /// The initial state of the small-variable satellite.
 fn small_x0() -> <Small as Model>::State {
     Small::new(Figure8::commands_only()).initial_state()
@@ -207,6 +213,8 @@ pub(crate) struct References {
     stiff: Vec<f64>,
     /// The satellite with the thrusters on (RK4 at 10 µs).
     thrust: Vec<f64>,
+    /// The satellite with the thrusters as events.
+    events: Vec<f64>,
     /// Each reference's own error (against a second, tighter run).
     pub(crate) notes: Vec<(&'static str, f64)>,
     /// The small-variable satellite against the full model at 15 s,
@@ -264,6 +272,12 @@ pub(crate) fn references() -> References {
             attitude_error,
         )
     };
+    let events_ref = refs(
+        "satellite-events",
+        reference(sat_events(), sat_x0, T_SAT, 1e-12),
+        reference(sat_events(), sat_x0, T_SAT, 1e-13),
+        attitude_error,
+    );
     let small_model_error = attitude_error(&small_ref, &sat_ref);
     println!("  small-variable model vs full at 15 s (thrusters off): {small_model_error:.2e} rad");
     References {
@@ -272,6 +286,7 @@ pub(crate) fn references() -> References {
         chain: chain_ref,
         stiff: stiff_ref,
         thrust: thrust_ref,
+        events: events_ref,
         notes: reference_notes,
         small_model_error,
     }
@@ -337,6 +352,16 @@ pub(crate) fn sweeps(refs: &References) -> Vec<Row> {
         attitude_error,
     );
     sweep(&thrust, &|| Sat::new(Figure8::new()), sat_x0, &mut rows);
+    let events = study(
+        "satellite-events",
+        "f64",
+        T_SAT,
+        sat_steps,
+        &refs.events[..],
+        None,
+        attitude_error,
+    );
+    sweep(&events, &sat_events, sat_x0, &mut rows);
     // The chains are measured on their coordinates, each against its own
     // reference.
     let on_coordinates = |(name, t_end, steps, reference), float| {

@@ -443,6 +443,12 @@ impl<M: Model> Stepper<M> for DormandPrince<M> {
     fn is_adaptive(&self) -> bool {
         true
     }
+    fn has_dense_output(&self) -> bool {
+        true
+    }
+    fn dense_output(&self, t: M::Float, out: &mut M::State) -> Result<(), IntegrationError> {
+        self.interpolate(t, out)
+    }
     fn name(&self) -> &'static str {
         "Dormand-Prince 5(4)"
     }

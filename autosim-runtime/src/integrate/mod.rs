@@ -118,6 +118,30 @@ pub trait Stepper<M: Model> {
         false
     }
 
+    /// `true` if the method has its own continuous extension of the last
+    /// step ([`Stepper::dense_output`]); the run driver then locates events
+    /// on it. Without one (the default) the driver interpolates the step
+    /// with a Hermite cubic from the derivatives at its ends.
+    fn has_dense_output(&self) -> bool {
+        false
+    }
+
+    /// Writes the solution at `t` inside the last accepted step into `out`
+    /// from the method's continuous extension.
+    ///
+    /// # Errors
+    /// [`IntegrationError::OutsideLastStep`] if `t` is not inside the last
+    /// step, or the method has no dense output (the default).
+    fn dense_output(&self, t: M::Float, out: &mut M::State) -> Result<(), IntegrationError> {
+        let _ = out;
+        let t = crate::Float::to_f64(t);
+        Err(IntegrationError::OutsideLastStep {
+            t,
+            start: f64::NAN,
+            end: f64::NAN,
+        })
+    }
+
     /// The method's name, for reports.
     fn name(&self) -> &'static str;
 
@@ -137,6 +161,12 @@ impl<M: Model, S: Stepper<M> + ?Sized> Stepper<M> for &mut S {
     }
     fn is_adaptive(&self) -> bool {
         (**self).is_adaptive()
+    }
+    fn has_dense_output(&self) -> bool {
+        (**self).has_dense_output()
+    }
+    fn dense_output(&self, t: M::Float, out: &mut M::State) -> Result<(), IntegrationError> {
+        (**self).dense_output(t, out)
     }
     fn name(&self) -> &'static str {
         (**self).name()

@@ -18,4 +18,4 @@ pub use params::{load_parameters, parameters_to_string, read_parameters, save_pa
 pub use plot::{
     Axes, Corner, Scale, Series, XySeries, svg_plot, write_svg_plot, write_xy_svg_plot, xy_svg_plot,
 };
-pub use record::{Column, Recording};
+pub use record::{Column, LoggedEvent, Recording};

@@ -2,10 +2,10 @@
 //! advancing to a target time with a fixed-step or adaptive method
 //! (shared by [`run`](super::run()) and [`run_sampled`](super::run_sampled)).
 
-use super::MAX_RECORDED_INPUTS;
-
-use super::{Observer, RunError, RunSettings, RunSummary};
+use super::events::{Events, Flow};
+use super::{MAX_RECORDED_INPUTS, Observer, RunError, RunSettings, RunSummary};
 use crate::error::{check_finite_outputs, check_finite_parameters};
+use crate::event::MAX_DISCRETE;
 use crate::integrate::Stepper;
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 
@@ -22,19 +22,25 @@ pub(super) struct Driver<M: Model> {
     projection_tolerance: M::Float,
     /// Start time of the run.
     start: M::Float,
-    /// Fixed steps of exactly `step` taken since the start.
+    /// Fixed steps of exactly `step` taken since the start: the time is in
+    /// `[start + fixed_steps·step, start + (fixed_steps + 1)·step)` (at the
+    /// first, or after an event inside a step) while `on_grid` holds.
     fixed_steps: u64,
+    on_grid: bool,
+    /// The events of a model that has them.
+    events: Option<Events<M>>,
 }
 
 impl<M: Model> Driver<M> {
-    /// Checks the settings and the state, assembles it, and starts the
-    /// bookkeeping.
-    pub(super) fn begin<S: Stepper<M> + ?Sized>(
+    /// Checks the settings and the state, assembles it, evaluates the
+    /// event indicators, and starts the bookkeeping.
+    pub(super) fn begin<S: Stepper<M> + ?Sized, O: Observer<M> + ?Sized>(
         model: &mut M,
         stepper: &S,
         x: &mut M::State,
         settings: &RunSettings<M::Float>,
-    ) -> Result<Driver<M>, IntegrationError> {
+        observer: &mut O,
+    ) -> Result<Driver<M>, RunError<O::Error>> {
         settings.validate()?;
         check_finite::<M>(settings.start, x)?;
         check_finite_parameters(model, settings.start)?;
@@ -44,7 +50,8 @@ impl<M: Model> Driver<M> {
                 t: settings.start.to_f64(),
                 error,
             })?;
-        Ok(Driver {
+        let events = Events::new(settings.events, settings.start, settings.stop)?;
+        let mut driver = Driver {
             evals_at_start: stepper.evaluations(),
             summary: RunSummary {
                 steps: 0,
@@ -54,6 +61,8 @@ impl<M: Model> Driver<M> {
                 end_time: settings.start,
                 min_step: M::Float::ZERO,
                 max_step: M::Float::ZERO,
+                events: 0,
+                terminal_event: None,
             },
             t: settings.start,
             h: settings.step,
@@ -62,13 +71,25 @@ impl<M: Model> Driver<M> {
             projection_tolerance: settings.projection_tolerance,
             start: settings.start,
             fixed_steps: 0,
-        })
+            on_grid: true,
+            events,
+        };
+        // Nothing fires at the start (no sign is known before it): this
+        // learns the indicators' signs.
+        driver.settle(model, x, observer)?;
+        Ok(driver)
     }
 
     /// The summary at the end.
     pub(super) fn finish<S: Stepper<M> + ?Sized>(mut self, stepper: &S) -> RunSummary<M::Float> {
-        self.summary.evaluations = stepper.evaluations() - self.evals_at_start;
+        let (events, extra, terminal) = self
+            .events
+            .as_ref()
+            .map_or((0, 0, None), |e| (e.count, e.evaluations, e.terminal));
+        self.summary.evaluations = stepper.evaluations() - self.evals_at_start + extra;
         self.summary.end_time = self.t;
+        self.summary.events = events;
+        self.summary.terminal_event = terminal;
         self.summary
     }
 
@@ -77,20 +98,52 @@ impl<M: Model> Driver<M> {
         self.t
     }
 
+    /// After the model changed discontinuously at the current time (a
+    /// sample set new inputs): the stepper restarts, and the events the
+    /// change causes fire now.
+    pub(super) fn restart<S: Stepper<M> + ?Sized, O: Observer<M> + ?Sized>(
+        &mut self,
+        model: &mut M,
+        stepper: &mut S,
+        x: &mut M::State,
+        observer: &mut O,
+    ) -> Result<Flow, RunError<O::Error>> {
+        stepper.reset();
+        if let Some(events) = &mut self.events {
+            events.restart();
+        }
+        self.settle(model, x, observer)
+    }
+
+    /// The events at the current time whose indicators changed sign.
+    fn settle<O: Observer<M> + ?Sized>(
+        &mut self,
+        model: &mut M,
+        x: &mut M::State,
+        observer: &mut O,
+    ) -> Result<Flow, RunError<O::Error>> {
+        match &mut self.events {
+            Some(events) => events.settle(model, self.t, x, None, observer),
+            None => Ok(Flow::Continue),
+        }
+    }
+
     /// Advances to exactly `target` with `stepper` (fixed steps of at most
-    /// `step`, or adaptive steps landing on it).
-    pub(super) fn advance<S: Stepper<M> + ?Sized>(
+    /// `step`, or adaptive steps landing on it), handling the events on the
+    /// way; stops early at a terminal event.
+    pub(super) fn advance<S: Stepper<M> + ?Sized, O: Observer<M> + ?Sized>(
         &mut self,
         model: &mut M,
         stepper: &mut S,
         x: &mut M::State,
         target: M::Float,
         step: M::Float,
-    ) -> Result<(), IntegrationError> {
+        observer: &mut O,
+    ) -> Result<Flow, RunError<O::Error>> {
         if stepper.is_adaptive() {
-            self.advance_adaptive(model, stepper, x, target)
+            self.advance_adaptive(model, stepper, x, target, observer)
         } else {
-            self.advance_fixed(model, stepper, x, target, step)
+            self.advance_fixed(model, stepper, x, target, step, observer)
         }
     }
 
@@ -119,20 +172,21 @@ impl<M: Model> Driver<M> {
     ) -> Result<(), RunError<O::Error>> {
         let t = self.t;
         self.outputs(model, x)?;
-        let mut inputs = [M::Float::ZERO; MAX_RECORDED_INPUTS];
-        let inputs = &mut inputs[..M::INPUT_NAMES.len().min(MAX_RECORDED_INPUTS)];
-        model.input_values(inputs);
         let failed = |error| RunError::Observer {
             t: t.to_f64(),
             error,
         };
+        let mut inputs = [M::Float::ZERO; MAX_RECORDED_INPUTS];
+        let inputs = &mut inputs[..M::INPUT_NAMES.len().min(MAX_RECORDED_INPUTS)];
+        model.input_values(inputs);
         observer.observe_inputs(inputs).map_err(failed)?;
-        observer
-            .observe(t, x, &self.y)
-            .map_err(|error| RunError::Observer {
-                t: t.to_f64(),
-                error,
-            })?;
+        if !M::DISCRETE_NAMES.is_empty() {
+            let mut discrete = [M::Float::ZERO; MAX_DISCRETE];
+            let discrete = &mut discrete[..M::DISCRETE_NAMES.len().min(MAX_DISCRETE)];
+            model.discrete_values(discrete);
+            observer.observe_discrete(discrete).map_err(failed)?;
+        }
+        observer.observe(t, x, &self.y).map_err(failed)?;
         self.summary.outputs += 1;
         Ok(())
     }
@@ -173,76 +227,134 @@ impl<M: Model> Driver<M> {
         s.rejected_steps += u64::from(rejected);
     }
 
-    /// Equal fixed steps from `self.t` to `t_out`.
-    fn advance_fixed<S: Stepper<M> + ?Sized>(
+    /// One step of `h` from `self.t` ending at `t_end` (after which `x`
+    /// is projected and the step booked), then the step's events: `None`
+    /// if there was none (the time is then `t_end`), or what the first one
+    /// (located, the time and state moved to it) left.
+    #[allow(clippy::too_many_arguments)]
+    fn step<S: Stepper<M> + ?Sized, O: Observer<M> + ?Sized>(
+        &mut self,
+        model: &mut M,
+        stepper: &mut S,
+        x: &mut M::State,
+        h: M::Float,
+        t_end: M::Float,
+        observer: &mut O,
+    ) -> Result<Option<Flow>, RunError<O::Error>> {
+        self.check_limit()?;
+        if let Some(events) = &mut self.events {
+            events.before_step(model, stepper, self.t, x)?;
+        }
+        let info = stepper.step(model, self.t, x, h)?;
+        self.t = t_end;
+        self.project(model, x)?;
+        self.count_step(info.h, info.rejected);
+        self.after_step(model, stepper, x, observer)
+    }
+
+    /// Fixed steps from `self.t` to `t_out`: on the grid `start + k·step`
+    /// when `t_out` is on it, otherwise equal steps; after an event inside
+    /// a step, one shorter step back to where the step would have ended.
+    fn advance_fixed<S: Stepper<M> + ?Sized, O: Observer<M> + ?Sized>(
         &mut self,
         model: &mut M,
         stepper: &mut S,
         x: &mut M::State,
         t_out: M::Float,
         step: M::Float,
-    ) -> Result<(), IntegrationError> {
-        let t0 = self.t;
-        let interval = t_out - t0;
-        let n = ceil_count((interval / step).to_f64()).max(1);
-        // When the output interval holds a whole number of steps, step
-        // exactly `step` at the times `start + k step` (k counted from the
-        // start), as a hand-written loop would: user functions that keep
-        // state see the same times.
-        let whole = ((M::Float::from_f64(n as f64) * step - interval).abs()
-            <= M::Float::from_f64(64.0) * M::Float::EPSILON * interval.abs().max(step.abs()))
-            && self.t == self.start + M::Float::from_f64(self.fixed_steps as f64) * step;
+        observer: &mut O,
+    ) -> Result<Flow, RunError<O::Error>> {
+        let tiny = M::Float::from_f64(64.0) * M::Float::EPSILON;
+        let span = t_out - self.start;
+        let last = ceil_count((span / step).to_f64());
+        // When the output time is a whole number of steps from the start,
+        // step exactly `step` at the times `start + k step`, as a
+        // hand-written loop would: user functions that keep state see the
+        // same times.
+        let whole = self.on_grid
+            && (M::Float::from_f64(last as f64) * step - span).abs()
+                <= tiny * span.abs().max(step.abs());
         if whole {
-            for _ in 0..n {
-                self.check_limit()?;
-                stepper.step(model, self.t, x, step)?;
-                self.fixed_steps += 1;
-                self.t = self.start + M::Float::from_f64(self.fixed_steps as f64) * step;
-                self.project(model, x)?;
-                self.count_step(step, 0);
+            while self.fixed_steps < last {
+                let next = self.start + M::Float::from_f64((self.fixed_steps + 1) as f64) * step;
+                let grid = self.start + M::Float::from_f64(self.fixed_steps as f64) * step;
+                if self.t >= next {
+                    // An event at the very end of the step: it is done.
+                    self.fixed_steps += 1;
+                    continue;
+                }
+                let h = if self.t == grid { step } else { next - self.t };
+                match self.step(model, stepper, x, h, next, observer)? {
+                    None => self.fixed_steps += 1,
+                    Some(Flow::Stopped) => return Ok(Flow::Stopped),
+                    Some(Flow::Continue) => {}
+                }
             }
-            return Ok(());
+            self.t = self.start + M::Float::from_f64(last as f64) * step;
+            return Ok(Flow::Continue);
         }
-        let h = interval / M::Float::from_f64(n as f64);
-        for j in 1..=n {
-            self.check_limit()?;
-            stepper.step(model, self.t, x, h)?;
-            self.t = if j == n {
-                t_out
-            } else {
-                t0 + M::Float::from_f64(j as f64) * h
-            };
-            self.project(model, x)?;
-            self.count_step(h, 0);
+        self.on_grid = false;
+        loop {
+            let t0 = self.t;
+            let interval = t_out - t0;
+            if interval <= tiny * t_out.abs().max(t0.abs()) {
+                self.t = t_out;
+                return Ok(Flow::Continue);
+            }
+            let n = ceil_count((interval / step).to_f64()).max(1);
+            let h = interval / M::Float::from_f64(n as f64);
+            let mut restarted = false;
+            for j in 1..=n {
+                let t_end = if j == n {
+                    t_out
+                } else {
+                    t0 + M::Float::from_f64(j as f64) * h
+                };
+                match self.step(model, stepper, x, h, t_end, observer)? {
+                    None => {}
+                    Some(Flow::Stopped) => return Ok(Flow::Stopped),
+                    Some(Flow::Continue) => {
+                        restarted = true;
+                        break;
+                    }
+                }
+            }
+            if !restarted {
+                return Ok(Flow::Continue);
+            }
         }
-        Ok(())
     }
 
     /// Steps of an adaptive method from `self.t` to exactly `t_out`.
-    fn advance_adaptive<S: Stepper<M> + ?Sized>(
+    fn advance_adaptive<S: Stepper<M> + ?Sized, O: Observer<M> + ?Sized>(
         &mut self,
         model: &mut M,
         stepper: &mut S,
         x: &mut M::State,
         t_out: M::Float,
-    ) -> Result<(), IntegrationError> {
+        observer: &mut O,
+    ) -> Result<Flow, RunError<O::Error>> {
         let sixteen_eps = M::Float::from_f64(16.0) * M::Float::EPSILON;
         loop {
             let remaining = t_out - self.t;
             if remaining <= sixteen_eps * t_out.abs().max(self.t.abs()) {
                 // Rounding only: we are there.
                 self.t = t_out;
-                return Ok(());
+                return Ok(Flow::Continue);
             }
             // Land on the output time, stretching the step by up to 1 % rather
             // than leaving a sliver for the next step.
             let stretch = M::Float::from_f64(1.01);
             let lands = self.h * stretch >= remaining;
             let h_try = if lands { remaining } else { self.h };
+            let t0 = self.t;
             self.check_limit()?;
-            let info = stepper.step(model, self.t, x, h_try)?;
+            if let Some(events) = &mut self.events {
+                events.before_step(model, stepper, t0, x)?;
+            }
+            let info = stepper.step(model, t0, x, h_try)?;
             let landed = lands && info.h == h_try;
-            self.t = if landed { t_out } else { self.t + info.h };
+            self.t = if landed { t_out } else { t0 + info.h };
             self.h = if landed && info.rejected == 0 {
                 // A step shortened to hit the output says nothing against
                 // the longer step used before it.
@@ -252,10 +364,41 @@ impl<M: Model> Driver<M> {
             };
             self.project(model, x)?;
             self.count_step(info.h, info.rejected);
+            if let Some(flow) = self.after_step(model, stepper, x, observer)? {
+                if flow == Flow::Stopped {
+                    return Ok(flow);
+                }
+                continue;
+            }
             if landed {
-                return Ok(());
+                return Ok(Flow::Continue);
             }
         }
+    }
+
+    /// The events of the step just taken (ending at `self.t`): `None` if
+    /// there was none, or what the first one (located, the time and state
+    /// moved to it) left.
+    fn after_step<S: Stepper<M> + ?Sized, O: Observer<M> + ?Sized>(
+        &mut self,
+        model: &mut M,
+        stepper: &mut S,
+        x: &mut M::State,
+        observer: &mut O,
+    ) -> Result<Option<Flow>, RunError<O::Error>> {
+        let Some(events) = &mut self.events else {
+            return Ok(None);
+        };
+        let Some(crossing) = events.after_step(model, stepper, self.t, x)? else {
+            return Ok(None);
+        };
+        *x = *events.located_state();
+        self.t = crossing.t;
+        stepper.reset();
+        events.restart();
+        events
+            .settle(model, crossing.t, x, Some(crossing.index), observer)
+            .map(Some)
     }
 }
 

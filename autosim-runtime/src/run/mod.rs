@@ -5,15 +5,18 @@ use core::convert::Infallible;
 use core::fmt;
 
 mod driver;
+mod events;
 mod sampled;
 mod times;
 
+pub use events::EventSettings;
 pub use sampled::{Controller, run_sampled};
 pub use times::run_at;
 
 use crate::integrate::Stepper;
-use crate::{Float, IntegrationError, Model};
+use crate::{EventRecord, Float, IntegrationError, Model};
 use driver::Driver;
+use events::Flow;
 
 /// Times and steps of a run.
 ///
@@ -43,6 +46,9 @@ pub struct RunSettings<F> {
     /// rounding. Steppers that carry derivatives from step to step restart
     /// after a projection, so a looser tolerance saves evaluations.
     pub projection_tolerance: F,
+    /// How events are located (models with
+    /// [`Model::EVENT_INDICATORS`]; ignored for others).
+    pub events: EventSettings<F>,
 }
 
 impl<F: Float> RunSettings<F> {
@@ -55,7 +61,13 @@ impl<F: Float> RunSettings<F> {
             output_interval,
             max_steps: u64::MAX,
             projection_tolerance: F::ZERO,
+            events: EventSettings::default(),
         }
+    }
+
+    /// The same settings with these event settings.
+    pub fn with_events(self, events: EventSettings<F>) -> Self {
+        Self { events, ..self }
     }
 
     /// The same settings with a step limit (a guard against adaptive runs
@@ -107,7 +119,7 @@ impl<F: Float> RunSettings<F> {
         if !(self.projection_tolerance >= F::ZERO && self.projection_tolerance.is_finite()) {
             return bad("projection_tolerance must be finite and not negative");
         }
-        Ok(())
+        self.events.validate()
     }
 }
 
@@ -129,6 +141,12 @@ pub struct RunSummary<F> {
     pub min_step: F,
     /// Largest accepted step (zero if no step was taken).
     pub max_step: F,
+    /// Events that fired (each reported to the observer's
+    /// [`Observer::observe_event`]).
+    pub events: u64,
+    /// The terminal event that stopped the run before its stop time (an
+    /// index into [`Model::EVENT_INDICATORS`]), if one did.
+    pub terminal_event: Option<usize>,
 }
 
 /// Receives the time, state and outputs at every output time of a
@@ -155,6 +173,30 @@ pub trait Observer<M: Model> {
     /// Any error of the observer; the run stops and returns it.
     fn observe_inputs(&mut self, inputs: &[M::Float]) -> Result<(), Self::Error> {
         let _ = inputs;
+        Ok(())
+    }
+
+    /// Called just before [`Observer::observe`] with the model's discrete
+    /// variables at that time ([`Model::DISCRETE_NAMES`] order; the first
+    /// [`MAX_DISCRETE`](crate::event::MAX_DISCRETE)). The default ignores
+    /// them; the CSV writer and the recording keep them as columns.
+    ///
+    /// # Errors
+    /// Any error of the observer; the run stops and returns it.
+    fn observe_discrete(&mut self, values: &[M::Float]) -> Result<(), Self::Error> {
+        let _ = values;
+        Ok(())
+    }
+
+    /// Called at every event, in time order, with the instant and the
+    /// state, discrete variables and outputs before and after its action.
+    /// The default ignores it; the CSV writer writes both as rows, the
+    /// recording keeps them.
+    ///
+    /// # Errors
+    /// Any error of the observer; the run stops and returns it.
+    fn observe_event(&mut self, event: &EventRecord<'_, M>) -> Result<(), Self::Error> {
+        let _ = event;
         Ok(())
     }
 }
@@ -233,8 +275,22 @@ impl<E: core::error::Error + 'static> core::error::Error for RunError<E> {
 /// ([`Model::project`], within [`RunSettings::projection_tolerance`]); for
 /// other models both do nothing. Own the loop? Call them yourself.
 ///
+/// A model with events ([`Model::EVENT_INDICATORS`]) has its indicators
+/// evaluated at the start; after every step they are scanned on the step's
+/// interpolant, and at the first crossing (located as
+/// [`EventSettings`] says) the step is cut there: the state moves to the
+/// crossing, the event's action runs (and any event it causes at the same
+/// instant), the observer's [`Observer::observe_event`] sees it, and the
+/// stepper restarts from the event ([`Stepper::reset`]: no derivative
+/// history crosses it). A fixed-step method then takes one shorter step
+/// back onto its grid (`start + k·step`, or the equal steps of an output
+/// interval), so outputs stay where they were. A terminal event ends the
+/// run at its instant with one last output there
+/// ([`RunSummary::terminal_event`]).
+///
 /// # Errors
-/// [`RunError::Integration`] with the first [`IntegrationError`] (a
+/// [`RunError::Integration`] with the first [`IntegrationError`]
+/// ([`IntegrationError::Zeno`] when events chatter; a
 /// non-finite state names the time and the state, checked after every
 /// step; `x` then holds the last good state; a non-finite output names the
 /// time and the output, checked at every output time; a non-finite
@@ -253,13 +309,16 @@ where
     S: Stepper<M> + ?Sized,
     O: Observer<M> + ?Sized,
 {
-    let mut driver = Driver::begin(model, stepper, x, settings)?;
+    let mut driver = Driver::begin(model, stepper, x, settings, observer)?;
     driver.emit(model, x, observer)?;
     let intervals = settings.output_count();
     for k in 1..=intervals {
         let t_out = settings.output_time(k);
-        driver.advance(model, stepper, x, t_out, settings.step)?;
+        let flow = driver.advance(model, stepper, x, t_out, settings.step, observer)?;
         driver.emit(model, x, observer)?;
+        if flow == Flow::Stopped {
+            break;
+        }
     }
     Ok(driver.finish(stepper))
 }

@@ -14,6 +14,7 @@
 //! answer.
 
 use super::driver::Driver;
+use super::events::Flow;
 use super::{MAX_RECORDED_INPUTS, Observer, RunError, RunSettings, RunSummary};
 use crate::integrate::Stepper;
 use crate::{Float, IntegrationError, Model};
@@ -67,21 +68,26 @@ where
         let reason = "the sample period must be positive and finite";
         return Err(IntegrationError::InvalidSettings { reason }.into());
     }
-    let mut driver = Driver::begin(model, stepper, x, settings)?;
-    sample(&mut driver, model, stepper, x, controller)?;
+    let mut driver = Driver::begin(model, stepper, x, settings, observer)?;
+    let mut flow = sample(&mut driver, model, stepper, x, controller, observer)?;
     driver.emit(model, x, observer)?;
     let intervals = settings.output_count();
     let (mut j, mut k) = (1u64, 1u64);
-    while k <= intervals {
+    while k <= intervals && flow == Flow::Continue {
         let t_sample = settings.start + M::Float::from_f64(j as f64) * period;
         let t_out = settings.output_time(k);
         let target = if t_sample < t_out { t_sample } else { t_out };
-        driver.advance(model, stepper, x, target, settings.step)?;
+        flow = driver.advance(model, stepper, x, target, settings.step, observer)?;
+        if flow == Flow::Stopped {
+            // A terminal event: one last output at its instant.
+            driver.emit(model, x, observer)?;
+            break;
+        }
         if t_sample <= t_out {
-            sample(&mut driver, model, stepper, x, controller)?;
+            flow = sample(&mut driver, model, stepper, x, controller, observer)?;
             j += 1;
         }
-        if t_out <= t_sample {
+        if t_out <= t_sample || flow == Flow::Stopped {
             driver.emit(model, x, observer)?;
             k += 1;
         }
@@ -89,18 +95,21 @@ where
     Ok(driver.finish(stepper))
 }
 
-/// Runs the controller at the driver's time and sets the inputs it chose.
-fn sample<M, S, C>(
+/// Runs the controller at the driver's time, sets the inputs it chose and
+/// restarts the stepper (with the events the new inputs cause).
+fn sample<M, S, C, O>(
     driver: &mut Driver<M>,
     model: &mut M,
     stepper: &mut S,
-    x: &M::State,
+    x: &mut M::State,
     controller: &mut C,
-) -> Result<(), IntegrationError>
+    observer: &mut O,
+) -> Result<Flow, RunError<O::Error>>
 where
     M: Model,
     S: Stepper<M> + ?Sized,
     C: Controller<M> + ?Sized,
+    O: Observer<M> + ?Sized,
 {
     let t = driver.time();
     let mut inputs = [M::Float::ZERO; MAX_RECORDED_INPUTS];
@@ -109,6 +118,5 @@ where
     let y = *driver.outputs(model, x)?;
     controller.sample(t, x, &y, inputs);
     model.set_input_values(inputs);
-    stepper.reset();
-    Ok(())
+    driver.restart(model, stepper, x, observer)
 }

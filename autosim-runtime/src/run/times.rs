@@ -3,6 +3,7 @@
 //! fixed interval.
 
 use super::driver::Driver;
+use super::events::Flow;
 use super::{Observer, RunError, RunSettings, RunSummary};
 use crate::integrate::Stepper;
 use crate::{IntegrationError, Model};
@@ -44,15 +45,20 @@ where
             reason: "output times must be non-decreasing and within [start, stop]",
         }));
     }
-    let mut driver = Driver::begin(model, stepper, x, settings)?;
+    let mut driver = Driver::begin(model, stepper, x, settings, observer)?;
     for &t_out in times {
         if t_out > driver.time() {
-            driver.advance(model, stepper, x, t_out, settings.step)?;
+            let flow = driver.advance(model, stepper, x, t_out, settings.step, observer)?;
+            if flow == Flow::Stopped {
+                // A terminal event: one last output at its instant.
+                driver.emit(model, x, observer)?;
+                return Ok(driver.finish(stepper));
+            }
         }
         driver.emit(model, x, observer)?;
     }
     if settings.stop > driver.time() {
-        driver.advance(model, stepper, x, settings.stop, settings.step)?;
+        driver.advance(model, stepper, x, settings.stop, settings.step, observer)?;
     }
     Ok(driver.finish(stepper))
 }

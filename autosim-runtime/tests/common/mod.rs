@@ -3,7 +3,10 @@
 
 use std::convert::Infallible;
 
-use autosim_runtime::{Model, ModelError, RunError, RunSettings, RunSummary, Stepper, run};
+use autosim_runtime::{
+    EventIndicator, EventOutcome, Model, ModelError, RunError, RunSettings, RunSummary, Stepper,
+    run,
+};
 
 /// x'' = -ω²x as [x, v]; with x(0) = 1, v(0) = 0: x = cos ωt, v = -ω sin ωt.
 #[derive(Clone, Debug)]
@@ -180,6 +183,112 @@ impl Model for BlowUp {
         [1.0]
     }
 }
+
+/// A ball dropped from `H0` onto the floor at h = 0: h'' = -g, and at
+/// every impact (h falling through 0) v := -e·v. The event `apex` (v
+/// falling through 0, no action) marks the tops. Below `min_speed` the
+/// ball comes to rest: the discrete variable `resting` becomes 1 and
+/// freezes the motion (the documented fix for Zeno). `Ball` computes in
+/// `f64`, `Ball<f32>` in `f32`.
+#[derive(Clone, Debug)]
+pub struct Ball<F = f64> {
+    pub g: F,
+    pub e: F,
+    pub min_speed: F,
+    pub resting: F,
+}
+
+impl Ball {
+    pub fn new(e: f64, min_speed: f64) -> Self {
+        Self {
+            g: 9.81,
+            e,
+            min_speed,
+            resting: 0.0,
+        }
+    }
+
+    /// The analytic n-th bounce (n = 1, 2, ...) from rest at `H0`: its time
+    /// and the apex height after it.
+    pub fn exact_bounce(&self, n: u32) -> (f64, f64) {
+        let t1 = (2.0 * H0 / self.g).sqrt();
+        let v1 = self.g * t1;
+        // t_n = t1 + Σ_{i=1}^{n-1} 2 eⁱ v1 / g; apex after bounce n: e^{2n} H0.
+        let t = t1
+            + (1..n)
+                .map(|i| 2.0 * self.e.powi(i as i32) * v1 / self.g)
+                .sum::<f64>();
+        (t, self.e.powi(2 * n as i32) * H0)
+    }
+}
+
+impl Ball<f32> {
+    /// The ball in `f32`, never resting.
+    pub fn in_f32(e: f32) -> Self {
+        Self {
+            g: 9.81,
+            e,
+            min_speed: 0.0,
+            resting: 0.0,
+        }
+    }
+}
+
+/// The ball's drop height (m).
+pub const H0: f64 = 1.0;
+
+/// `Model` for `Ball<$f>`.
+macro_rules! ball_model {
+    ($f:ty, $name:literal) => {
+        impl Model for Ball<$f> {
+            autosim_test_support::model_header!($f, $name, states: ["h" in "m", "v" in "m/s"], outputs: ["energy" in "J/kg"]);
+            const EVENT_INDICATORS: &'static [EventIndicator] = &[
+                EventIndicator::falling("bounce"),
+                EventIndicator::falling("apex"),
+            ];
+            const DISCRETE_NAMES: &'static [&'static str] = &["resting"];
+            const DISCRETE_UNITS: &'static [&'static str] = &["1"];
+
+            fn derivatives(&mut self, _t: $f, x: &[$f; 2], dx: &mut [$f; 2]) -> Result<(), ModelError> {
+                let moving = 1.0 - self.resting;
+                dx[0] = moving * x[1];
+                dx[1] = -moving * self.g;
+                Ok(())
+            }
+            fn outputs(&mut self, _t: $f, x: &[$f; 2], y: &mut [$f; 1]) -> Result<(), ModelError> {
+                y[0] = 0.5 * x[1] * x[1] + self.g * x[0];
+                Ok(())
+            }
+            fn event_indicators(&mut self, _t: $f, x: &[$f; 2], g: &mut [$f]) -> Result<(), ModelError> {
+                g[0] = x[0];
+                g[1] = x[1];
+                Ok(())
+            }
+            fn event(&mut self, index: usize, _t: $f, x: &mut [$f; 2]) -> Result<EventOutcome, ModelError> {
+                if index == 0 {
+                    x[1] *= -self.e;
+                    if x[1].abs() < self.min_speed {
+                        self.resting = 1.0;
+                        x[1] = 0.0;
+                    }
+                }
+                Ok(EventOutcome::Continue)
+            }
+            fn discrete_values(&self, values: &mut [$f]) {
+                values[0] = self.resting;
+            }
+            fn set_discrete_values(&mut self, values: &[$f]) {
+                self.resting = values[0];
+            }
+            fn initial_state(&self) -> [$f; 2] {
+                [1.0, 0.0]
+            }
+        }
+    };
+}
+
+ball_model!(f64, "Ball");
+ball_model!(f32, "BallF32");
 
 /// Least-squares slope of log(error) against log(h).
 pub fn convergence_slope(points: &[(f64, f64)]) -> f64 {

@@ -232,9 +232,8 @@ fn reactions_not_requested_cost_nothing() {
             Err(d) => panic!("{}", d.render(&file)),
         }
     };
-    let ops = |c: &Compiled| {
-        [BlockKind::Derivatives, BlockKind::Outputs].map(|k| c.program.block(k).ops.clone())
-    };
+    let ops =
+        |c: &Compiled| [BlockKind::Derivatives, BlockKind::Outputs].map(|k| c.program.block(k).ops);
     let base = ops(&compile(&text, None));
     let pruned = ops(&compile(&with, Some(&names)));
     let asked = ops(&compile(&with, None));

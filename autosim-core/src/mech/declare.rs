@@ -173,6 +173,19 @@ impl System {
         Ok(())
     }
 
+    /// Replaces symbols in every output's value (the resolver's
+    /// placeholders for values known only once every load is declared).
+    pub fn substitute_in_outputs(&mut self, map: &rustc_hash::FxHashMap<SymId, ExprId>) {
+        for o in &mut self.outputs {
+            o.expr = self.arena.substitute(o.expr, map);
+        }
+    }
+
+    /// Whether the model has constraints (not counting motions).
+    pub fn has_constraints(&self) -> bool {
+        !self.constraints.is_empty()
+    }
+
     /// Sets the description of the most recent output.
     pub fn describe_last_output(&mut self, description: &str) {
         if let Some(o) = self.outputs.last_mut() {

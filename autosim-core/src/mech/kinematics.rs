@@ -185,27 +185,3 @@ impl System {
         Vector::uv(&mut self.arena, u)
     }
 }
-
-impl System {
-    /// The kinetic energy of all bodies: `Σ ½ m v*·v* + ½ w·I·w`.
-    pub fn kinetic_energy(&mut self) -> ExprId {
-        let mut terms = Vec::new();
-        for b in 1..self.bodies.len() {
-            let body = self.bodies[b].clone();
-            let c = Fv::new(body.frame, body.cm);
-            let wxc = body.w.cross(&mut self.arena, &c);
-            let v = body.v0.add(&mut self.arena, &wxc);
-            let vv = v.dot(&mut self.arena, &v);
-            let iw = Fv::new(
-                body.frame,
-                super::framevec::mat_vec(&mut self.arena, &body.inertia, &body.w.c),
-            );
-            let wiw = body.w.dot(&mut self.arena, &iw);
-            let mv = self.arena.mul(body.mass, vv);
-            let t = self.arena.add(mv, wiw);
-            let half = self.arena.rational(1, 2);
-            terms.push(self.arena.mul(half, t));
-        }
-        self.arena.sum(&terms)
-    }
-}

@@ -6,6 +6,7 @@ mod body_check;
 mod body_order;
 mod constraint;
 mod declare;
+mod energy;
 mod error;
 mod frames;
 mod framevec;
@@ -23,7 +24,8 @@ pub use frames::{Frame, FrameId, Frames, Uv, UvId};
 pub use framevec::{Fv, Mat3};
 pub use joint::{Axis, Direction, DofKind, FixedTurn, Joint, Rotation, UnitMotion};
 pub use kane::{
-    BodyKinetics, ConstraintEquations, ConstraintRow, Equations, Prescribed, TreeKinetics,
+    BodyKinetics, ConstraintEquations, ConstraintRow, Equations, JointReaction, Prescribed,
+    TreeKinetics,
 };
 pub use system::{
     Body, BodyId, BodySpec, Coordinate, ExtraState, Force, Load, Moment, Output, Point, PointId,

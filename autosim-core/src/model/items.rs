@@ -51,6 +51,7 @@ pub(super) fn resolve_items(
             _ => {}
         }
     }
+    super::quantities::finish(r);
 }
 
 fn subroutine_arguments(r: &mut Resolver<'_>, sub: &ast::ExternSub) {
@@ -86,7 +87,9 @@ fn state(r: &mut Resolver<'_>, s: &ast::State) {
     }
     match s.options.get(StateKey::Derivative) {
         Some(opt) => {
-            if let Some(d) = r.scalar(&opt.value, "the derivative of a state") {
+            if let Some(d) = r.scalar(&opt.value, "the derivative of a state")
+                && r.without_deferred(&[d], opt.value.span(), "the derivative of a state")
+            {
                 let _ = r.sys.set_state_derivative(sym, d);
             }
         }
@@ -236,7 +239,9 @@ fn constraint(r: &mut Resolver<'_>, out: &mut ResolvedModel, c: &ast::Constraint
         ConstraintKind::Position => "a position constraint",
         ConstraintKind::Speed => "a speed constraint",
     };
-    let value = r.scalar(value, what);
+    let value = r
+        .scalar(value, what)
+        .filter(|&x| r.without_deferred(&[x], value.span(), what));
     let dependent = match c.options.get(ConstraintKey::Dependent) {
         Some(d) => symbol_named(r, &d.value, "coordinate or speed").map(Some),
         None => Some(None),
@@ -279,7 +284,9 @@ fn motion(r: &mut Resolver<'_>, out: &mut ResolvedModel, m: &ast::Motion) {
         }
     };
     let value = match m.options.get(MotionKey::Value) {
-        Some(o) => r.scalar(&o.value, "a motion"),
+        Some(o) => r
+            .scalar(&o.value, "a motion")
+            .filter(|&x| r.without_deferred(&[x], o.value.span(), "a motion")),
         None => {
             missing(r, "value");
             None

@@ -14,6 +14,7 @@ mod items;
 mod lazy;
 mod loads;
 mod operations;
+mod quantities;
 mod scene;
 mod scope;
 mod settings;

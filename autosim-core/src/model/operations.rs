@@ -2,6 +2,7 @@
 //! operations of the paper's Tables 6 and 12, each a row of
 //! [`OPERATIONS`] with its argument counts and its handler.
 
+use super::quantities;
 use super::scope::{Named, Resolver, describe};
 use super::value::{self, Value};
 use crate::diag::{Diagnostic, Span, did_you_mean};
@@ -32,6 +33,23 @@ pub(crate) const OPERATIONS: &[(&str, usize, usize, Handler)] = &[
     ("partial", 2, 2, partial),
     ("nominal", 1, 1, nominal),
     ("constant_part", 1, 1, constant_part),
+    ("reaction_force", 1, 1, quantities::reaction_force),
+    ("reaction_moment", 1, 2, quantities::reaction_moment),
+    ("kinetic_energy", 0, usize::MAX, quantities::kinetic_energy),
+    (
+        "potential_energy",
+        0,
+        usize::MAX,
+        quantities::potential_energy,
+    ),
+    ("momentum", 0, usize::MAX, quantities::momentum),
+    (
+        "angular_momentum",
+        1,
+        usize::MAX,
+        quantities::angular_momentum,
+    ),
+    ("power", 1, 1, quantities::power),
 ];
 
 /// The names of the built-in functions.
@@ -132,7 +150,9 @@ impl Resolver<'_> {
         if got >= min && got <= max {
             return true;
         }
-        let expected = if min == max {
+        let expected = if max == usize::MAX {
+            format!("at least {min} argument{}", if min == 1 { "" } else { "s" })
+        } else if min == max {
             format!("{min} argument{}", if min == 1 { "" } else { "s" })
         } else {
             format!("{min} to {max} arguments")

@@ -64,6 +64,9 @@ pub(crate) struct Resolver<'a> {
     pub implicit_parameters: Vec<(String, Span)>,
     /// The model's float type (constants must fit it).
     pub float: super::FloatType,
+    /// Placeholders of the quantities known only once every item is
+    /// resolved (reactions, potential energy, power).
+    pub deferred: Vec<super::quantities::Deferred>,
 }
 
 pub(crate) use crate::limits::{MAX_NESTING, MAX_PENDING};
@@ -97,6 +100,7 @@ impl<'a> Resolver<'a> {
             scene_matched: Vec::new(),
             implicit_parameters: Vec::new(),
             float: super::FloatType::F64,
+            deferred: Vec::new(),
         }
     }
 

@@ -51,6 +51,9 @@ impl Resolver<'_> {
     /// False, with a diagnostic at `span`, when `values` use an
     /// acceleration (`dxdt` of a speed): `what` is needed to compute them.
     pub fn without_acceleration(&mut self, values: &[ExprId], span: Span, what: &str) -> bool {
+        if !self.without_deferred(values, span, what) {
+            return false;
+        }
         let arena = &self.sys.arena;
         let found = values
             .iter()

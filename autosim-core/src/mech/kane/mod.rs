@@ -19,10 +19,12 @@ mod body_kinetics;
 mod constraints;
 mod loads;
 mod mass;
+mod reactions;
 mod recursion;
 
 pub use body_kinetics::{BodyKinetics, TreeKinetics};
 pub use constraints::{ConstraintEquations, ConstraintRow, Prescribed};
+pub use reactions::JointReaction;
 
 use super::error::{ItemRef, LocatedError, ModelError};
 use super::joint::UnitMotion;

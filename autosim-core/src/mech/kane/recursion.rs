@@ -129,10 +129,9 @@ impl System {
 
     /// Inward accumulation: subtree resultants (in place) and composite
     /// bodies.
-    pub(super) fn subtrees(&mut self, r: &mut Resultants) -> Composite {
+    pub(super) fn subtrees(&mut self, res: &mut Resultants) -> Composite {
         let nb = self.bodies.len();
         let zero = self.arena.zero();
-        let (res, mom) = (&mut r.force, &mut r.moment);
         let mut cmass: Vec<ExprId> = vec![zero; nb];
         let mut cfirst: Vec<Fv> = (0..nb)
             .map(|b| Fv::zero(&self.arena, self.bodies[b].frame))
@@ -148,13 +147,7 @@ impl System {
             let mut j = mat_add(&mut self.arena, &body.inertia, &pi);
             for &ch in &body.children {
                 let ci = ch.index();
-                let r = self.joint_vector(ch);
-                let rc = res[ci].reexpress(&mut self.arena, &mut self.frames, fr);
-                let hc = mom[ci].reexpress(&mut self.arena, &mut self.frames, fr);
-                let rxr = r.cross(&mut self.arena, &rc);
-                res[b] = res[b].add(&mut self.arena, &rc);
-                let h = hc.add(&mut self.arena, &rxr);
-                mom[b] = mom[b].add(&mut self.arena, &h);
+                let r = self.carry_resultant(BodyId(b as u32), ch, res);
                 // Composite mass properties of the child's subtree, moved to
                 // this body's origin and axes.
                 let mc = cmass[ci];

@@ -1,6 +1,8 @@
 //! The dimensions of the operations of the paper's Tables 6 and 12:
 //! positions are in m, velocities in m/s, angular velocities in rad/s,
-//! products multiply, `dir` is dimensionless, `angle` is in rad.
+//! products multiply, `dir` is dimensionless, `angle` is in rad; and of
+//! the model's quantities: reactions in N and N m, energies in J, momenta
+//! in kg m/s and kg m²/s, power in W.
 
 use super::check::{Checker, Measure, unit_dim};
 use super::dim::{Dim, Ratio};
@@ -17,6 +19,13 @@ pub(super) fn operation(c: &mut Checker<'_, '_>, name: &str, args: &[Expr]) -> M
         "vel" => fixed(c, args, "m/s"),
         "rot" => fixed(c, args, "rad/s"),
         "angle" => fixed(c, args, "rad"),
+        "reaction_force" => fixed(c, args, "N"),
+        "reaction_moment" => fixed(c, args, "N m"),
+        "kinetic_energy" | "potential_energy" => fixed(c, args, "J"),
+        "momentum" => fixed(c, args, "kg m/s"),
+        "angular_momentum" => fixed(c, args, "kg m^2/s"),
+        // Its argument names a load: not a value with a unit.
+        "power" => Measure::known(unit_dim("W")),
         "dir" => {
             each(c);
             Measure::known(Dim::ONE)

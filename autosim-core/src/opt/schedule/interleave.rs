@@ -20,6 +20,7 @@ use crate::opt::schedule::Stmt;
 use crate::opt::schedule::cost::latency;
 use rustc_hash::FxHashMap;
 use std::cmp::Reverse;
+use std::collections::BTreeSet;
 
 /// Blocks with fewer statements fit in the processor's window as they
 /// are; they keep the order that reads best (each result with what it
@@ -147,23 +148,14 @@ impl Graph {
         // For a ready statement: how many of the values it reads it is the
         // last to read (kept up to date as readers are scheduled).
         let mut frees = vec![0usize; count];
-        let mut ready: Vec<usize> = (0..count).filter(|i| waiting_on[*i] == 0).collect();
+        let mut ready = Ready::default();
+        for i in (0..count).filter(|i| waiting_on[*i] == 0) {
+            ready.insert(i, self.key(i, 0));
+        }
         let mut live = 0usize;
         let mut out = Vec::with_capacity(count);
-        while !ready.is_empty() {
-            // Live values a statement adds less those it reads last.
-            let growth = |i: usize| isize::from(!self.readers[i].is_empty()) - frees[i] as isize;
-            let pick = if live > MAX_LIVE {
-                (0..ready.len()).min_by_key(|k| {
-                    let i = ready[*k];
-                    (growth(i), Reverse(self.height[i]), i)
-                })
-            } else {
-                (0..ready.len()).max_by_key(|k| (self.height[ready[*k]], Reverse(ready[*k])))
-            };
-            let Some(k) = pick else { break };
-            let i = ready.swap_remove(k);
-            live = live.saturating_add_signed(growth(i));
+        while let Some(i) = ready.pop(live > MAX_LIVE) {
+            live = live.saturating_add_signed(self.key(i, frees[i]).growth);
             scheduled[i] = true;
             out.push(i);
             for &p in &self.reads[i] {
@@ -173,6 +165,7 @@ impl Graph {
                     let last = self.readers[p].iter().find(|r| !scheduled[**r]);
                     if let Some(&r) = last.filter(|r| waiting_on[**r] == 0) {
                         frees[r] += 1;
+                        ready.insert(r, self.key(r, frees[r]));
                     }
                 }
             }
@@ -180,11 +173,70 @@ impl Graph {
                 waiting_on[s] -= 1;
                 if waiting_on[s] == 0 {
                     frees[s] = self.reads[s].iter().filter(|p| unread[**p] == 1).count();
-                    ready.push(s);
+                    ready.insert(s, self.key(s, frees[s]));
                 }
             }
         }
         out
+    }
+
+    /// What the choice among ready statements compares for statement `i`
+    /// reading `frees` values last.
+    fn key(&self, i: usize, frees: usize) -> Key {
+        Key {
+            // Live values the statement adds less those it reads last.
+            growth: isize::from(!self.readers[i].is_empty()) - frees as isize,
+            height: self.height[i],
+        }
+    }
+}
+
+/// A ready statement's priorities.
+#[derive(Clone, Copy)]
+struct Key {
+    growth: isize,
+    height: u32,
+}
+
+/// The ready statements, ordered both ways the choice needs (the highest
+/// first; the one leaving the fewest live first), so that each choice
+/// costs a logarithm of their number rather than a pass over them (which
+/// made scheduling quadratic in a block's size).
+#[derive(Default)]
+struct Ready {
+    /// `(height, Reverse(i))`: the last is the highest, the first of equals.
+    by_height: BTreeSet<(u32, Reverse<usize>)>,
+    /// `(growth, Reverse(height), i)`: the first leaves the fewest live.
+    by_growth: BTreeSet<(isize, Reverse<u32>, usize)>,
+    /// Each ready statement's key as entered.
+    keys: FxHashMap<usize, Key>,
+}
+
+impl Ready {
+    /// Enters statement `i` with key `k`, or updates its key.
+    fn insert(&mut self, i: usize, k: Key) {
+        self.remove(i);
+        self.by_height.insert((k.height, Reverse(i)));
+        self.by_growth.insert((k.growth, Reverse(k.height), i));
+        self.keys.insert(i, k);
+    }
+
+    fn remove(&mut self, i: usize) {
+        if let Some(k) = self.keys.remove(&i) {
+            self.by_height.remove(&(k.height, Reverse(i)));
+            self.by_growth.remove(&(k.growth, Reverse(k.height), i));
+        }
+    }
+
+    /// Takes the next statement: by growth while too many values are live
+    /// (`crowded`), by height otherwise.
+    fn pop(&mut self, crowded: bool) -> Option<usize> {
+        let i = match crowded {
+            true => self.by_growth.first().map(|e| e.2)?,
+            false => self.by_height.last().map(|e| e.1.0)?,
+        };
+        self.remove(i);
+        Some(i)
     }
 }
 

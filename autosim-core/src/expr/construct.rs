@@ -475,6 +475,12 @@ impl Arena {
                     reflatten = true;
                     factors.push(f);
                 }
+                // `abs(y)^2` is `y^2`: a power of another base, which may
+                // meet a factor `y^2` it must combine with.
+                Node::Pow(base, _) if *base != b => {
+                    reflatten = true;
+                    factors.push(f);
+                }
                 _ => factors.push(f),
             }
         }

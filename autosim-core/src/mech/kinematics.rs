@@ -73,8 +73,7 @@ impl System {
         let point = self.points[p.index()].clone();
         let body = self.bodies[point.body.index()].clone();
         let r = Fv::new(body.frame, point.coordinates);
-        let wxr = body.w.cross(&mut self.arena, &r);
-        let mut v = body.v0.add(&mut self.arena, &wxr);
+        let mut v = body.w.cross(&mut self.arena, &r);
         if point
             .coordinates
             .iter()
@@ -86,7 +85,8 @@ impl System {
             }
             v = v.add(&mut self.arena, &Fv::new(body.frame, rel));
         }
-        Ok(v.to_vector(&mut self.arena, &self.frames))
+        let v = v.to_vector(&mut self.arena, &self.frames);
+        Ok(body.v0.add(&mut self.arena, &v))
     }
 
     /// The paper's `vel`: `v(p1) - v(p2)` (with `p2 = None`, absolute).
@@ -194,8 +194,9 @@ impl System {
             let body = self.bodies[b].clone();
             let c = Fv::new(body.frame, body.cm);
             let wxc = body.w.cross(&mut self.arena, &c);
+            let wxc = wxc.to_vector(&mut self.arena, &self.frames);
             let v = body.v0.add(&mut self.arena, &wxc);
-            let vv = v.dot(&mut self.arena, &v);
+            let vv = self.frames.dot_vec(&mut self.arena, &v, &v);
             let iw = Fv::new(
                 body.frame,
                 super::framevec::mat_vec(&mut self.arena, &body.inertia, &body.w.c),

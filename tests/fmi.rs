@@ -224,7 +224,7 @@ fn invariant(model: &str) -> Value {
         // A level, uniform plane: nothing depends on the heading psi. The
         // spin rate u5's equation reads the lean phi and u5 itself in
         // terms that cancel; the centre's speed |vel(D)| reads the angles
-        // through the frame its velocity is written in.
+        // through the dependent speeds the rolling constraints solve.
         "RollingDisc" => json!([
             ["der(u4)", "psi"],
             ["der(u5)", "psi"],

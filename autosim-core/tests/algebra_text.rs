@@ -85,3 +85,31 @@ fn reachable(a: &Arena, e: ExprId) -> Vec<ExprId> {
     }
     seen.into_iter().collect()
 }
+
+/// Regression (found by `text_round_trip`): `sqrt(x^2*y^2*y^2)` read back as
+/// `sqrt(x^2*y^4)`. A product merged its factors by base before taking each
+/// power, and `abs(y)^2` (here from `sqrt(y^2)^2`) becomes `y^2`, a power
+/// of another base: the product kept `y^2` twice instead of `y^4`.
+#[test]
+fn sqrt_x2_y2_y2_reads_back_as_sqrt_x2_y4() {
+    let mut a = Arena::new();
+    let x = a
+        .add_symbol("x", autosim_core::expr::SymbolKind::Free)
+        .unwrap();
+    let y = a
+        .add_symbol("y", autosim_core::expr::SymbolKind::Free)
+        .unwrap();
+    let (x, y) = (a.sym(x), a.sym(y));
+    let x2 = a.powi(x, 2);
+    let y2 = a.powi(y, 2);
+    let abs_y = a.sqrt(y2);
+    let built = a.product(&[x2, y2, abs_y, abs_y]);
+    let y4 = a.powi(y, 4);
+    let direct = a.mul(x2, y4);
+    assert_eq!(a.to_text(built), a.to_text(direct));
+    assert_eq!(built, direct);
+    let root = a.sqrt(built);
+    let text = a.to_text(root);
+    assert_eq!(text, "sqrt(x^2*y^4)");
+    assert_eq!(a.parse_text(&text), Ok(root));
+}

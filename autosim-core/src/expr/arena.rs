@@ -321,6 +321,9 @@ pub struct Arena {
     /// How many new nodes one derivative may create (see
     /// [`crate::limits::MAX_DERIVATIVE_NODES`]).
     pub(crate) derivative_limit: usize,
+    /// The trigonometric normal form of each node asked for (`None`: too
+    /// big to expand), see `trigpoly.rs`.
+    pub(crate) poly_memo: FxHashMap<ExprId, Option<std::sync::Arc<super::trigpoly::Poly>>>,
 }
 
 impl Default for Arena {
@@ -343,6 +346,7 @@ impl Arena {
             user_fns: Vec::new(),
             threshold: 2,
             derivative_limit: crate::limits::MAX_DERIVATIVE_NODES,
+            poly_memo: FxHashMap::default(),
         };
         // Ids 0 and 1 are always 0 and 1.
         arena.num(Number::ZERO);

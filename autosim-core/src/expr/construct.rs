@@ -3,8 +3,10 @@
 //! Every constructor returns a canonical node: nested sums and products are
 //! flattened, numbers folded, like terms and like powers combined, terms and
 //! factors sorted by id, a sum's leading term is never negative (`-(a + b)`
-//! instead of `-a - b`), `sin² + cos²` collapses, inverse functions cancel,
-//! and terms that are small relative to the rest of their sum are dropped.
+//! instead of `-a - b`), `sin² + cos²` collapses (and any sum of products of
+//! sines and cosines that is identically a number, `trigpoly.rs`), inverse
+//! functions cancel, and terms that are small relative to the rest of their
+//! sum are dropped.
 
 use super::arena::{Arena, ExprId, Func, Meta, Node};
 use super::number::Number;
@@ -240,6 +242,12 @@ impl Arena {
         if merged.is_empty() {
             return self.num(constant);
         }
+        // Sums of squared direction cosines (1), products of two rows (0).
+        if merged.len() + usize::from(!constant.is_zero()) >= 2
+            && let Some(n) = self.sum_identically(constant, &merged)
+        {
+            return self.num(n);
+        }
 
         // Pull out a symbolic factor common to every term.
         // Never the factor just pulled out again: that is a division that did
@@ -472,6 +480,12 @@ impl Arena {
             match self.node(f) {
                 Node::Num(n) => coef = coef * *n,
                 Node::Prod(..) => {
+                    reflatten = true;
+                    factors.push(f);
+                }
+                // `abs(y)^2` is `y^2`: a power of another base, which may
+                // meet a factor `y^2` it must combine with.
+                Node::Pow(base, _) if *base != b => {
                     reflatten = true;
                     factors.push(f);
                 }

@@ -10,6 +10,7 @@ mod funcs;
 mod number;
 mod ops;
 mod text;
+mod trigpoly;
 
 pub use arena::{
     Arena, ExprError, ExprId, Func, Meta, Node, SymId, Symbol, SymbolKind, UserFn, UserFnId,

@@ -7,6 +7,7 @@ use super::error::ModelError;
 use super::framevec::{Fv, Mat3};
 use super::joint::{BuiltJoint, DofKind, DofSymbols, translation};
 use super::system::{Body, BodyId, BodySpec, Coordinate, System};
+use super::vector::Vector;
 use crate::expr::ExprId;
 
 impl System {
@@ -124,7 +125,7 @@ impl System {
         built: &BuiltJoint,
         directions: &[[ExprId; 3]],
         syms: &DofSymbols,
-    ) -> (Fv, Fv) {
+    ) -> (Fv, Vector) {
         let zero = self.arena.zero();
         let joint_point = spec.joint_point.unwrap_or([zero; 3]);
         let pf = parent.frame;
@@ -139,11 +140,10 @@ impl System {
         }
         let w_a = parent.w;
         let wxr = w_a.cross(&mut self.arena, &r);
-        let v0_parent = parent
-            .v0
-            .add(&mut self.arena, &wxr)
-            .add(&mut self.arena, &v_rel);
-        let v0 = v0_parent.reexpress(&mut self.arena, &mut self.frames, frame);
+        let across = wxr
+            .add(&mut self.arena, &v_rel)
+            .to_vector(&mut self.arena, &self.frames);
+        let v0 = parent.v0.add(&mut self.arena, &across);
         let w_in_b = w_a.reexpress(&mut self.arena, &mut self.frames, frame);
         let w = w_in_b.add(&mut self.arena, &Fv::new(frame, built.w_rel));
         if spec.joint.rotation.dofs() > 0 {

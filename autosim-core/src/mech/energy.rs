@@ -31,7 +31,7 @@ impl System {
                 continue;
             }
             let v = self.cm_velocity(b);
-            let vv = v.dot(&mut self.arena, &v);
+            let vv = self.frames.dot_vec(&mut self.arena, &v, &v);
             let iw = Fv::new(
                 body.frame,
                 mat_vec(&mut self.arena, &body.inertia, &body.w.c),
@@ -45,11 +45,13 @@ impl System {
         self.arena.sum(&terms)
     }
 
-    /// The velocity of body `b`'s mass center, its axes.
-    fn cm_velocity(&mut self, b: BodyId) -> Fv {
+    /// The velocity of body `b`'s mass center in N (basis-free, like the
+    /// body's origin velocity it adds to).
+    fn cm_velocity(&mut self, b: BodyId) -> Vector {
         let body = self.bodies[b.index()].clone();
         let c = Fv::new(body.frame, body.cm);
         let wxc = body.w.cross(&mut self.arena, &c);
+        let wxc = wxc.to_vector(&mut self.arena, &self.frames);
         body.v0.add(&mut self.arena, &wxc)
     }
 
@@ -84,7 +86,6 @@ impl System {
             }
             let mass = self.bodies[b.index()].mass;
             let v = self.cm_velocity(b).scale(&mut self.arena, mass);
-            let v = v.to_vector(&mut self.arena, &self.frames);
             p = p.add(&mut self.arena, &v);
         }
         p
@@ -106,7 +107,6 @@ impl System {
             );
             let iw = iw.to_vector(&mut self.arena, &self.frames);
             let mv = self.cm_velocity(b).scale(&mut self.arena, body.mass);
-            let mv = mv.to_vector(&mut self.arena, &self.frames);
             let r = self.pos(body.cm_point, Some(about));
             let rxmv = self.frames.cross_vec(&mut self.arena, &r, &mv);
             h = h.add(&mut self.arena, &iw).add(&mut self.arena, &rxmv);

@@ -73,8 +73,7 @@ impl System {
         let point = self.points[p.index()].clone();
         let body = self.bodies[point.body.index()].clone();
         let r = Fv::new(body.frame, point.coordinates);
-        let wxr = body.w.cross(&mut self.arena, &r);
-        let mut v = body.v0.add(&mut self.arena, &wxr);
+        let mut v = body.w.cross(&mut self.arena, &r);
         if point
             .coordinates
             .iter()
@@ -86,7 +85,8 @@ impl System {
             }
             v = v.add(&mut self.arena, &Fv::new(body.frame, rel));
         }
-        Ok(v.to_vector(&mut self.arena, &self.frames))
+        let v = v.to_vector(&mut self.arena, &self.frames);
+        Ok(body.v0.add(&mut self.arena, &v))
     }
 
     /// The paper's `vel`: `v(p1) - v(p2)` (with `p2 = None`, absolute).

@@ -165,8 +165,13 @@ pub struct Body {
     pub cm_point: PointId,
     /// Absolute angular velocity, body axes.
     pub w: Fv,
-    /// Absolute velocity of the origin, body axes.
-    pub v0: Fv,
+    /// Absolute velocity of the origin, basis-free: each joint's part in
+    /// the axes it arises in (a translation along its parent's axes, the
+    /// parent's turning in the parent's axes), never rotated into this
+    /// body's axes. A translating body's `vel` then reads `u_x n1 + ...`,
+    /// not `u_x` spread over the rotated axes, whose projections back on N
+    /// would be sums of squared direction cosines.
+    pub v0: Vector,
 }
 
 /// A point.
@@ -302,7 +307,7 @@ impl System {
             origin: n_origin,
             cm_point: n_origin,
             w,
-            v0: w,
+            v0: Vector::zero(),
         };
         let _ = &mut frames;
         System {

@@ -2,6 +2,7 @@
 
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
+pub(crate) mod dispatch;
 mod straight_sin_cos;
 
 /// A float type a model can compute in: `f32` or `f64`.

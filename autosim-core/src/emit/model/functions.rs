@@ -151,6 +151,7 @@ pub(super) fn shared_terms(be: &BlockEmitter<'_>) -> TokenStream {
     let body = body(be, BlockKind::Common);
     let Versions { caller, copies } = versions(
         &be.rt,
+        true,
         "shared_terms",
         quote!(&self),
         &params,

@@ -553,8 +553,10 @@ fn derivatives(be: &BlockEmitter<'_>) -> versions::Versions {
         name: format_ident!("{name}"),
         ty,
     });
+    let ops = prog.block(BlockKind::Derivatives).ops.total();
     versions::versions(
         rt,
+        ops >= versions::MIN_OPS_FOR_TWO_COPIES,
         "derivatives",
         quote!(&mut self),
         &params,

@@ -24,11 +24,10 @@ pub(super) struct Versions {
     pub copies: TokenStream,
 }
 
-/// Functions of fewer operations keep one copy: for them the call into the
-/// fast copy and its branch cost as much as the instruction set gains
-/// (chain-spatial-1, 7 operations and a sine: 6.6 ns with two copies at
-/// default flags, against 4.6 ns for a native build and about 5 ns for
-/// one baseline copy).
+/// Functions of fewer operations keep one copy: the instruction set has
+/// nothing to gain there (chain-spatial-1, 7 operations and a libm sine,
+/// measured 6.5 ns with two copies and 6.2 ns with one at default flags,
+/// `bench/peers/results-default.md`).
 pub(super) const MIN_OPS_FOR_TWO_COPIES: usize = 40;
 
 /// `name` with `receiver` (`&self`, `&mut self`), `params` and `ret` (`->

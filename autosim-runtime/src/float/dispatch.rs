@@ -27,123 +27,114 @@
 //! as before, and then gives different bits from a default build.
 
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
-use core::sync::atomic::{AtomicU8, Ordering};
+pub use detect::{allow_fast_path, has_v3};
 
-/// What [`has_v3`] found: not yet asked, no, yes.
+/// Which copy the processor can run, asked once.
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
-static LEVEL: AtomicU8 = AtomicU8::new(UNKNOWN);
-#[cfg(all(feature = "std", target_arch = "x86_64"))]
-const UNKNOWN: u8 = 0;
-#[cfg(all(feature = "std", target_arch = "x86_64"))]
-const BASELINE: u8 = 1;
-#[cfg(all(feature = "std", target_arch = "x86_64"))]
-const V3: u8 = 2;
+mod detect {
+    use core::sync::atomic::{AtomicU8, Ordering};
 
-/// Whether the running processor has every feature of x86-64-v3 that
-/// [`fast_path!`](crate::fast_path) enables: asked once (`std`'s
-/// `is_x86_feature_detected!`), then one relaxed atomic load per call.
-#[cfg(all(feature = "std", target_arch = "x86_64"))]
-#[inline(always)]
-pub fn has_v3() -> bool {
-    match LEVEL.load(Ordering::Relaxed) {
-        V3 => true,
-        BASELINE => false,
-        _ => detect(),
-    }
-}
+    /// What [`has_v3`] found: not yet asked, no, yes.
+    static LEVEL: AtomicU8 = AtomicU8::new(UNKNOWN);
+    const UNKNOWN: u8 = 0;
+    const BASELINE: u8 = 1;
+    const V3: u8 = 2;
 
-/// Asks the processor and caches the answer (two threads asking at once
-/// store the same value).
-#[cfg(all(feature = "std", target_arch = "x86_64"))]
-#[cold]
-#[inline(never)]
-fn detect() -> bool {
-    let v3 = std::is_x86_feature_detected!("avx")
-        && std::is_x86_feature_detected!("avx2")
-        && std::is_x86_feature_detected!("fma")
-        && std::is_x86_feature_detected!("bmi1")
-        && std::is_x86_feature_detected!("bmi2")
-        && std::is_x86_feature_detected!("f16c")
-        && std::is_x86_feature_detected!("lzcnt")
-        && std::is_x86_feature_detected!("movbe")
-        && std::is_x86_feature_detected!("popcnt");
-    LEVEL.store(if v3 { V3 } else { BASELINE }, Ordering::Relaxed);
-    v3
-}
-
-/// Forces the baseline copy (`false`) or lets detection decide (`true`)
-/// for the rest of the process: for tests that compare the two paths.
-/// Asking for the fast copy on a processor without it keeps the baseline.
-#[cfg(all(feature = "std", target_arch = "x86_64"))]
-pub fn allow_fast_path(allow: bool) {
-    LEVEL.store(UNKNOWN, Ordering::Relaxed);
-    if !allow {
-        LEVEL.store(BASELINE, Ordering::Relaxed);
-    }
-}
-
-/// The fast copy of a generated function: the function compiled for
-/// x86-64-v3 where this crate dispatches (see the module documentation),
-/// nothing elsewhere.
-#[cfg(all(
-    feature = "std",
-    target_arch = "x86_64",
-    not(all(target_feature = "avx2", target_feature = "fma"))
-))]
-#[doc(hidden)]
-#[macro_export]
-macro_rules! fast_path {
-    ($(#[$attr:meta])* fn $($rest:tt)*) => {
-        $(#[$attr])*
-        #[target_feature(enable = "avx,avx2,fma,bmi1,bmi2,f16c,lzcnt,movbe,popcnt")]
-        fn $($rest)*
-    };
-}
-
-/// The fast copy of a generated function (nothing: this build keeps one).
-#[cfg(not(all(
-    feature = "std",
-    target_arch = "x86_64",
-    not(all(target_feature = "avx2", target_feature = "fma"))
-)))]
-#[doc(hidden)]
-#[macro_export]
-macro_rules! fast_path {
-    ($($item:tt)*) => {};
-}
-
-/// `dispatch!(fast_call, baseline_call)`: the fast copy's call where the
-/// processor has x86-64-v3 (asked once), the baseline's otherwise.
-#[cfg(all(
-    feature = "std",
-    target_arch = "x86_64",
-    not(all(target_feature = "avx2", target_feature = "fma"))
-))]
-#[doc(hidden)]
-#[macro_export]
-macro_rules! dispatch {
-    ($fast:expr, $baseline:expr) => {
-        if $crate::__private::has_v3() {
-            // SAFETY: the processor has every feature the fast copy was
-            // compiled for (`has_v3`).
-            unsafe { $fast }
-        } else {
-            $baseline
+    /// Whether the running processor has every feature of x86-64-v3 that
+    /// [`fast_path!`](crate::fast_path) enables: asked once (`std`'s
+    /// `is_x86_feature_detected!`), then one relaxed atomic load per call.
+    #[inline(always)]
+    pub fn has_v3() -> bool {
+        match LEVEL.load(Ordering::Relaxed) {
+            V3 => true,
+            BASELINE => false,
+            _ => detect(),
         }
-    };
+    }
+
+    /// Asks the processor and caches the answer (two threads asking at
+    /// once store the same value).
+    #[cold]
+    #[inline(never)]
+    fn detect() -> bool {
+        let v3 = std::is_x86_feature_detected!("avx")
+            && std::is_x86_feature_detected!("avx2")
+            && std::is_x86_feature_detected!("fma")
+            && std::is_x86_feature_detected!("bmi1")
+            && std::is_x86_feature_detected!("bmi2")
+            && std::is_x86_feature_detected!("f16c")
+            && std::is_x86_feature_detected!("lzcnt")
+            && std::is_x86_feature_detected!("movbe")
+            && std::is_x86_feature_detected!("popcnt");
+        LEVEL.store(if v3 { V3 } else { BASELINE }, Ordering::Relaxed);
+        v3
+    }
+
+    /// Forces the baseline copy (`false`) or lets detection decide
+    /// (`true`) for the rest of the process: for tests that compare the
+    /// two paths. Asking for the fast copy on a processor without it keeps
+    /// the baseline.
+    pub fn allow_fast_path(allow: bool) {
+        LEVEL.store(if allow { UNKNOWN } else { BASELINE }, Ordering::Relaxed);
+    }
 }
 
-/// `dispatch!(fast_call, baseline_call)`: the baseline call (this build
-/// keeps one copy).
+/// The macros where this build has two copies: `std`, x86-64, a target
+/// without AVX2 and FMA.
+#[cfg(all(
+    feature = "std",
+    target_arch = "x86_64",
+    not(all(target_feature = "avx2", target_feature = "fma"))
+))]
+mod two_copies {
+    /// The fast copy of a generated function, compiled for x86-64-v3.
+    #[doc(hidden)]
+    #[macro_export]
+    macro_rules! fast_path {
+        ($(#[$attr:meta])* fn $($rest:tt)*) => {
+            $(#[$attr])*
+            #[target_feature(enable = "avx,avx2,fma,bmi1,bmi2,f16c,lzcnt,movbe,popcnt")]
+            fn $($rest)*
+        };
+    }
+
+    /// `dispatch!(fast_call, baseline_call)`: the fast copy's call where
+    /// the processor has x86-64-v3 (asked once), the baseline's otherwise.
+    #[doc(hidden)]
+    #[macro_export]
+    macro_rules! dispatch {
+        ($fast:expr, $baseline:expr) => {
+            if $crate::__private::has_v3() {
+                // SAFETY: the processor has every feature the fast copy
+                // was compiled for (`has_v3`).
+                unsafe { $fast }
+            } else {
+                $baseline
+            }
+        };
+    }
+}
+
+/// The macros where this build keeps one copy.
 #[cfg(not(all(
     feature = "std",
     target_arch = "x86_64",
     not(all(target_feature = "avx2", target_feature = "fma"))
 )))]
-#[doc(hidden)]
-#[macro_export]
-macro_rules! dispatch {
-    ($fast:expr, $baseline:expr) => {
-        $baseline
-    };
+mod one_copy {
+    /// The fast copy of a generated function: nothing in this build.
+    #[doc(hidden)]
+    #[macro_export]
+    macro_rules! fast_path {
+        ($($item:tt)*) => {};
+    }
+
+    /// `dispatch!(fast_call, baseline_call)`: the baseline call.
+    #[doc(hidden)]
+    #[macro_export]
+    macro_rules! dispatch {
+        ($fast:expr, $baseline:expr) => {
+            $baseline
+        };
+    }
 }

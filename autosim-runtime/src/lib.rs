@@ -141,5 +141,8 @@ pub use run::{
 #[doc(hidden)]
 pub mod __private {
     pub use crate::float::MulAdd;
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    pub use crate::float::dispatch::{allow_fast_path, has_v3};
     pub use crate::float::math;
+    pub use crate::{dispatch, fast_path};
 }

@@ -51,6 +51,14 @@ comp = [json.loads(l) for l in open(os.path.join(out, "compile.jsonl")) if l.str
 ctab = ["| model | generated lines | rustc (release, s) |", "|---|---:|---:|"]
 for c in comp:
     ctab.append(f"| chain-{c['kind']}-{c['n']} | {c['lines']} | {c['rustc_s']:.1f} |")
+rustflags = os.environ.get("AUTOSIM_RUSTFLAGS", "-C target-cpu=native")
+flags = f"`RUSTFLAGS={rustflags}`" if rustflags else "default flags (no `RUSTFLAGS`: the x86-64 baseline, with the x86-64-v3 copy of `derivatives` chosen at run time)"
+compile_text = "" if not comp else f"""Compile cost of the generated module (one model per crate, dependencies
+built, `cargo build --release` with default flags after touching the
+source; the model compiler itself runs in the macro):
+
+{chr(10).join(ctab)}
+"""
 text = f"""# autosim against the peers on the chain models, and the satellite
 
 `bash bench/peers/run.sh` (after the peers' own scripts in `../shared/bench`),
@@ -62,17 +70,13 @@ interleave the programs, so load hits all alike. The best method of each
 peer is shown with its name. The last column compares the fastest round's
 median of each program instead (timings here are bimodal). Everything is
 compiled for this machine's CPU: the peers with gcc/g++ `-O3 -march=native`,
-autosim's generated Rust with `-C target-cpu=native`. The satellite (the
+autosim's generated Rust with {flags}. Load average
+at the start: {os.environ.get("BENCH_LOAD", "?")}. The satellite (the
 paper's spacecraft; no peer has it) is timed the same way.
 
 {chr(10).join(table)}
 
-Compile cost of the generated module (one model per crate, dependencies
-built, `cargo build --release` with default flags after touching the
-source; the model compiler itself runs in the macro):
-
-{chr(10).join(ctab)}
-"""
+{compile_text}"""
 open(md_path, "w").write(text)
 with open(jsonl_path, "w") as f:
     for s in summary:

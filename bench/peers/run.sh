@@ -9,6 +9,9 @@
 # rustc -C target-cpu=native for autosim).
 #
 #   bash bench/peers/run.sh        (from the repository root)
+#   AUTOSIM_BENCH_RUSTFLAGS= RESULTS=results-default COMPILE_COST=0 bash bench/peers/run.sh
+#                                  (autosim at default flags, its run-time
+#                                  dispatch; tables in results-default.*)
 #
 # Needs the peers built by their own scripts first (each installs what it
 # needs; about 30 minutes together):
@@ -24,6 +27,10 @@ source "$(dirname "${BASH_SOURCE[0]}")/../common.sh"   # HERE, REPO, NICE, PY
 AROOT="${ANCHORS_ROOT:-/tmp/anchors}"
 CROOT="${CASADI_ROOT:-/tmp/casadi}"
 ROUNDS="${ROUNDS:-5}"
+RESULTS="${RESULTS:-results}"           # tables: $RESULTS.md, $RESULTS.jsonl
+COMPILE_COST="${COMPILE_COST:-1}"      # 0 skips step 4
+RUSTFLAGS_BENCH="${AUTOSIM_BENCH_RUSTFLAGS--C target-cpu=native}"
+LOAD="$(cut -d' ' -f1-3 /proc/loadavg)"
 TARGET="${CARGO_TARGET_DIR:-$REPO/target/peers}"
 PIN="$AROOT/build/pin_bench"
 CAS="$CROOT/build/cas_bench"
@@ -36,10 +43,10 @@ rm -rf "$HERE/models" && mkdir -p "$HERE/models"
 (cd "$REPO" && cargo run -q --release --example gen_chains -- "$HERE/models" 1 2 3 5 7 10 20 50)
 cp "$REPO/examples/models/satellite.sim" "$HERE/models/"
 
-echo "== 2. autosim_bench (release, -C target-cpu=native as the peers' -march=native)"
+echo "== 2. autosim_bench (release, RUSTFLAGS='$RUSTFLAGS_BENCH'; load average $LOAD)"
 # The peers' C and C++ are compiled for this machine's CPU (-march=native);
 # the generated Rust gets the same (AUTOSIM_BENCH_RUSTFLAGS to change it).
-(cd "$HERE" && RUSTFLAGS="${AUTOSIM_BENCH_RUSTFLAGS--C target-cpu=native}" \
+(cd "$HERE" && RUSTFLAGS="$RUSTFLAGS_BENCH" \
   CARGO_TARGET_DIR="$TARGET" cargo build -q --release)
 BENCH="$TARGET/release/autosim-peer-bench"
 
@@ -68,7 +75,8 @@ done
 
 echo "== 4. compile cost (one model per crate, release, dependencies built)"
 : > "$OUT/compile.jsonl"
-for kind in spatial planar; do
+[ "$COMPILE_COST" = 1 ] || echo "skipped (COMPILE_COST=$COMPILE_COST)"
+[ "$COMPILE_COST" = 1 ] && for kind in spatial planar; do
   for n in 10 20 50; do
     CRATE="$TARGET/compile-$kind-$n"
     mkdir -p "$CRATE/src"
@@ -98,4 +106,5 @@ TOML
 done
 
 echo "== 5. tables"
-BENCH_GIT="$(bench_git)" ROUNDS="$ROUNDS" $PY "$HERE/report.py" "$OUT" "$HERE/results.md" "$HERE/results.jsonl"
+BENCH_GIT="$(bench_git)" ROUNDS="$ROUNDS" BENCH_LOAD="$LOAD" AUTOSIM_RUSTFLAGS="$RUSTFLAGS_BENCH" \
+  $PY "$HERE/report.py" "$OUT" "$HERE/$RESULTS.md" "$HERE/$RESULTS.jsonl"

@@ -2,6 +2,7 @@
 
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
+pub(crate) mod dispatch;
 mod straight_sin_cos;
 
 /// A float type a model can compute in: `f32` or `f64`.
@@ -148,7 +149,10 @@ impl_float!(f32);
 /// `acc + a * b`, `acc.sub_mul(a, b)` is `acc - a * b`. Each is one fused
 /// multiply-add (a single rounding) where the target has the instruction
 /// and `std` provides it (`-C target-cpu=native` on current x86-64, every
-/// 64-bit Arm); otherwise exactly the bits of the plain expression.
+/// 64-bit Arm); otherwise exactly the bits of the plain expression. The
+/// decision is the crate's target features: the x86-64-v3 copy a default
+/// build adds of generated `derivatives` (`dispatch.rs`) does not fuse, so
+/// both copies give the same bits.
 pub trait MulAdd: Sized {
     /// `self + a * b`.
     fn add_mul(self, a: Self, b: Self) -> Self;

@@ -2,11 +2,12 @@
 //! the program: `derivatives`, `outputs`, `mass_matrix`, `forcing`,
 //! `initial_state` and `Constants::new`.
 
+use super::versions::{Param, Versions, versions};
 use crate::emit::block::{BlockEmitter, Target};
 use crate::emit::expr::Locals;
 use crate::opt::{Block, BlockKind, MassLayout, Ops, Program, Stmt};
-use proc_macro2::{Literal, TokenStream};
-use quote::quote;
+use proc_macro2::{Ident, Literal, TokenStream};
+use quote::{format_ident, quote};
 
 /// The arguments a block function names: `t` or `_`, the state array or
 /// `_`, as the block reads them.
@@ -122,7 +123,8 @@ pub(super) fn mass_matrix(be: &BlockEmitter<'_>, t: TokenStream, x: TokenStream)
     }
 }
 
-/// `shared_terms`, the function of the common block (none without one).
+/// `shared_terms`, the function of the common block (none without one), in
+/// two copies (`versions`).
 pub(super) fn shared_terms(be: &BlockEmitter<'_>) -> TokenStream {
     if be.prog.try_block(BlockKind::Common).is_none() {
         return TokenStream::new();
@@ -132,15 +134,36 @@ pub(super) fn shared_terms(be: &BlockEmitter<'_>) -> TokenStream {
     let n_states = Literal::usize_unsuffixed(be.prog.states().len());
     let len = Literal::usize_unsuffixed(be.prog.common.len());
     let (t, x) = be.shared_reads();
-    let t = t.then(|| quote!(t: #ty,));
-    let x = x.then(|| quote!(#lx: &[#ty; #n_states],));
+    let param = |name: &Ident, ty: TokenStream| Param {
+        pattern: quote!(#name),
+        name: name.clone(),
+        ty,
+    };
+    let t_name = format_ident!("t");
+    let mut params = Vec::new();
+    if t {
+        params.push(param(&t_name, quote!(#ty)));
+    }
+    if x {
+        params.push(param(lx, quote!(&[#ty; #n_states])));
+    }
+    params.push(param(ls, quote!(&mut [#ty; #len])));
     let body = body(be, BlockKind::Common);
+    let Versions { caller, copies } = versions(
+        &be.rt,
+        true,
+        "shared_terms",
+        quote!(&self),
+        &params,
+        quote!(),
+        body,
+    );
     quote! {
         /// What `derivatives` and `forcing` both compute, computed once
         /// for either: they read slot `k` as `s[k]`.
-        fn shared_terms(&self, #t #x #ls: &mut [#ty; #len]) {
-            #body
-        }
+        #caller
+
+        #copies
     }
 }
 

@@ -6,6 +6,7 @@ mod assembly;
 mod functions;
 mod linear;
 mod structs;
+mod versions;
 
 use super::block::BlockEmitter;
 use super::expr::{Locals, float_type, ident};
@@ -381,7 +382,9 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
     let shared = functions::shared_terms(be);
     let lf = &be.locals.f;
     let f_arg = if n == 0 { quote!(_) } else { quote!(#lf) };
-    let model_trait = model_trait_impl(be);
+    let derivatives = derivatives(be);
+    let model_trait = model_trait_impl(be, &derivatives.caller);
+    let derivative_copies = &derivatives.copies;
     let assembly = assembly::inherent(be);
     let linear = linear::inherent(be);
     quote! {
@@ -409,6 +412,8 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
             }
 
             #shared
+
+            #derivative_copies
 
             #assembly
 
@@ -513,8 +518,58 @@ fn impl_generics(i: &Interface) -> [TokenStream; 3] {
     }
 }
 
+/// `derivatives` in two copies (`versions`): the caller goes into the
+/// `Model` implementation, the copies into the inherent impl.
+fn derivatives(be: &BlockEmitter<'_>) -> versions::Versions {
+    let prog = be.prog;
+    let rt = &be.rt;
+    let ty = float_type(be.float);
+    let n_states = Literal::usize_unsuffixed(prog.states().len());
+    let functions::Args { t: dt, x: dxx } =
+        functions::args(prog, BlockKind::Derivatives, be.locals);
+    let ldx = &be.locals.dx;
+    // A model without states writes no derivative (an unused `dx` warned).
+    let d_arg = if prog.states().is_empty() {
+        quote!(_)
+    } else {
+        quote!(#ldx)
+    };
+    let deriv = functions::body(be, BlockKind::Derivatives);
+    // A derivative that is NaN or infinite at a finite state (a division by
+    // zero, a function outside its domain, a user function's result) is an
+    // error, not `Ok`: one vectorizable pass over `dx`.
+    let deriv_result = if prog.states().is_empty() {
+        quote!(Ok(()))
+    } else {
+        quote!(#rt::check_derivatives::<Self>(#ldx))
+    };
+    let params = [
+        (dt, "t", quote!(#ty)),
+        (dxx, "x", quote!(&[#ty; #n_states])),
+        (d_arg, "dx", quote!(&mut [#ty; #n_states])),
+    ]
+    .map(|(pattern, name, ty)| versions::Param {
+        pattern,
+        name: format_ident!("{name}"),
+        ty,
+    });
+    let ops = prog.block(BlockKind::Derivatives).ops.total();
+    versions::versions(
+        rt,
+        ops >= versions::MIN_OPS_FOR_TWO_COPIES,
+        "derivatives",
+        quote!(&mut self),
+        &params,
+        quote!(-> Result<(), #rt::ModelError>),
+        quote! {
+            #deriv
+            #deriv_result
+        },
+    )
+}
+
 /// `impl Model for <Model>`.
-fn model_trait_impl(be: &BlockEmitter<'_>) -> TokenStream {
+fn model_trait_impl(be: &BlockEmitter<'_>, derivatives: &TokenStream) -> TokenStream {
     let prog = be.prog;
     let i = &prog.interface;
     let rt = &be.rt;
@@ -526,30 +581,13 @@ fn model_trait_impl(be: &BlockEmitter<'_>) -> TokenStream {
     let names = name_lists(i);
     let (p_get, p_set) = parameter_access(i, be.locals);
     let inputs = input_access(i);
-    let functions::Args { t: dt, x: dxx } =
-        functions::args(prog, BlockKind::Derivatives, be.locals);
     let functions::Args { t: out_t, x: out_x } =
         functions::args(prog, BlockKind::Outputs, be.locals);
-    let (ldx, ly) = (&be.locals.dx, &be.locals.y);
-    // A model without states writes no derivative (an unused `dx` warned).
-    let d_arg = if prog.states().is_empty() {
-        quote!(_)
-    } else {
-        quote!(#ldx)
-    };
+    let ly = &be.locals.y;
     let out_y = if i.outputs.is_empty() {
         quote!(_)
     } else {
         quote!(#ly)
-    };
-    let deriv = functions::body(be, BlockKind::Derivatives);
-    // A derivative that is NaN or infinite at a finite state (a division by
-    // zero, a function outside its domain, a user function's result) is an
-    // error, not `Ok`: one vectorizable pass over `dx`.
-    let deriv_result = if prog.states().is_empty() {
-        quote!(Ok(()))
-    } else {
-        quote!(#rt::check_derivatives::<Self>(#ldx))
     };
     let outs = functions::body(be, BlockKind::Outputs);
     let init = functions::body(be, BlockKind::Initial);
@@ -565,10 +603,7 @@ fn model_trait_impl(be: &BlockEmitter<'_>) -> TokenStream {
             type Outputs = [#ty; #n_out];
             #names
 
-            fn derivatives(&mut self, #dt: #ty, #dxx: &[#ty; #n_states], #d_arg: &mut [#ty; #n_states]) -> Result<(), #rt::ModelError> {
-                #deriv
-                #deriv_result
-            }
+            #derivatives
 
             fn outputs(&mut self, #out_t: #ty, #out_x: &[#ty; #n_states], #out_y: &mut [#ty; #n_out]) -> Result<(), #rt::ModelError> {
                 #outs

@@ -1,8 +1,10 @@
 //! Non-finite values are never silent at run time: a derivative that is NaN
 //! or infinite at a finite state is `ModelError::NonFiniteDerivative` from
 //! generated `derivatives` itself, a non-finite output stops a run with
-//! `IntegrationError::NonFiniteOutput`, and a state that overflows with
-//! `IntegrationError::NonFinite`; each names the first value and the time.
+//! `IntegrationError::NonFiniteOutput`, a user function's NaN or infinity
+//! is `ModelError::NonFiniteUserResult` naming the function, and a state
+//! that overflows is `IntegrationError::NonFinite`; each names the first
+//! value and the time.
 
 use autosim::runtime::integrate::{DopriSettings, DormandPrince, Rk4};
 use autosim::runtime::{IntegrationError, Model, ModelError, RunError, RunSettings, run};
@@ -24,7 +26,35 @@ autosim::model! {
     output root = sqrt(x - 2);
 }
 
+autosim::model! {
+    /// A drag law and a sensor written in Rust, which go wrong past x = 1.
+    model Dragged;
+    extern fn drag(speed [m/s]) -> [N];
+    body P { translate: 1, q: [x], u: [v], mass: 1, inertia: 0 }
+    extern sub sensor(x) -> (reading [m], health);
+    force resist { on: P, along: n1, magnitude: drag(v) }
+    output position [m] = reading;
+    output sensor_health = health;
+}
+
 use attract::Attract;
+
+/// A drag law that divides by `1 - x` (infinite at x = 1), and a sensor
+/// whose health is NaN beyond x = 2.
+struct Faulty {
+    x: f64,
+}
+
+impl dragged::Externs for Faulty {
+    fn drag(&mut self, speed: f64) -> f64 {
+        -speed / (1.0 - self.x)
+    }
+    fn sensor(&mut self, position: f64) -> [f64; 2] {
+        self.x = position;
+        let health = if position > 2.0 { f64::NAN } else { 1.0 };
+        [position, health]
+    }
+}
 
 /// Runs `model` from `x` with RK4, ignoring the outputs.
 fn run_rk4<M: Model<Float = f64>>(
@@ -177,4 +207,26 @@ fn a_nan_mass_is_named_and_a_nan_pivot_says_so() {
     let mut dx = [0.0; 2];
     let e = model.derivatives(0.0, &x, &mut dx).unwrap_err().to_string();
     assert!(e.contains("or is NaN"), "{e}");
+}
+
+#[test]
+fn a_user_functions_nan_or_infinity_is_named() {
+    let mut model = dragged::Dragged::new(Faulty { x: 1.0 });
+    let mut dx = [0.0; 2];
+    let r = model.derivatives(0.0, &[1.0, 1.0], &mut dx);
+    assert_eq!(r, Err(ModelError::NonFiniteUserResult { function: "drag" }));
+    assert_eq!(
+        r.unwrap_err().to_string(),
+        "the user function drag returned NaN or infinity at this state (check its arguments' range and its divisions)"
+    );
+    model.externs.x = 0.0;
+    assert_eq!(model.derivatives(0.0, &[1.0, 1.0], &mut dx), Ok(()));
+    let mut y = [0.0; 2];
+    assert_eq!(model.outputs(0.0, &[1.5, 0.0], &mut y), Ok(()));
+    assert_eq!(y, [1.5, 1.0]);
+    let r = model.outputs(0.0, &[2.5, 0.0], &mut y);
+    assert_eq!(
+        r,
+        Err(ModelError::NonFiniteUserResult { function: "sensor" })
+    );
 }

@@ -131,7 +131,10 @@ pub use event::{Direction, EventIndicator, EventOutcome, EventRecord};
 pub use float::Float;
 pub use integrate::{StepInfo, Stepper};
 pub use linear::{Linear, Linearize};
-pub use model::{Model, ModelError, OpCount, StateArray, check_derivatives};
+pub use model::{
+    Model, ModelError, OpCount, StateArray, check_derivatives, check_user_result,
+    check_user_results,
+};
 pub use run::{
     Controller, EventSettings, Observer, RunError, RunSettings, RunSummary, run, run_at,
     run_sampled,

@@ -62,16 +62,55 @@ pub enum ModelError {
     /// A derivative came out NaN or infinite although the state was
     /// finite: the model divides by zero or calls a function outside its
     /// domain at this state (`-k/x^2` at `x = 0`, `sqrt` of a negative
-    /// number), a user function returned a non-finite value, or the state
-    /// is so large that a derivative overflows (an integration beyond its
-    /// stability limit). Generated models check their derivatives before
-    /// returning them ([`check_derivatives`]).
+    /// number), or the state is so large that a derivative overflows (an
+    /// integration beyond its stability limit). Generated models check
+    /// their derivatives before returning them ([`check_derivatives`]), and
+    /// the results of user code before using them
+    /// ([`ModelError::NonFiniteUserResult`]).
     NonFiniteDerivative {
         /// Index of the first non-finite derivative (state order).
         index: usize,
         /// Name of the state whose derivative it is.
         name: &'static str,
     },
+    /// A user function or subroutine (the model's `extern`s) returned NaN
+    /// or infinity. Generated `derivatives` and `outputs` check every
+    /// result of user code they call ([`check_user_result`]).
+    NonFiniteUserResult {
+        /// The function's name, as the model declares it.
+        function: &'static str,
+    },
+}
+
+/// `Ok(value)` if `value` is finite, else
+/// [`ModelError::NonFiniteUserResult`] naming `function`. Generated code
+/// wraps every call of a user function in it (one comparison per call).
+#[inline(always)]
+pub fn check_user_result<F: Float>(value: F, function: &'static str) -> Result<F, ModelError> {
+    match value.is_finite() {
+        true => Ok(value),
+        false => Err(non_finite_user_result(function)),
+    }
+}
+
+/// [`check_user_result`] for every result of a user subroutine.
+#[inline(always)]
+pub fn check_user_results<F: Float, const N: usize>(
+    values: [F; N],
+    function: &'static str,
+) -> Result<[F; N], ModelError> {
+    match values.iter().all(|v| v.is_finite()) {
+        true => Ok(values),
+        false => Err(non_finite_user_result(function)),
+    }
+}
+
+/// The error of a non-finite user result (out of line: the check's hot path
+/// is only the comparison).
+#[cold]
+#[inline(never)]
+fn non_finite_user_result(function: &'static str) -> ModelError {
+    ModelError::NonFiniteUserResult { function }
 }
 
 /// `Ok` if every derivative in `dx` is finite, else
@@ -111,6 +150,10 @@ impl core::fmt::Display for ModelError {
             ModelError::NonFiniteDerivative { index, name } => write!(
                 f,
                 "the derivative of state {name} (#{index}) is not finite at this state: the model divides by zero or calls a function outside its domain here, a user function returned NaN or infinity, or the state is so large that the derivative overflows (an unstable step: try a smaller one)"
+            ),
+            ModelError::NonFiniteUserResult { function } => write!(
+                f,
+                "the user function {function} returned NaN or infinity at this state (check its arguments' range and its divisions)"
             ),
         }
     }

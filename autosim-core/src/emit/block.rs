@@ -89,6 +89,23 @@ pub struct BlockEmitter<'a> {
 impl BlockEmitter<'_> {
     /// The statements of `block` (with `hoisted`: constants read from `c`).
     pub fn emit(&self, block: &Block, hoisted: bool, target: Target<'_>) -> TokenStream {
+        self.statements(block, hoisted, target, false)
+    }
+
+    /// [`BlockEmitter::emit`] for a function that returns `Result<_,
+    /// ModelError>`: every result of user code is checked, and NaN or
+    /// infinity returns `NonFiniteUserResult` naming the function.
+    pub fn emit_checked(&self, block: &Block, hoisted: bool, target: Target<'_>) -> TokenStream {
+        self.statements(block, hoisted, target, true)
+    }
+
+    fn statements(
+        &self,
+        block: &Block,
+        hoisted: bool,
+        target: Target<'_>,
+        check_user_results: bool,
+    ) -> TokenStream {
         let array = array_slots(block);
         let none = FxHashMap::default();
         let printer = ExprPrinter {
@@ -105,6 +122,7 @@ impl BlockEmitter<'_> {
             locals: self.locals,
             array: &array,
             timing: Default::default(),
+            user_check: check_user_results.then(|| self.rt.clone()),
         };
         let mut out = self.reads(block, hoisted, &target);
         out.extend(self.shared_terms_call(block));
@@ -279,7 +297,8 @@ impl BlockEmitter<'_> {
         }
     }
 
-    /// `let [a, _, b] = self.externs.sub(args);`
+    /// `let [a, _, b] = self.externs.sub(args);` (its results checked in a
+    /// function that returns `Result`).
     fn call_subroutine(&self, block: &Block, printer: &ExprPrinter<'_>, k: usize) -> TokenStream {
         let sub = &self.prog.interface.subroutines[k];
         let f = ident(&sub.name);
@@ -300,7 +319,14 @@ impl BlockEmitter<'_> {
             .iter()
             .map(|a| printer.expr(*a))
             .collect();
-        quote!(let [#(#pats),*] = self.externs.#f(#(#args),*);)
+        let call = quote!(self.externs.#f(#(#args),*));
+        match &printer.user_check {
+            Some(rt) => {
+                let name = &sub.name;
+                quote!(let [#(#pats),*] = #rt::check_user_results(#call, #name)?;)
+            }
+            None => quote!(let [#(#pats),*] = #call;),
+        }
     }
 
     /// A pivot of the mass matrix that must be positive, or the model

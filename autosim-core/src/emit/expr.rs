@@ -253,6 +253,9 @@ pub struct ExprPrinter<'a> {
     /// When each value is ready and how each sum is printed (see
     /// [`sum`]).
     pub timing: sum::Timing,
+    /// The runtime's path where user functions' results are checked for
+    /// NaN and infinity (in functions that return `Result`), else `None`.
+    pub user_check: Option<TokenStream>,
 }
 
 impl ExprPrinter<'_> {
@@ -382,8 +385,13 @@ impl ExprPrinter<'_> {
                 let xs: Vec<TokenStream> = args.iter().map(|a| self.expr(*a)).collect();
                 match f {
                     Func::User(u) => {
-                        let name = ident(&self.prog.interface.extern_fns[u.index()].name);
-                        quote!(self.externs.#name(#(#xs),*))
+                        let declared = &self.prog.interface.extern_fns[u.index()].name;
+                        let name = ident(declared);
+                        let call = quote!(self.externs.#name(#(#xs),*));
+                        match &self.user_check {
+                            Some(rt) => quote!(#rt::check_user_result(#call, #declared)?),
+                            None => call,
+                        }
                     }
                     other => {
                         let m = &self.math;

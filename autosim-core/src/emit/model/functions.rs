@@ -48,7 +48,7 @@ pub(super) fn body(be: &BlockEmitter<'_>, kind: BlockKind) -> TokenStream {
     let block = prog.block(kind);
     let n_states = Literal::usize_unsuffixed(prog.states().len());
     match kind {
-        BlockKind::Derivatives => be.emit(block, true, Target::Array(&l.dx)),
+        BlockKind::Derivatives => be.emit_checked(block, true, Target::Array(&l.dx)),
         BlockKind::MassMatrix => match prog.mass_layout {
             MassLayout::Entries => be.emit(block, true, Target::Matrix(&l.m, prog.n().max(1))),
             MassLayout::Products => be.emit(block, true, Target::Array(&l.f)),
@@ -56,7 +56,7 @@ pub(super) fn body(be: &BlockEmitter<'_>, kind: BlockKind) -> TokenStream {
         BlockKind::Forcing => be.emit(block, true, Target::Array(&l.f)),
         BlockKind::Common => be.emit(block, true, Target::Array(&l.s)),
         BlockKind::Outputs => {
-            let body = be.emit(block, true, Target::Array(&l.y));
+            let body = be.emit_checked(block, true, Target::Array(&l.y));
             if !prog.outputs_need_derivatives {
                 return body;
             }

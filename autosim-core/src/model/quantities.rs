@@ -280,8 +280,8 @@ fn describe_quantity(q: &Quantity, sys: &crate::mech::System) -> String {
 }
 
 /// Once every item is resolved: the values of the placeholders, put into
-/// the outputs. Joint reactions of a model with constraints are reported
-/// (their constraint forces are not formed).
+/// the outputs. Joint reactions of a model with constraints are errors: a
+/// constraint does not say where its load acts.
 pub(super) fn finish(r: &mut Resolver<'_>) {
     if r.deferred.is_empty() {
         return;
@@ -299,23 +299,27 @@ pub(super) fn finish(r: &mut Resolver<'_>) {
             })
         })
         .collect();
-    let reactions_needed = used.iter().any(|d| {
+    let is_reaction = |d: &&Deferred| {
         matches!(
             d.quantity,
             Quantity::ReactionForce(_) | Quantity::ReactionMoment(..)
         )
-    });
+    };
+    let reactions_needed = used.iter().any(|d| is_reaction(&d));
     if reactions_needed && r.sys.has_constraints() {
-        for d in used.iter().filter(|d| {
-            matches!(
-                d.quantity,
-                Quantity::ReactionForce(_) | Quantity::ReactionMoment(..)
-            )
-        }) {
+        let names = r
+            .sys
+            .constraints
+            .iter()
+            .map(|c| format!("`{}`", c.name))
+            .collect::<Vec<_>>()
+            .join(", ");
+        for d in used.iter().filter(is_reaction) {
+            let what = describe_quantity(&d.quantity, &r.sys);
             r.push(
-                Diagnostic::error(d.span, "joint reactions of a model with constraints are not computed")
-                    .note("the forces the constraints carry are eliminated with the dependent speeds (Kane's method), so a joint's reaction would miss them")
-                    .help("compute the reaction from a tree model (a motion, not a constraint, may drive it), or write the load with Newton–Euler in an output"),
+                Diagnostic::error(d.span, format!("`{what}` cannot be computed in a model with constraints ({names})"))
+                    .note("a joint's reaction includes the loads the constraints carry, but a `constraint` is an equation of coordinates and speeds: it does not say on which bodies and points its load acts, and Kane's method eliminates that load with the dependent speeds")
+                    .help("reactions are computed in models without constraints (motions are fine): to estimate them here, replace the constraint by a stiff `force` between the points it joins (an approximation, closer as the stiffness grows)"),
             );
         }
         return;

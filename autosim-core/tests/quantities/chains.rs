@@ -1,7 +1,7 @@
 //! Static cases with known answers, the chains' reactions against
 //! Pinocchio's RNEA and their energy against SymPy's.
 
-use super::support::{close, compile_text, model_text, outputs_at, outputs_with};
+use super::support::{close, compile_text, model_text, output_names, outputs_at, outputs_with};
 use autosim_core::pipeline::Compiled;
 
 /// A pendulum hanging at rest carries its weight at the hinge, straight
@@ -168,13 +168,7 @@ fn reactions_not_requested_cost_nothing() {
     let with = format!(
         "{text}\noutput hinge_force [N] = dot(reaction_force(E), e1);\noutput hinge_moment [N m] = dot(reaction_moment(E), e1);\n"
     );
-    let names: Vec<String> = compile_text("satellite.sim", &text)
-        .program
-        .interface
-        .outputs
-        .iter()
-        .map(|o| o.name.clone())
-        .collect();
+    let names = output_names(&compile_text("satellite.sim", &text));
     let compile = |text: &str, outputs: Option<&[String]>| {
         let file = SourceFile::new("satellite.sim", text.to_string());
         let scene = Scene {

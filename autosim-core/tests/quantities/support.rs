@@ -22,6 +22,16 @@ pub fn model_text(file: &str) -> String {
     std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
+/// The names of `c`'s outputs, in order.
+pub fn output_names(c: &Compiled) -> Vec<String> {
+    c.program
+        .interface
+        .outputs
+        .iter()
+        .map(|o| o.name.clone())
+        .collect()
+}
+
 /// The outputs of `c` at state `x` (default parameters, no user code).
 pub fn outputs_at(c: &Compiled, x: &[f64], t: f64) -> Vec<f64> {
     let params: Vec<f64> = c

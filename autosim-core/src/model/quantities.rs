@@ -1,7 +1,9 @@
 //! The built-ins that read a quantity of the whole model: joint reactions
 //! (`reaction_force`, `reaction_moment`), energies (`kinetic_energy`,
-//! `potential_energy`), momenta (`momentum`, `angular_momentum`) and the
-//! power of a load (`power`).
+//! `potential_energy`), momenta (`momentum`, `angular_momentum`), the
+//! power of a load (`power`) and the load a constraint carries
+//! (`constraint_force`, its multiplier: the constrained lowering gives it
+//! its value, from the accelerations).
 //!
 //! Those that depend on items resolved in model order (the loads and
 //! gravity) cannot be computed where they are written: they stand as
@@ -28,6 +30,8 @@ pub(crate) enum Quantity {
     Potential(Vec<BodyId>),
     /// `power(load)`.
     Power(String),
+    /// `constraint_force(constraint)`.
+    ConstraintForce(String),
 }
 
 /// A placeholder: the quantity, its symbols (one for a scalar, three for a
@@ -150,6 +154,55 @@ pub(super) fn power(r: &mut Resolver<'_>, args: &[Expr], span: Span, _: &str) ->
     }
 }
 
+/// `constraint_force(constraint)`.
+pub(super) fn constraint_force(
+    r: &mut Resolver<'_>,
+    args: &[Expr],
+    span: Span,
+    _: &str,
+) -> Option<Value> {
+    let Expr::Name(n) = &args[0] else {
+        r.push(
+            Diagnostic::error(
+                args[0].span(),
+                "`constraint_force` takes the name of a constraint",
+            )
+            .help("write `constraint_force(loop)` with a `constraint loop { ... }` of the model"),
+        );
+        return None;
+    };
+    match r.names.get(&n.text).cloned() {
+        // Constraints, motions, forces and moments share a namespace: which
+        // one it is is known once every item is resolved (`finish`).
+        Some((Named::Load, _)) => {
+            Some(r.deferred(Quantity::ConstraintForce(n.text.clone()), BodyId::N, span))
+        }
+        Some((other, _)) => {
+            r.push(
+                Diagnostic::error(
+                    n.span,
+                    format!(
+                        "`constraint_force` needs a constraint, but `{}` is {}",
+                        n.text,
+                        super::scope::describe(&other)
+                    ),
+                )
+                .help("name a `constraint` of the model"),
+            );
+            None
+        }
+        None => {
+            r.unknown_of_kind(
+                n,
+                "constraint",
+                |k| matches!(k, Named::Load),
+                format!("declare it with `constraint {} {{ ... }}`", n.text),
+            );
+            None
+        }
+    }
+}
+
 /// A body with a joint (not N).
 fn jointed_body(r: &mut Resolver<'_>, e: &Expr, ctx: &str) -> Option<BodyId> {
     let b = r.body(e, ctx)?;
@@ -190,7 +243,10 @@ impl Resolver<'_> {
     /// The placeholder of `q` (made on first use): a scalar, or a vector
     /// with components in `frame_of`'s axes.
     fn deferred(&mut self, q: Quantity, frame_of: BodyId, span: Span) -> Value {
-        let vector = !matches!(q, Quantity::Potential(_) | Quantity::Power(_));
+        let vector = !matches!(
+            q,
+            Quantity::Potential(_) | Quantity::Power(_) | Quantity::ConstraintForce(_)
+        );
         let symbols = match self.deferred.iter().find(|d| d.quantity == q) {
             Some(d) => d.symbols.clone(),
             None => {
@@ -251,7 +307,7 @@ impl Resolver<'_> {
         };
         self.push(
             Diagnostic::error(span, format!("{what} cannot use `{name}`"))
-                .help("reactions, potential energy and power are computed from the model's loads and accelerations: use them only in outputs (and the `let`s outputs use)"),
+                .help("reactions, potential energy, power and constraint forces are computed from the model's loads and accelerations: use them only in outputs (and the `let`s outputs use)"),
         );
         false
     }
@@ -276,6 +332,7 @@ fn describe_quantity(q: &Quantity, sys: &crate::mech::System) -> String {
         }
         Quantity::Potential(bs) => format!("potential_energy({})", bodies(bs)),
         Quantity::Power(name) => format!("power({name})"),
+        Quantity::ConstraintForce(name) => format!("constraint_force({name})"),
     }
 }
 
@@ -341,6 +398,16 @@ pub(super) fn finish(r: &mut Resolver<'_>) {
                 Ok(Value::Vector(moment_about(r, *b, *p, x)))
             }
             Quantity::Potential(bs) => Ok(Value::Scalar(r.sys.gravitational_energy(bs))),
+            Quantity::ConstraintForce(name) => {
+                match r.sys.constraints.iter().position(|c| &c.name == name) {
+                    Some(k) => r.sys.constraint_forces.push((k, d.symbols[0])),
+                    None => r.error(
+                        d.span,
+                        format!("`constraint_force` needs a constraint, but `{name}` is a force, moment or motion"),
+                    ),
+                }
+                continue;
+            }
             Quantity::Power(name) => match r.sys.power_of(name) {
                 Some(Ok(p)) => Ok(Value::Scalar(p)),
                 Some(Err(e)) => Err(e.to_string()),

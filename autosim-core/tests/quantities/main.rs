@@ -4,9 +4,11 @@
 //! (`tests/reference/gen/pinocchio_reactions.py`) and SymPy's energy
 //! (`chains`), the satellite's boom hinge reaction, kinetic energy and
 //! momenta against a Newton–Euler computation written here with the
-//! reference's accelerations (`satellite`).
+//! reference's accelerations (`satellite`); the four-bar's pin force
+//! (`constraint_force`) against planar Newton–Euler (`four_bar`).
 
 mod chains;
+mod four_bar;
 mod newton_euler;
 mod satellite;
 mod support;

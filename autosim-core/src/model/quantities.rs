@@ -363,25 +363,27 @@ pub(super) fn finish(r: &mut Resolver<'_>) {
         )
     };
     let reactions_needed = used.iter().any(|d| is_reaction(&d));
-    if reactions_needed && r.sys.has_constraints() {
-        let names = r
-            .sys
-            .constraints
-            .iter()
-            .map(|c| format!("`{}`", c.name))
-            .collect::<Vec<_>>()
-            .join(", ");
-        for d in used.iter().filter(is_reaction) {
-            let what = describe_quantity(&d.quantity, &r.sys);
-            r.push(
-                Diagnostic::error(d.span, format!("`{what}` cannot be computed in a model with constraints ({names})"))
-                    .note("a joint's reaction includes the loads the constraints carry, but a `constraint` is an equation of coordinates and speeds: it does not say on which bodies and points its load acts, and Kane's method eliminates that load with the dependent speeds")
-                    .help("reactions are computed in models without constraints (motions are fine): to estimate them here, replace the constraint by a stiff `force` between the points it joins (an approximation, closer as the stiffness grows)"),
-            );
-        }
-        return;
-    }
-    let reactions = reactions_needed.then(|| r.sys.joint_reactions());
+    let reactions = match reactions_needed {
+        false => None,
+        true => match constraint_loads(r) {
+            Ok(extra) => Some(r.sys.joint_reactions_with(&extra)),
+            Err(unknown) => {
+                let says = match unknown.contains(',') {
+                    false => format!("the constraint {unknown} does not say where its load acts"),
+                    true => format!("the constraints {unknown} do not say where their loads act"),
+                };
+                for d in used.iter().filter(is_reaction) {
+                    let what = describe_quantity(&d.quantity, &r.sys);
+                    r.push(
+                        Diagnostic::error(d.span, format!("`{what}` cannot be computed: {says}"))
+                            .note("a joint's reaction includes the loads the constraints carry; a position constraint written `dot(pos(P, Q), d)` (plus or minus a term without coordinates), with `d` fixed in N, is held by a force along `d` at `P` and `Q`, but another expression (or a speed constraint) does not say on which bodies and points its load acts")
+                            .help("write each position constraint as `dot(pos(P, Q), d)` with `d` fixed in N (one per direction a loop's joint closes), or ask for reactions in a model without such constraints (motions are fine)"),
+                    );
+                }
+                return;
+            }
+        },
+    };
     let mut map: FxHashMap<SymId, ExprId> = FxHashMap::default();
     for d in &used {
         let value = match &d.quantity {
@@ -432,6 +434,37 @@ pub(super) fn finish(r: &mut Resolver<'_>) {
         }
     }
     r.sys.substitute_in_outputs(&map);
+}
+
+/// The loads every constraint carries, `λ d` at its points (each `λ` a
+/// symbol the constrained lowering gives its value), or the names of the
+/// constraints that do not say where their load acts.
+fn constraint_loads(r: &mut Resolver<'_>) -> Result<Vec<(PointId, Vector)>, String> {
+    let mut extra = Vec::new();
+    let mut unknown = Vec::new();
+    for (k, c) in r.sys.constraints.clone().into_iter().enumerate() {
+        let Some(load) = c.load.filter(|l| super::constraint_load::fixed_in_n(r, l)) else {
+            unknown.push(format!("`{}`", c.name));
+            continue;
+        };
+        let name = format!("constraint_force({}) #r{k}", c.name);
+        let Ok(s) = r.sys.arena.add_symbol(&name, SymbolKind::Free) else {
+            unknown.push(format!("`{}`", c.name));
+            continue;
+        };
+        r.sys.constraint_forces.push((k, s));
+        let lambda = r.sys.arena.sym(s);
+        let f = load.direction.scale(&mut r.sys.arena, lambda);
+        if let Some(q) = load.reaction {
+            let back = f.neg(&mut r.sys.arena);
+            extra.push((q, back));
+        }
+        extra.push((load.on, f));
+    }
+    match unknown.is_empty() {
+        true => Ok(extra),
+        false => Err(unknown.join(", ")),
+    }
 }
 
 /// The reaction moment of `b`'s joint about point `p` (its origin when

@@ -1,5 +1,6 @@
 //! The four-bar's loop-closing pin force (`constraint_force` of its two
-//! loop constraints) at the reference's sampled states
+//! loop constraints) and its joints' reactions at the reference's sampled
+//! states
 //! (`tests/reference/four-bar.json`, SymPy) against a planar Newton–Euler
 //! computation written here with the reference's accelerations.
 //!
@@ -8,7 +9,7 @@
 //! exerts on the coupler at E (and minus it on the rocker at T).
 
 use super::support::{compile_text, model_text, outputs_with};
-use autosim_test_support::{floats, load, worst_of};
+use autosim_test_support::{floats, load, max_diff, worst_of};
 use nalgebra::{Matrix2, Vector2};
 
 /// The unit vector at angle `a` from n2 towards n3, and the one square to
@@ -31,10 +32,22 @@ fn relative_acceleration(a: f64, w: f64, alpha: f64, r: f64) -> Vector2<f64> {
     (n * alpha - e * (w * w)) * r
 }
 
-/// The force on the rocker at T from the coupler, and the residual of the
-/// crank's moment balance (a check of this computation with the
-/// reference's accelerations).
-fn pin_force(p: &dyn Fn(&str) -> f64, q: &[f64], u: &[f64], du: &[f64]) -> (Vector2<f64>, f64) {
+/// The four pins' forces in the (n2, n3) plane.
+struct Pins {
+    /// On the rocker at T, from the coupler.
+    loop_pin: Vector2<f64>,
+    /// On the crank at O, from N.
+    crank: Vector2<f64>,
+    /// On the coupler at B, from the crank.
+    coupler: Vector2<f64>,
+    /// On the rocker at D, from N.
+    rocker: Vector2<f64>,
+    /// The residual of the crank's moment balance (a check of this
+    /// computation with the reference's accelerations).
+    balance: f64,
+}
+
+fn pin_forces(p: &dyn Fn(&str) -> f64, q: &[f64], u: &[f64], du: &[f64]) -> Pins {
     let (l1, l2, l3) = (p("L1"), p("L2"), p("L3"));
     let (m1, m2, m3) = (p("m1"), p("m2"), p("m3"));
     let gravity = Vector2::new(0.0, -p("g"));
@@ -69,11 +82,17 @@ fn pin_force(p: &dyn Fn(&str) -> f64, q: &[f64], u: &[f64], du: &[f64]) -> (Vect
     let spring = -p("k") * (q[0] - p("q10"));
     let lhs = inertia[0] * alpha[0] + cross(&(e[0] * (l1 / 2.0)), &((a_crank - gravity) * m1));
     let rhs = spring + cross(&(e[0] * l1), &(-on_coupler_at_b));
-    (f, lhs - rhs)
+    Pins {
+        loop_pin: f,
+        crank: (a_crank - gravity) * m1 + on_coupler_at_b,
+        coupler: on_coupler_at_b,
+        rocker: (a_rocker - gravity) * m3 - f,
+        balance: lhs - rhs,
+    }
 }
 
 #[test]
-fn four_bar_pin_force_matches_newton_euler() {
+fn four_bar_pin_forces_match_newton_euler() {
     let data = load("four-bar");
     let p = |n: &str| {
         data["parameters"][n]
@@ -83,6 +102,14 @@ fn four_bar_pin_force_matches_newton_euler() {
     let mut text = model_text("four_bar.sim");
     text.push_str("output pin_n2 [N] = constraint_force(loop_n2);\n");
     text.push_str("output pin_n3 [N] = constraint_force(loop_n3);\n");
+    for body in ["C", "K", "R"] {
+        for a in 1..=3 {
+            text.push_str(&format!(
+                "output f_{body}{a} [N] = dot(reaction_force({body}), n{a});\n\
+                 output m_{body}{a} [N m] = dot(reaction_moment({body}), n{a});\n"
+            ));
+        }
+    }
     let c = compile_text("four_bar.sim", &text);
     let params: Vec<f64> = c
         .program
@@ -95,26 +122,38 @@ fn four_bar_pin_force_matches_newton_euler() {
     let samples = data["samples"].as_array().expect("samples");
     for s in samples {
         let (q, u, du) = (floats(&s["q"]), floats(&s["u"]), floats(&s["du"]));
-        let (on_rocker, balance) = pin_force(&p, &q, &u, &du);
-        let scale = on_rocker.amax().max(1.0);
-        worst_balance = worst_of(worst_balance, balance.abs() / scale);
+        let pins = pin_forces(&p, &q, &u, &du);
+        let scale = [pins.loop_pin, pins.crank, pins.coupler, pins.rocker]
+            .iter()
+            .fold(1.0f64, |a, f| a.max(f.amax()));
+        worst_balance = worst_of(worst_balance, pins.balance.abs() / scale);
         assert!(
-            balance.abs() < 1e-10 * scale,
-            "the crank's balance: {balance:e}"
+            pins.balance.abs() < 1e-10 * scale,
+            "the crank's balance: {:e}",
+            pins.balance
         );
         let y = outputs_with(&c, &params, &[q[0], q[1], q[2], u[0]], 0.0);
-        // The model's outputs (energy, then ours), then the residuals.
-        let got = Vector2::new(y[1], y[2]);
-        let err = (got + on_rocker).amax() / scale;
+        // The model's output (energy) first, then ours: the multipliers
+        // (the force on the coupler at E), then per body the reaction
+        // force and moment, interleaved by component.
+        let mut got = vec![y[1], y[2]];
+        let mut want = vec![-pins.loop_pin.x, -pins.loop_pin.y];
+        for (k, f) in [pins.crank, pins.coupler, pins.rocker].iter().enumerate() {
+            let at = 3 + 6 * k;
+            // n1 (out of the plane) is 0 for force and moment; n2, n3 of
+            // the moment too (planar loads); the moment along n1 is the
+            // joint's free direction.
+            got.extend([y[at], y[at + 2], y[at + 4]]);
+            want.extend([0.0, f.x, f.y]);
+            got.extend([y[at + 1], y[at + 3], y[at + 5]]);
+            want.extend([0.0, 0.0, 0.0]);
+        }
+        let err = max_diff(&got, &want) / scale;
         worst = worst_of(worst, err);
-        assert!(
-            err < 1e-10,
-            "pin force on the coupler {got:?} against {:?}",
-            -on_rocker
-        );
+        assert!(err < 1e-10, "{got:?} against {want:?}");
     }
     eprintln!(
-        "four-bar at {} reference states: pin force worst relative error {worst:.2e} (the crank's moment balance with it: {worst_balance:.2e})",
+        "four-bar at {} reference states: pin forces and joint reactions worst relative error {worst:.2e} (the crank's moment balance with them: {worst_balance:.2e})",
         samples.len()
     );
 }

@@ -5,10 +5,12 @@
 //! (`chains`), the satellite's boom hinge reaction, kinetic energy and
 //! momenta against a Newton–Euler computation written here with the
 //! reference's accelerations (`satellite`); the four-bar's pin force
-//! (`constraint_force`) against planar Newton–Euler (`four_bar`).
+//! and joint reactions against planar Newton–Euler (`four_bar`), the
+//! rolling disc's friction force against Newton's law (`rolling_disc`).
 
 mod chains;
 mod four_bar;
 mod newton_euler;
+mod rolling_disc;
 mod satellite;
 mod support;

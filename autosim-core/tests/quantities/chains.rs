@@ -72,6 +72,36 @@ fn slider_carries_weight_less_spring() {
     );
 }
 
+/// A carriage held at a height by a rail (a position constraint of the
+/// form `dot(pos(P), d) - h`), a pendulum hanging from it, at rest: the
+/// rail carries the whole weight, the pendulum's hinge its own, and the
+/// carriage's joint (free along n1 and n3) nothing.
+#[test]
+fn rail_carries_the_weight_of_what_hangs_from_it() {
+    let c = compile_text(
+        "rail",
+        "model Rail;
+         parameters { mc = 2 [kg], mp = 0.7 [kg], h = 1.5 [m], L = 0.4 [m], g = 9.81 [m/s^2] }
+         body Car { translate: [1, 3], mass: mc, inertia: diag(0.1, 0.1, 0.1), initial: [0.3, 1.5] }
+         body Rod { parent: Car, rotate: 2, mass: mp, cm: [0, 0, -L], inertia: diag(0.01, 0.01, 0.01) }
+         constraint rail [m] { position: dot(pos(Car), n3) - h }
+         gravity = -g*n3;
+         output rail_force [N] = constraint_force(rail);
+         output car_1 [N] = dot(reaction_force(Car), n1);
+         output car_2 [N] = dot(reaction_force(Car), n2);
+         output car_3 [N] = dot(reaction_force(Car), n3);
+         output car_moment [N m] = mag(reaction_moment(Car));
+         output rod_1 [N] = dot(reaction_force(Rod), n1);
+         output rod_3 [N] = dot(reaction_force(Rod), n3);",
+    );
+    // States: x, z, the rod's angle, then the free speeds (x's, the rod's).
+    let y = outputs_at(&c, &[0.3, 1.5, 0.0, 0.0, 0.0], 0.0);
+    let expect = [(2.0 + 0.7) * 9.81, 0.0, 0.0, 0.0, 0.0, 0.0, 0.7 * 9.81];
+    for (k, (a, b)) in y.iter().zip(expect).enumerate() {
+        assert!(close(*a, b, 1e-14), "output {k}: {a} against {b} ({y:?})");
+    }
+}
+
 /// The chains' joint reactions at 50 random states against Pinocchio's
 /// RNEA joint forces (less the springs, which the model applies).
 #[test]

@@ -32,7 +32,9 @@ fn perturbed(speed: f64, roll: f64) -> [f64; 11] {
 }
 
 /// Kinetic energy `½ uᵀ M u` over the independent speeds (the constraints
-/// are scleronomic, so the reduced mass matrix gives it), plus gravity's.
+/// are scleronomic, so the reduced mass matrix gives it), plus gravity's
+/// (the model's output, `potential_energy()`: a body left out would break
+/// the conservation checked below).
 fn energy(m: &mut Bicycle, x: &[f64; 11], potential: f64) -> f64 {
     let mut mass = [[0.0; 3]; 3];
     m.mass_matrix(0.0, x, &mut mass);

@@ -65,6 +65,8 @@ fn derivatives_match_sympy_at_every_sample() {
             dx[3],
             du[0]
         );
+        // The energy output is `kinetic_energy() + potential_energy()`
+        // plus the spring's: against SymPy's.
         let mut y = [0.0; 3];
         m.outputs(0.0, &x, &mut y).unwrap();
         assert!(
@@ -131,6 +133,8 @@ fn trajectory_matches_the_reference_and_keeps_the_loop_closed() {
     let mut x = state(&records[0]);
     let (_, out) = tight_run(&mut m, &mut x, 10.0, 0.1);
     assert_eq!(out.len(), records.len());
+    // The built-in energy (checked against SymPy's at the samples) is
+    // conserved to the tolerance of the run (1e-12).
     let e0 = out[0].2[0];
     let (mut worst_q, mut worst_e, mut worst_loop) = (0.0f64, 0.0f64, 0.0f64);
     for ((t, x, y), r) in out.iter().zip(records) {

@@ -98,11 +98,7 @@ autosim::model! {
     constraint loop_n3 [m] { position: dot(pos(E, T), n3) }
     motion crank { coordinate: q1, value: 2 [rad/s]*t + 0.5*sin(3 [rad/s]*t) }
     gravity = -g*n3;
-    output energy [J] = m1*dot(vel(C.cm), vel(C.cm))/2 + m2*dot(vel(K.cm), vel(K.cm))/2
-        + m3*dot(vel(R.cm), vel(R.cm))/2
-        + m1*L1^2/12*dot(rot(C), n1)^2/2 + m2*L2^2/12*dot(rot(K), n1)^2/2
-        + m3*L3^2/12*dot(rot(R), n1)^2/2
-        + g*(m1*dot(pos(C.cm), n3) + m2*dot(pos(K.cm), n3) + m3*dot(pos(R.cm), n3));
+    output energy [J] = kinetic_energy() + potential_energy();
     output crank_rate [rad/s] = u1;
 }
 use driven_four_bar::DrivenFourBar;

@@ -62,6 +62,8 @@ fn derivatives_match_sympy_at_every_sample() {
                 du[3 + k]
             );
         }
+        // The energy output is `kinetic_energy() + potential_energy()`:
+        // against SymPy's.
         let mut y = [0.0; 4];
         m.outputs(0.0, &x, &mut y).unwrap();
         let e = s["energy"].as_f64().unwrap();
@@ -86,6 +88,7 @@ fn energy_is_conserved_and_the_trajectory_matches() {
     let mut x = state(&records[0]);
     let (_, out) = tight_run(&mut m, &mut x, 5.0, 0.1);
     assert_eq!(out.len(), records.len());
+    // The built-in energy is conserved to the tolerance of the run (1e-12).
     let e0 = out[0].2[0];
     let (mut worst_x, mut worst_e) = (0.0f64, 0.0f64);
     for ((_, x, y), r) in out.iter().zip(records) {

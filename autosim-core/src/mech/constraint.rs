@@ -16,7 +16,8 @@
 //! formed.
 
 use super::error::ModelError;
-use super::system::System;
+use super::system::{PointId, System};
+use super::vector::Vector;
 use crate::expr::{ExprId, SymId, SymbolKind};
 
 /// What a constraint restricts.
@@ -43,6 +44,27 @@ pub struct Constraint {
     /// The unit of the expression (a position constraint's residual is an
     /// output in this unit).
     pub unit: Option<String>,
+    /// Where its load acts, when its expression says so (joint reactions
+    /// need it).
+    pub load: Option<ConstraintLoad>,
+}
+
+/// Where a constraint's load acts, when its expression says so: a position
+/// constraint `dot(pos(P, Q), d) + c` with `d` fixed in N and `c` free of
+/// coordinates is held by the force
+/// `λ d` on `P` and `−λ d` on `Q` (`λ` its multiplier): their power is
+/// `λ d·(v_P − v_Q) = λ ġ`.
+#[derive(Clone, Debug)]
+pub struct ConstraintLoad {
+    /// The point the force `λ d` acts on.
+    pub on: PointId,
+    /// The point `−λ d` acts on (none: N's origin).
+    pub reaction: Option<PointId>,
+    /// `d`.
+    pub direction: Vector,
+    /// The term added to `dot(pos(P, Q), d)` in the expression (zero
+    /// without one); it must not depend on the coordinates.
+    pub offset: ExprId,
 }
 
 /// A coordinate given as a function of time.

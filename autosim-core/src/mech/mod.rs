@@ -18,7 +18,7 @@ mod vector;
 mod vector_ops;
 
 pub use body_order::{ParentOrder, order_parents_first};
-pub use constraint::{Constraint, ConstraintKind, Motion};
+pub use constraint::{Constraint, ConstraintKind, ConstraintLoad, Motion};
 pub use error::{BodyField, ItemRef, LocatedError, ModelError};
 pub use frames::{Frame, FrameId, Frames, Uv, UvId};
 pub use framevec::{Fv, Mat3};

@@ -263,6 +263,10 @@ pub struct System {
     pub(crate) outputs: Vec<Output>,
     pub(crate) subroutines: Vec<Subroutine>,
     pub(crate) constraints: Vec<Constraint>,
+    /// The symbols outputs read for the load a constraint carries (its
+    /// multiplier, `constraint_force`): (constraint index, symbol), given
+    /// their values by the constrained lowering.
+    pub(crate) constraint_forces: Vec<(usize, SymId)>,
     pub(crate) motions: Vec<Motion>,
     pub(crate) inputs: Vec<SymId>,
     pub(crate) parameters: Vec<SymId>,
@@ -330,6 +334,7 @@ impl System {
             outputs: Vec::new(),
             subroutines: Vec::new(),
             constraints: Vec::new(),
+            constraint_forces: Vec::new(),
             motions: Vec::new(),
             inputs: Vec::new(),
             parameters: Vec::new(),

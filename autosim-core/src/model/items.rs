@@ -235,6 +235,7 @@ fn constraint(r: &mut Resolver<'_>, out: &mut ResolvedModel, c: &ast::Constraint
             return;
         }
     };
+    let value_ast = value;
     let what = match kind {
         ConstraintKind::Position => "a position constraint",
         ConstraintKind::Speed => "a speed constraint",
@@ -249,12 +250,17 @@ fn constraint(r: &mut Resolver<'_>, out: &mut ResolvedModel, c: &ast::Constraint
     let (Some(value), Some(dependent)) = (value, dependent) else {
         return;
     };
+    let load = match kind {
+        ConstraintKind::Position => super::constraint_load::where_load_acts(r, value_ast),
+        ConstraintKind::Speed => None,
+    };
     let constraint = crate::mech::Constraint {
         name: c.name.text.clone(),
         kind,
         value,
         dependent,
         unit: c.unit.as_ref().map(|u| u.text.clone()),
+        load,
     };
     if let Err(e) = r.sys.add_constraint(constraint) {
         report(r, c, e);

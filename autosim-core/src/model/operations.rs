@@ -50,6 +50,7 @@ pub(crate) const OPERATIONS: &[(&str, usize, usize, Handler)] = &[
         quantities::angular_momentum,
     ),
     ("power", 1, 1, quantities::power),
+    ("constraint_force", 1, 1, quantities::constraint_force),
 ];
 
 /// The names of the built-in functions.

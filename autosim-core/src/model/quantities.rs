@@ -1,7 +1,9 @@
 //! The built-ins that read a quantity of the whole model: joint reactions
 //! (`reaction_force`, `reaction_moment`), energies (`kinetic_energy`,
-//! `potential_energy`), momenta (`momentum`, `angular_momentum`) and the
-//! power of a load (`power`).
+//! `potential_energy`), momenta (`momentum`, `angular_momentum`), the
+//! power of a load (`power`) and the load a constraint carries
+//! (`constraint_force`, its multiplier: the constrained lowering gives it
+//! its value, from the accelerations).
 //!
 //! Those that depend on items resolved in model order (the loads and
 //! gravity) cannot be computed where they are written: they stand as
@@ -28,6 +30,8 @@ pub(crate) enum Quantity {
     Potential(Vec<BodyId>),
     /// `power(load)`.
     Power(String),
+    /// `constraint_force(constraint)`.
+    ConstraintForce(String),
 }
 
 /// A placeholder: the quantity, its symbols (one for a scalar, three for a
@@ -150,6 +154,55 @@ pub(super) fn power(r: &mut Resolver<'_>, args: &[Expr], span: Span, _: &str) ->
     }
 }
 
+/// `constraint_force(constraint)`.
+pub(super) fn constraint_force(
+    r: &mut Resolver<'_>,
+    args: &[Expr],
+    span: Span,
+    _: &str,
+) -> Option<Value> {
+    let Expr::Name(n) = &args[0] else {
+        r.push(
+            Diagnostic::error(
+                args[0].span(),
+                "`constraint_force` takes the name of a constraint",
+            )
+            .help("write `constraint_force(loop)` with a `constraint loop { ... }` of the model"),
+        );
+        return None;
+    };
+    match r.names.get(&n.text).cloned() {
+        // Constraints, motions, forces and moments share a namespace: which
+        // one it is is known once every item is resolved (`finish`).
+        Some((Named::Load, _)) => {
+            Some(r.deferred(Quantity::ConstraintForce(n.text.clone()), BodyId::N, span))
+        }
+        Some((other, _)) => {
+            r.push(
+                Diagnostic::error(
+                    n.span,
+                    format!(
+                        "`constraint_force` needs a constraint, but `{}` is {}",
+                        n.text,
+                        super::scope::describe(&other)
+                    ),
+                )
+                .help("name a `constraint` of the model"),
+            );
+            None
+        }
+        None => {
+            r.unknown_of_kind(
+                n,
+                "constraint",
+                |k| matches!(k, Named::Load),
+                format!("declare it with `constraint {} {{ ... }}`", n.text),
+            );
+            None
+        }
+    }
+}
+
 /// A body with a joint (not N).
 fn jointed_body(r: &mut Resolver<'_>, e: &Expr, ctx: &str) -> Option<BodyId> {
     let b = r.body(e, ctx)?;
@@ -190,7 +243,10 @@ impl Resolver<'_> {
     /// The placeholder of `q` (made on first use): a scalar, or a vector
     /// with components in `frame_of`'s axes.
     fn deferred(&mut self, q: Quantity, frame_of: BodyId, span: Span) -> Value {
-        let vector = !matches!(q, Quantity::Potential(_) | Quantity::Power(_));
+        let vector = !matches!(
+            q,
+            Quantity::Potential(_) | Quantity::Power(_) | Quantity::ConstraintForce(_)
+        );
         let symbols = match self.deferred.iter().find(|d| d.quantity == q) {
             Some(d) => d.symbols.clone(),
             None => {
@@ -251,7 +307,7 @@ impl Resolver<'_> {
         };
         self.push(
             Diagnostic::error(span, format!("{what} cannot use `{name}`"))
-                .help("reactions, potential energy and power are computed from the model's loads and accelerations: use them only in outputs (and the `let`s outputs use)"),
+                .help("reactions, potential energy, power and constraint forces are computed from the model's loads and accelerations: use them only in outputs (and the `let`s outputs use)"),
         );
         false
     }
@@ -276,12 +332,13 @@ fn describe_quantity(q: &Quantity, sys: &crate::mech::System) -> String {
         }
         Quantity::Potential(bs) => format!("potential_energy({})", bodies(bs)),
         Quantity::Power(name) => format!("power({name})"),
+        Quantity::ConstraintForce(name) => format!("constraint_force({name})"),
     }
 }
 
 /// Once every item is resolved: the values of the placeholders, put into
-/// the outputs. Joint reactions of a model with constraints are reported
-/// (their constraint forces are not formed).
+/// the outputs. Joint reactions of a model with constraints are errors: a
+/// constraint does not say where its load acts.
 pub(super) fn finish(r: &mut Resolver<'_>) {
     if r.deferred.is_empty() {
         return;
@@ -299,28 +356,34 @@ pub(super) fn finish(r: &mut Resolver<'_>) {
             })
         })
         .collect();
-    let reactions_needed = used.iter().any(|d| {
+    let is_reaction = |d: &&Deferred| {
         matches!(
             d.quantity,
             Quantity::ReactionForce(_) | Quantity::ReactionMoment(..)
         )
-    });
-    if reactions_needed && r.sys.has_constraints() {
-        for d in used.iter().filter(|d| {
-            matches!(
-                d.quantity,
-                Quantity::ReactionForce(_) | Quantity::ReactionMoment(..)
-            )
-        }) {
-            r.push(
-                Diagnostic::error(d.span, "joint reactions of a model with constraints are not computed")
-                    .note("the forces the constraints carry are eliminated with the dependent speeds (Kane's method), so a joint's reaction would miss them")
-                    .help("compute the reaction from a tree model (a motion, not a constraint, may drive it), or write the load with Newton–Euler in an output"),
-            );
-        }
-        return;
-    }
-    let reactions = reactions_needed.then(|| r.sys.joint_reactions());
+    };
+    let reactions_needed = used.iter().any(|d| is_reaction(&d));
+    let reactions = match reactions_needed {
+        false => None,
+        true => match constraint_loads(r) {
+            Ok(extra) => Some(r.sys.joint_reactions_with(&extra)),
+            Err(unknown) => {
+                let says = match unknown.contains(',') {
+                    false => format!("the constraint {unknown} does not say where its load acts"),
+                    true => format!("the constraints {unknown} do not say where their loads act"),
+                };
+                for d in used.iter().filter(is_reaction) {
+                    let what = describe_quantity(&d.quantity, &r.sys);
+                    r.push(
+                        Diagnostic::error(d.span, format!("`{what}` cannot be computed: {says}"))
+                            .note("a joint's reaction includes the loads the constraints carry; a position constraint written `dot(pos(P, Q), d)` (plus or minus a term without coordinates), with `d` fixed in N, is held by a force along `d` at `P` and `Q`, but another expression (or a speed constraint) does not say on which bodies and points its load acts")
+                            .help("write each position constraint as `dot(pos(P, Q), d)` with `d` fixed in N (one per direction a loop's joint closes), or ask for reactions in a model without such constraints (motions are fine)"),
+                    );
+                }
+                return;
+            }
+        },
+    };
     let mut map: FxHashMap<SymId, ExprId> = FxHashMap::default();
     for d in &used {
         let value = match &d.quantity {
@@ -337,6 +400,16 @@ pub(super) fn finish(r: &mut Resolver<'_>) {
                 Ok(Value::Vector(moment_about(r, *b, *p, x)))
             }
             Quantity::Potential(bs) => Ok(Value::Scalar(r.sys.gravitational_energy(bs))),
+            Quantity::ConstraintForce(name) => {
+                match r.sys.constraints.iter().position(|c| &c.name == name) {
+                    Some(k) => r.sys.constraint_forces.push((k, d.symbols[0])),
+                    None => r.error(
+                        d.span,
+                        format!("`constraint_force` needs a constraint, but `{name}` is a force, moment or motion"),
+                    ),
+                }
+                continue;
+            }
             Quantity::Power(name) => match r.sys.power_of(name) {
                 Some(Ok(p)) => Ok(Value::Scalar(p)),
                 Some(Err(e)) => Err(e.to_string()),
@@ -361,6 +434,37 @@ pub(super) fn finish(r: &mut Resolver<'_>) {
         }
     }
     r.sys.substitute_in_outputs(&map);
+}
+
+/// The loads every constraint carries, `λ d` at its points (each `λ` a
+/// symbol the constrained lowering gives its value), or the names of the
+/// constraints that do not say where their load acts.
+fn constraint_loads(r: &mut Resolver<'_>) -> Result<Vec<(PointId, Vector)>, String> {
+    let mut extra = Vec::new();
+    let mut unknown = Vec::new();
+    for (k, c) in r.sys.constraints.clone().into_iter().enumerate() {
+        let Some(load) = c.load.filter(|l| super::constraint_load::fixed_in_n(r, l)) else {
+            unknown.push(format!("`{}`", c.name));
+            continue;
+        };
+        let name = format!("constraint_force({}) #r{k}", c.name);
+        let Ok(s) = r.sys.arena.add_symbol(&name, SymbolKind::Free) else {
+            unknown.push(format!("`{}`", c.name));
+            continue;
+        };
+        r.sys.constraint_forces.push((k, s));
+        let lambda = r.sys.arena.sym(s);
+        let f = load.direction.scale(&mut r.sys.arena, lambda);
+        if let Some(q) = load.reaction {
+            let back = f.neg(&mut r.sys.arena);
+            extra.push((q, back));
+        }
+        extra.push((load.on, f));
+    }
+    match unknown.is_empty() {
+        true => Ok(extra),
+        false => Err(unknown.join(", ")),
+    }
 }
 
 /// The reaction moment of `b`'s joint about point `p` (its origin when

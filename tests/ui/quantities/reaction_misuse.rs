@@ -1,5 +1,6 @@
 // Reactions of N and of an unknown body, arguments of the wrong kind, too
-// many arguments, and `power` of something that is not a load.
+// many arguments, `power` of something that is not a load, and
+// `constraint_force` of something that is not a constraint.
 autosim::model! {
     model Arm;
     parameters { L = 1 [m], m = 1 [kg], g = 9.81 [m/s^2] }
@@ -13,6 +14,8 @@ autosim::model! {
     output f [W] = power(Link);
     output h [W] = power(spring);
     output i [J] = kinetic_energy(Link, Link);
+    output j [N] = constraint_force(Link);
+    output k [N] = constraint_force(rail);
 }
 
 fn main() {}

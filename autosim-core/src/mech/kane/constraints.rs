@@ -53,6 +53,9 @@ pub struct ConstraintEquations {
     /// The order in which the position constraints are eliminated in
     /// assembly (each on its dependent coordinate).
     pub assembly_order: Vec<usize>,
+    /// The multipliers the outputs read (`constraint_force`): (row, the
+    /// symbol that stands for it).
+    pub forces: Vec<(usize, SymId)>,
 }
 
 impl ConstraintEquations {
@@ -131,6 +134,7 @@ impl System {
         let nominal = self.nominal_bindings(prescribed);
         self.choose_dependent_coordinates(&mut eqs, &nominal, prescribed)?;
         self.choose_dependent_speeds(&mut eqs, &nominal, prescribed)?;
+        eqs.forces = self.constraint_forces.clone();
         Ok(eqs)
     }
 

@@ -5,7 +5,7 @@
 use crate::expr::{ExprId, SymId};
 use crate::mech::error::{ItemRef, LocatedError};
 use crate::mech::framevec::Fv;
-use crate::mech::system::System;
+use crate::mech::system::{PointId, System};
 use crate::mech::vector::Vector;
 
 /// The applied force and moment (about the origin) on each body.
@@ -21,22 +21,9 @@ impl System {
         let mut f_app: Vec<Vector> = vec![Vector::zero(); nb];
         let mut t_app: Vec<Vector> = vec![Vector::zero(); nb];
         for force in self.forces.clone() {
-            for (p, sign) in [(Some(force.at), 1), (force.reaction, -1)] {
-                let Some(p) = p else { continue };
-                let point = self.points[p.index()].clone();
-                let b = point.body.index();
-                let f = if sign > 0 {
-                    force.vector.clone()
-                } else {
-                    force.vector.neg(&mut self.arena)
-                };
-                let frame = self.bodies[b].frame;
-                let r = self
-                    .frames
-                    .vector_in(&mut self.arena, frame, point.coordinates);
-                let m = self.frames.cross_vec(&mut self.arena, &r, &f);
-                f_app[b] = f_app[b].add(&mut self.arena, &f);
-                t_app[b] = t_app[b].add(&mut self.arena, &m);
+            self.add_point_force(&mut f_app, &mut t_app, force.at, &force.vector, false);
+            if let Some(p) = force.reaction {
+                self.add_point_force(&mut f_app, &mut t_app, p, &force.vector, true);
             }
         }
         for moment in self.moments.clone() {
@@ -52,6 +39,32 @@ impl System {
             force: f_app,
             moment: t_app,
         }
+    }
+
+    /// Adds the force `f` (`−f` when `negate`) at point `p` to its body's
+    /// force and moment (about the body's origin).
+    pub(super) fn add_point_force(
+        &mut self,
+        force: &mut [Vector],
+        moment: &mut [Vector],
+        p: PointId,
+        f: &Vector,
+        negate: bool,
+    ) {
+        let point = self.points[p.index()].clone();
+        let b = point.body.index();
+        let f = &if negate {
+            f.neg(&mut self.arena)
+        } else {
+            f.clone()
+        };
+        let frame = self.bodies[b].frame;
+        let r = self
+            .frames
+            .vector_in(&mut self.arena, frame, point.coordinates);
+        let m = self.frames.cross_vec(&mut self.arena, &r, f);
+        force[b] = force[b].add(&mut self.arena, f);
+        moment[b] = moment[b].add(&mut self.arena, &m);
     }
 
     /// Adds to `forcing` what forces at points that move in their body

@@ -21,7 +21,7 @@
 use super::recursion::{Accelerations, Resultants};
 use crate::expr::ExprId;
 use crate::mech::framevec::Fv;
-use crate::mech::system::{BodyId, System};
+use crate::mech::system::{BodyId, PointId, System};
 use crate::mech::vector::Vector;
 
 /// The load a joint transmits from the parent to its body: the force and
@@ -39,7 +39,17 @@ impl System {
     /// using the symbols of the speeds' rates (`du/dt`) for the
     /// accelerations.
     pub fn joint_reactions(&mut self) -> Vec<JointReaction> {
-        let loads = self.applied_loads();
+        self.joint_reactions_with(&[])
+    }
+
+    /// The reactions with these forces added to the applied loads:
+    /// `(point, force)`, e.g. the loads constraints carry, `λ d` at their
+    /// points.
+    pub fn joint_reactions_with(&mut self, extra: &[(PointId, Vector)]) -> Vec<JointReaction> {
+        let mut loads = self.applied_loads();
+        for (p, f) in extra {
+            self.add_point_force(&mut loads.force, &mut loads.moment, *p, f, false);
+        }
         let acc = self.accelerations();
         let acc = self.with_rates(acc);
         let mut res = self.body_resultants(&loads, &acc);

@@ -2,7 +2,8 @@
 //! positions are in m, velocities in m/s, angular velocities in rad/s,
 //! products multiply, `dir` is dimensionless, `angle` is in rad; and of
 //! the model's quantities: reactions in N and N m, energies in J, momenta
-//! in kg m/s and kg m²/s, power in W.
+//! in kg m/s and kg m²/s, power in W, a constraint's force in W per the
+//! unit of its speed-level expression.
 
 use super::check::{Checker, Measure, unit_dim};
 use super::dim::{Dim, Ratio};
@@ -26,6 +27,7 @@ pub(super) fn operation(c: &mut Checker<'_, '_>, name: &str, args: &[Expr]) -> M
         "angular_momentum" => fixed(c, args, "kg m^2/s"),
         // Its argument names a load: not a value with a unit.
         "power" => Measure::known(unit_dim("W")),
+        "constraint_force" => constraint_force(c, args),
         "dir" => {
             each(c);
             Measure::known(Dim::ONE)
@@ -56,6 +58,29 @@ pub(super) fn operation(c: &mut Checker<'_, '_>, name: &str, args: &[Expr]) -> M
         "q" | "u" => generalized(c, name, args),
         _ => Measure::Untracked,
     }
+}
+
+/// The multiplier of a constraint: its power `λ ċ` is in W, so it is in
+/// W per the unit of the speed-level constraint (`J` per the unit of a
+/// position constraint's `g`, `W` per the unit of a speed constraint's
+/// `c`); unknown for a constraint declared without a unit.
+fn constraint_force(c: &mut Checker<'_, '_>, args: &[Expr]) -> Measure {
+    let Some(Expr::Name(n)) = args.first() else {
+        return Measure::Untracked;
+    };
+    let Some(k) = c.r.sys.constraints.iter().find(|k| k.name == n.text) else {
+        return Measure::Untracked;
+    };
+    let Some(unit) = k.unit.as_deref() else {
+        return Measure::Untracked;
+    };
+    let work = match k.kind {
+        crate::mech::ConstraintKind::Position => "J",
+        crate::mech::ConstraintKind::Speed => "W",
+    };
+    unit_dim(work)
+        .over(unit_dim(unit))
+        .map_or(Measure::Untracked, Measure::known)
 }
 
 /// An operation whose value has one dimension whatever its arguments.

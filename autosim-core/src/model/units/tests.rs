@@ -242,6 +242,23 @@ const MODELS: &[(&str, &str)] = &[
         "constraint cc [m] { position: x - th }",
         "error: `x - th` subtracts rad from m",
     ),
+    // A constraint's force: W per the unit of its speed-level expression.
+    (
+        "constraint cc [m] { position: x - L*cos(th) }\noutput y [N] = constraint_force(cc);",
+        "OK",
+    ),
+    (
+        "constraint cc [rad] { position: th - x/L }\noutput y [N m/rad] = constraint_force(cc);",
+        "OK",
+    ),
+    (
+        "constraint cs [m/s] { speed: v - L*w }\noutput y [N] = constraint_force(cs);",
+        "OK",
+    ),
+    (
+        "constraint cc [m] { position: x - L*cos(th) }\noutput y [N m] = constraint_force(cc);",
+        "error: the output `y` [N m] must be in N m, but `constraint_force(cc)` is in N",
+    ),
     // Bodies.
     (
         "body W { parent: R, mass: 2 [g], inertia: diag(1, 1, L), joint: [L, 0, 0] }",

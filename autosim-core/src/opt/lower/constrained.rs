@@ -188,7 +188,7 @@ pub(crate) fn lower(lw: &mut Lowering<'_>) -> Result<Lowered, ProgramError> {
     let with_rates = binding_rates(&env, eqs, &acc);
     let (extra, extra_in_rates) = lw.extra(with_rates, &solve.du)?;
 
-    let outputs = outputs(lw, &env, &red, &full)?;
+    let outputs = outputs(lw, &env, &red, &full, &solve_c)?;
     let initial = lw.initial()?;
     lw.bind(env);
     let assembly = assembly(lw, eqs)?;
@@ -308,19 +308,28 @@ fn reduction(
 
 /// The model's outputs, then the residuals of the position constraints and
 /// the forces that enforce the motions; accelerations are read from the
-/// derivatives (`Leaf::Accel` of the independent speeds).
+/// derivatives (`Leaf::Accel` of the independent speeds), and the
+/// multipliers the outputs ask for (`constraint_force`) from them.
 fn outputs(
     lw: &mut Lowering<'_>,
     env: &Env,
     red: &Reduction,
     full: &Full,
+    c: &ConstraintSolve,
 ) -> Result<Vec<Nid>, ProgramError> {
     let (eqs, split) = (lw.given.eqs, lw.given.split);
     let du_free: Vec<Nid> = (0..split.free.len())
         .map(|i| lw.ir.leaf(Leaf::Accel(i)))
         .collect();
     let acc = red.accelerations(&mut lw.ir, split, &du_free);
-    lw.bind(binding_rates(env, eqs, &acc));
+    let mut bound = binding_rates(env, eqs, &acc);
+    let forces = &eqs.constraints.forces;
+    if !forces.is_empty() {
+        let residual = residual(&mut lw.ir, full, &acc);
+        let lambda = multipliers(&mut lw.ir, c, eqs, &residual);
+        bound.extend(forces.iter().map(|&(row, s)| (s, lambda[row])));
+    }
+    lw.bind(bound);
     let mut out = lw.outputs()?;
     let positions = &eqs.constraints.positions;
     for (i, g) in eqs.constraints.residuals.iter().enumerate() {
@@ -330,15 +339,41 @@ fn outputs(
         return Ok(out);
     }
     let ir = &mut lw.ir;
-    let m_acc = times_mass(ir, &full.mass, &acc);
-    let residual: Vec<Nid> = (0..acc.len())
-        .map(|k| ir.sum(vec![m_acc[k]], vec![full.forcing[k]]))
-        .collect();
+    let residual = residual(ir, full, &acc);
     for (i, &p) in split.prescribed.iter().enumerate() {
         let column = red.full(ir, split, p, &red.prescribed_columns[i]);
         out.push(dot(ir, &column, &residual));
     }
     Ok(out)
+}
+
+/// `M u̇ − f`: the generalized loads the constraints and motions supply.
+fn residual(ir: &mut Ir, full: &Full, acc: &[Nid]) -> Vec<Nid> {
+    let m_acc = times_mass(ir, &full.mass, acc);
+    (0..acc.len())
+        .map(|k| ir.sum(vec![m_acc[k]], vec![full.forcing[k]]))
+        .collect()
+}
+
+/// The multipliers `λ` of the constraints (by row): `M u̇ − f = Aᵀ λ` on
+/// the speeds that are not prescribed, solved on the dependent ones,
+/// `A_dᵀ λ = (M u̇ − f)_d`. `A_dᵀ` is factored with `A_d`'s pivots (a
+/// transpose eliminated in the same order has the same pivots, which the
+/// constraint solve already checks).
+fn multipliers(ir: &mut Ir, c: &ConstraintSolve, eqs: &Equations, residual: &[Nid]) -> Vec<Nid> {
+    let deps = &eqs.constraints.dependent_speeds;
+    let a_dt: Vec<Vec<Option<Nid>>> = deps
+        .iter()
+        .map(|&k| {
+            c.a.iter()
+                .map(|row| Some(row[k]).filter(|x| ir.as_num(*x) != Some(0.0)))
+                .collect()
+        })
+        .collect();
+    let own: Vec<usize> = (0..deps.len()).collect();
+    let elim = Elimination::factor(ir, &a_dt, &eqs.constraints.order, &own);
+    let rhs: Vec<Nid> = deps.iter().map(|&k| residual[k]).collect();
+    elim.solve(ir, &rhs)
 }
 
 /// The Newton step of assembly, `Δq_d = −G_d⁻¹ g`, with the residuals `g`

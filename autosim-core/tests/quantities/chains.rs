@@ -1,47 +1,8 @@
-//! Joint reactions and the energy and momentum built-ins, through the
-//! interpreter of the compiled program: static cases with known answers,
-//! the chains against Pinocchio's RNEA (`tests/reference/gen/pinocchio_reactions.py`),
-//! and identities of energy, momentum and power.
+//! Static cases with known answers, the chains' reactions against
+//! Pinocchio's RNEA and their energy against SymPy's.
 
-use autosim_core::diag::SourceFile;
-use autosim_core::opt::{At, Interpreter, UserCalls};
-use autosim_core::pipeline::{Compiled, compile_source};
-
-fn compile_text(name: &str, text: &str) -> Compiled {
-    let file = SourceFile::new(name, text.to_string());
-    match compile_source(&file) {
-        Ok(c) => c,
-        Err(d) => panic!("{}", d.render(&file)),
-    }
-}
-
-/// The outputs of `c` at state `x` (default parameters, no user code).
-fn outputs_at(c: &Compiled, x: &[f64], t: f64) -> Vec<f64> {
-    let params: Vec<f64> = c
-        .program
-        .interface
-        .parameters
-        .iter()
-        .map(|p| p.default)
-        .collect();
-    outputs_with(c, &params, x, t)
-}
-
-fn outputs_with(c: &Compiled, params: &[f64], x: &[f64], t: f64) -> Vec<f64> {
-    let it = Interpreter::new(&c.program, params);
-    let mut function = |_f: usize, _a: &[f64]| 0.0;
-    let mut subroutine = |_s: usize, _a: &[f64]| Vec::new();
-    let mut user = UserCalls {
-        function: &mut function,
-        subroutine: &mut subroutine,
-    };
-    let at = At { t, x, inputs: &[] };
-    it.outputs(at, &mut user).expect("outputs")
-}
-
-fn close(a: f64, b: f64, tol: f64) -> bool {
-    (a - b).abs() <= tol * (1.0 + b.abs())
-}
+use super::support::{close, compile_text, model_text, output_names, outputs_at, outputs_with};
+use autosim_core::pipeline::Compiled;
 
 /// A pendulum hanging at rest carries its weight at the hinge, straight
 /// up, and no moment.
@@ -111,6 +72,36 @@ fn slider_carries_weight_less_spring() {
     );
 }
 
+/// A carriage held at a height by a rail (a position constraint of the
+/// form `dot(pos(P), d) - h`), a pendulum hanging from it, at rest: the
+/// rail carries the whole weight, the pendulum's hinge its own, and the
+/// carriage's joint (free along n1 and n3) nothing.
+#[test]
+fn rail_carries_the_weight_of_what_hangs_from_it() {
+    let c = compile_text(
+        "rail",
+        "model Rail;
+         parameters { mc = 2 [kg], mp = 0.7 [kg], h = 1.5 [m], L = 0.4 [m], g = 9.81 [m/s^2] }
+         body Car { translate: [1, 3], mass: mc, inertia: diag(0.1, 0.1, 0.1), initial: [0.3, 1.5] }
+         body Rod { parent: Car, rotate: 2, mass: mp, cm: [0, 0, -L], inertia: diag(0.01, 0.01, 0.01) }
+         constraint rail [m] { position: dot(pos(Car), n3) - h }
+         gravity = -g*n3;
+         output rail_force [N] = constraint_force(rail);
+         output car_1 [N] = dot(reaction_force(Car), n1);
+         output car_2 [N] = dot(reaction_force(Car), n2);
+         output car_3 [N] = dot(reaction_force(Car), n3);
+         output car_moment [N m] = mag(reaction_moment(Car));
+         output rod_1 [N] = dot(reaction_force(Rod), n1);
+         output rod_3 [N] = dot(reaction_force(Rod), n3);",
+    );
+    // States: x, z, the rod's angle, then the free speeds (x's, the rod's).
+    let y = outputs_at(&c, &[0.3, 1.5, 0.0, 0.0, 0.0], 0.0);
+    let expect = [(2.0 + 0.7) * 9.81, 0.0, 0.0, 0.0, 0.0, 0.0, 0.7 * 9.81];
+    for (k, (a, b)) in y.iter().zip(expect).enumerate() {
+        assert!(close(*a, b, 1e-14), "output {k}: {a} against {b} ({y:?})");
+    }
+}
+
 /// The chains' joint reactions at 50 random states against Pinocchio's
 /// RNEA joint forces (less the springs, which the model applies).
 #[test]
@@ -119,10 +110,7 @@ fn chain_reactions_match_pinocchio() {
         ("planar", "chain_planar_5.sim"),
         ("spatial", "chain_spatial_5.sim"),
     ] {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../examples/models")
-            .join(file);
-        let mut text = std::fs::read_to_string(&path).expect("model file");
+        let mut text = model_text(file);
         for i in 1..=5 {
             for (f, what) in [("reaction_force", "f"), ("reaction_moment", "m")] {
                 for a in 1..=3 {
@@ -167,10 +155,7 @@ fn chain_reactions_match_pinocchio() {
 fn chain_energy_matches_sympy() {
     for kind in ["planar", "spatial"] {
         let file = format!("chain_{kind}_3.sim");
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../examples/models")
-            .join(&file);
-        let mut text = std::fs::read_to_string(&path).expect("model file");
+        let mut text = model_text(&file);
         text.push_str("output energy [J] = kinetic_energy() + potential_energy() + k*(q1^2 + q2^2 + q3^2)/2;\n");
         text.push_str("output ke [J] = kinetic_energy();\noutput ke_parts [J] = kinetic_energy(B1) + kinetic_energy(B2, B3);\n");
         let c = compile_text(&file, &text);
@@ -205,22 +190,15 @@ fn chain_energy_matches_sympy() {
 /// the program's costs are those of the model without it.
 #[test]
 fn reactions_not_requested_cost_nothing() {
+    use autosim_core::diag::SourceFile;
     use autosim_core::model::Scene;
     use autosim_core::opt::BlockKind;
     use autosim_core::pipeline::compile_source_scene;
-    let path =
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/models/satellite.sim");
-    let text = std::fs::read_to_string(path).expect("satellite.sim");
+    let text = model_text("satellite.sim");
     let with = format!(
         "{text}\noutput hinge_force [N] = dot(reaction_force(E), e1);\noutput hinge_moment [N m] = dot(reaction_moment(E), e1);\n"
     );
-    let names: Vec<String> = compile_text("satellite.sim", &text)
-        .program
-        .interface
-        .outputs
-        .iter()
-        .map(|o| o.name.clone())
-        .collect();
+    let names = output_names(&compile_text("satellite.sim", &text));
     let compile = |text: &str, outputs: Option<&[String]>| {
         let file = SourceFile::new("satellite.sim", text.to_string());
         let scene = Scene {

@@ -1,5 +1,5 @@
 //! Declarations: the names that exist before any expression is evaluated
-//! (parameters, inputs, user functions; then, after the bodies, `let`s and
+//! (parameters, inputs, discrete variables, user functions; then, after the bodies, `let`s and
 //! points to evaluate on first use, added states and the outputs of user
 //! subroutines), so any expression may use any of them.
 
@@ -16,6 +16,7 @@ pub(super) fn declare_values(r: &mut Resolver<'_>, out: &mut ResolvedModel, mode
         match item {
             Item::Parameters(ps) => parameters(r, out, ps),
             Item::Inputs(is) => inputs(r, out, is),
+            Item::Discrete(ds) => discrete(r, out, ds),
             Item::ExternFn(f) => extern_fn(r, out, f),
             _ => {}
         }
@@ -101,6 +102,20 @@ fn inputs(r: &mut Resolver<'_>, out: &mut ResolvedModel, is: &ast::Inputs) {
         let added = r.sys.add_input(&i.name.text, default, unit);
         bind_symbol(r, &i.name, added);
         out.item_docs.insert(i.name.text.clone(), is.docs.clone());
+    }
+}
+
+/// `discrete mode [1] = 0, ...;`: symbols like inputs, set only by events.
+fn discrete(r: &mut Resolver<'_>, out: &mut ResolvedModel, ds: &ast::Discretes) {
+    for d in &ds.inputs {
+        if !r.declare(&d.name, Named::Load) {
+            continue;
+        }
+        let initial = d.default.as_ref().map_or(0.0, |v| finite_value(r, v));
+        let unit = d.unit.as_ref().map(|u| u.text.as_str());
+        let added = r.sys.add_discrete(&d.name.text, initial, unit);
+        bind_symbol(r, &d.name, added);
+        out.item_docs.insert(d.name.text.clone(), ds.docs.clone());
     }
 }
 

@@ -183,11 +183,26 @@ fn assignments(
 /// assign it; a diagnostic saying where it belongs otherwise.
 fn assigned(r: &mut Resolver<'_>, name: &ast::Name, target: Target) -> Option<SymId> {
     let Some((named, _)) = r.names.get(&name.text).cloned() else {
-        let what = match target {
-            Target::Discrete => "discrete variable",
-            Target::State => "state",
+        let (what, help) = match target {
+            Target::Discrete => (
+                "discrete variable",
+                format!(
+                    "declare it: `discrete {} [unit] = <initial value>;`",
+                    name.text
+                ),
+            ),
+            Target::State => (
+                "state",
+                "`reset` gives new values to coordinates, speeds and added states".to_string(),
+            ),
         };
-        r.unknown(name, what);
+        let known = r.known_names();
+        let mut d = Diagnostic::error(name.span, format!("unknown {what} `{}`", name.text));
+        d = match did_you_mean(&name.text, known.iter().map(String::as_str)) {
+            Some(s) => d.help(format!("did you mean `{s}`?")),
+            None => d.help(help),
+        };
+        r.push(d);
         return None;
     };
     let kind = match named {

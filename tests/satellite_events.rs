@@ -68,26 +68,12 @@ fn fly_language<S: Stepper<SatelliteEvents<Command>>>(
 #[test]
 fn the_language_event_slew_converges_and_matches_the_rust_form() {
     let dopri = |tol: f64| DormandPrince::new(DopriSettings::new(tol, tol)).unwrap();
-    let tolerances = [1e-6, 1e-8, 1e-10, 1e-11, 1e-12];
-    let runs: Vec<([f64; 3], RunSummary<f64>, usize)> = tolerances
+    let runs: Vec<([f64; 3], RunSummary<f64>, usize)> = TOLERANCES
         .iter()
         .map(|&tol| fly_language(&mut dopri(tol), 1e-3))
         .collect();
-    let tightest = runs.last().unwrap().0;
     println!("language form (satellite_events.sim):");
-    println!(
-        "| tolerance | evaluations | events | attitude at 15 s: difference from 1e-12 [rad] |"
-    );
-    println!("| ---: | ---: | ---: | ---: |");
-    for (tol, (attitude, summary, events)) in tolerances.iter().zip(&runs) {
-        let d = difference(*attitude, tightest);
-        println!(
-            "| {tol:.0e} | {} | {events} | {d:.1e} |",
-            summary.evaluations
-        );
-    }
-    let at_1e10 = difference(runs[2].0, tightest);
-    assert!(at_1e10 < 1e-8, "1e-10 against 1e-12: {at_1e10:e}");
+    let tightest = converged(&TOLERANCES, &runs);
     assert!(runs.iter().all(|r| r.2 > 10));
     // The Rust wrapper, an independent formulation of the same controller
     // (its modes switched by hand-written Rust), lands on the same
@@ -125,20 +111,19 @@ fn difference(a: [f64; 3], b: [f64; 3]) -> f64 {
     (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max)
 }
 
-#[test]
-fn the_event_slew_converges_as_the_tolerance_tightens() {
-    let dopri = |tol: f64| DormandPrince::new(DopriSettings::new(tol, tol)).unwrap();
-    let tolerances = [1e-6, 1e-8, 1e-10, 1e-11, 1e-12];
-    let runs: Vec<([f64; 3], RunSummary<f64>, usize)> = tolerances
-        .iter()
-        .map(|&tol| fly(&mut dopri(tol), 1e-3))
-        .collect();
+/// Dormand–Prince's tolerances of the convergence tables.
+const TOLERANCES: [f64; 5] = [1e-6, 1e-8, 1e-10, 1e-11, 1e-12];
+
+/// Prints the table of `runs` (one per tolerance): evaluations, events,
+/// attitude against the tightest run; checks that 1e-10 is within 1e-8
+/// rad of 1e-12; returns the tightest attitude.
+fn converged(tolerances: &[f64], runs: &[([f64; 3], RunSummary<f64>, usize)]) -> [f64; 3] {
     let tightest = runs.last().unwrap().0;
     println!(
         "| tolerance | evaluations | events | attitude at 15 s: difference from 1e-12 [rad] |"
     );
     println!("| ---: | ---: | ---: | ---: |");
-    for (tol, (attitude, summary, events)) in tolerances.iter().zip(&runs) {
+    for (tol, (attitude, summary, events)) in tolerances.iter().zip(runs) {
         let d = difference(*attitude, tightest);
         println!(
             "| {tol:.0e} | {} | {events} | {d:.1e} |",
@@ -147,6 +132,17 @@ fn the_event_slew_converges_as_the_tolerance_tightens() {
     }
     let at_1e10 = difference(runs[2].0, tightest);
     assert!(at_1e10 < 1e-8, "1e-10 against 1e-12: {at_1e10:e}");
+    tightest
+}
+
+#[test]
+fn the_event_slew_converges_as_the_tolerance_tightens() {
+    let dopri = |tol: f64| DormandPrince::new(DopriSettings::new(tol, tol)).unwrap();
+    let runs: Vec<([f64; 3], RunSummary<f64>, usize)> = TOLERANCES
+        .iter()
+        .map(|&tol| fly(&mut dopri(tol), 1e-3))
+        .collect();
+    let tightest = converged(&TOLERANCES, &runs);
     // The thrusters fire: the events are real switching, not a quiet slew.
     assert!(
         runs.iter().all(|r| r.2 > 10),

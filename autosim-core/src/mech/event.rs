@@ -67,11 +67,7 @@ impl System {
         default: f64,
         unit: Option<&str>,
     ) -> Result<SymId, ModelError> {
-        self.check_new_name(name)?;
-        let s = self
-            .arena
-            .add_symbol(name, SymbolKind::Discrete { default })?;
-        self.arena.set_unit(s, unit.map(str::to_string));
+        let s = self.add_run_time_value(name, SymbolKind::Discrete { default }, unit)?;
         let zero = self.arena.zero();
         self.arena.set_dxdt(s, zero);
         self.discrete.push(s);

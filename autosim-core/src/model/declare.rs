@@ -7,7 +7,7 @@ use super::ResolvedModel;
 use super::scope::{Lazy, Named, Resolver};
 use crate::diag::Diagnostic;
 use crate::expr::{Number, SymId};
-use crate::mech::ModelError;
+use crate::mech::{ModelError, System};
 use crate::syntax::ast::{self, Item};
 
 /// Declares the parameters, inputs and user functions.
@@ -93,29 +93,31 @@ fn coherent_value(p: &ast::Parameter, value: f64) -> (f64, Option<String>, Optio
 }
 
 fn inputs(r: &mut Resolver<'_>, out: &mut ResolvedModel, is: &ast::Inputs) {
-    for i in &is.inputs {
-        if !r.declare(&i.name, Named::Load) {
-            continue;
-        }
-        let default = i.default.as_ref().map_or(0.0, |v| finite_value(r, v));
-        let unit = i.unit.as_ref().map(|u| u.text.as_str());
-        let added = r.sys.add_input(&i.name.text, default, unit);
-        bind_symbol(r, &i.name, added);
-        out.item_docs.insert(i.name.text.clone(), is.docs.clone());
-    }
+    run_time_values(r, out, is, System::add_input);
 }
 
 /// `discrete mode [1] = 0, ...;`: symbols like inputs, set only by events.
 fn discrete(r: &mut Resolver<'_>, out: &mut ResolvedModel, ds: &ast::Discretes) {
-    for d in &ds.inputs {
-        if !r.declare(&d.name, Named::Load) {
+    run_time_values(r, out, ds, System::add_discrete);
+}
+
+/// The entries of an `input` or `discrete` item, each declared by `add`
+/// with its value (0 when none is written) and unit.
+fn run_time_values(
+    r: &mut Resolver<'_>,
+    out: &mut ResolvedModel,
+    is: &ast::Inputs,
+    add: fn(&mut System, &str, f64, Option<&str>) -> Result<SymId, ModelError>,
+) {
+    for i in &is.inputs {
+        if !r.declare(&i.name, Named::Load) {
             continue;
         }
-        let initial = d.default.as_ref().map_or(0.0, |v| finite_value(r, v));
-        let unit = d.unit.as_ref().map(|u| u.text.as_str());
-        let added = r.sys.add_discrete(&d.name.text, initial, unit);
-        bind_symbol(r, &d.name, added);
-        out.item_docs.insert(d.name.text.clone(), ds.docs.clone());
+        let value = i.default.as_ref().map_or(0.0, |v| finite_value(r, v));
+        let unit = i.unit.as_ref().map(|u| u.text.as_str());
+        let added = add(&mut r.sys, &i.name.text, value, unit);
+        bind_symbol(r, &i.name, added);
+        out.item_docs.insert(i.name.text.clone(), is.docs.clone());
     }
 }
 

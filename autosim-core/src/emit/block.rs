@@ -263,6 +263,10 @@ impl BlockEmitter<'_> {
                     let k = Literal::usize_unsuffixed(self.prog.states().speed_slot(i));
                     out.extend(quote!(let #id = #dx[#k];));
                 }
+                Leaf::Discrete(i) => {
+                    let id = ident(&self.prog.interface.discrete[i].name);
+                    out.extend(quote!(let #id = self.discrete.#id;));
+                }
                 Leaf::Param(_) | Leaf::Time | Leaf::SubOut(..) => {}
             }
         }

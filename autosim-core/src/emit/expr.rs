@@ -195,6 +195,7 @@ impl Locals {
         let mut taken: rustc_hash::FxHashSet<String> =
             i.states.states().map(|s| s.name.clone()).collect();
         taken.extend(i.inputs.iter().map(|x| x.name.clone()));
+        taken.extend(i.discrete.iter().map(|x| x.name.clone()));
         for sub in &i.subroutines {
             taken.extend(sub.outputs.iter().cloned());
         }
@@ -417,6 +418,10 @@ impl ExprPrinter<'_> {
             }
             Leaf::Input(k) => {
                 let id = ident(&i.inputs[k].name);
+                quote!(#id)
+            }
+            Leaf::Discrete(k) => {
+                let id = ident(&i.discrete[k].name);
                 quote!(#id)
             }
             Leaf::Time => quote!(t),

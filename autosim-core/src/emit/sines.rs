@@ -49,7 +49,7 @@ pub fn groups(ir: &Ir, block: &Block, from_outside: &dyn Fn(Nid) -> bool) -> Gro
     let known_at_start = |angle: Nid| match ir.op(angle) {
         Op::Leaf(l) => matches!(
             l,
-            Leaf::State(_) | Leaf::Param(_) | Leaf::Input(_) | Leaf::Time
+            Leaf::State(_) | Leaf::Param(_) | Leaf::Input(_) | Leaf::Time | Leaf::Discrete(_)
         ),
         _ => from_outside(angle),
     };

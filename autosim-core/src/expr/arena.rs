@@ -192,6 +192,12 @@ pub enum SymbolKind {
         /// Default value.
         default: f64,
     },
+    /// A discrete variable: constant between events, changed only by
+    /// their actions.
+    Discrete {
+        /// Its value at the start of a run.
+        default: f64,
+    },
     /// Output `index` of user subroutine `sub` (by declaration order).
     ExternOutput {
         /// Subroutine index.

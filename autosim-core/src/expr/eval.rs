@@ -39,7 +39,9 @@ impl Bindings {
         let values = arena
             .symbols()
             .map(|(_, s)| match s.kind {
-                SymbolKind::Parameter { default } | SymbolKind::Input { default } => default,
+                SymbolKind::Parameter { default }
+                | SymbolKind::Input { default }
+                | SymbolKind::Discrete { default } => default,
                 _ => f64::NAN,
             })
             .collect();

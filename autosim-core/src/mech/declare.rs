@@ -49,10 +49,22 @@ impl System {
         default: f64,
         unit: Option<&str>,
     ) -> Result<SymId, ModelError> {
-        self.check_new_name(name)?;
-        let s = self.arena.add_symbol(name, SymbolKind::Input { default })?;
-        self.arena.set_unit(s, unit.map(str::to_string));
+        let s = self.add_run_time_value(name, SymbolKind::Input { default }, unit)?;
         self.inputs.push(s);
+        Ok(s)
+    }
+
+    /// A new symbol of `kind` (an input or a discrete variable: a value
+    /// set at run time) with its unit.
+    pub(crate) fn add_run_time_value(
+        &mut self,
+        name: &str,
+        kind: SymbolKind,
+        unit: Option<&str>,
+    ) -> Result<SymId, ModelError> {
+        self.check_new_name(name)?;
+        let s = self.arena.add_symbol(name, kind)?;
+        self.arena.set_unit(s, unit.map(str::to_string));
         Ok(s)
     }
 

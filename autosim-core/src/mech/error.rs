@@ -212,6 +212,8 @@ pub enum ItemRef {
     Constraint(usize),
     /// A prescribed motion, by index in [`System::motions`](super::System::motions).
     Motion(usize),
+    /// An event, by index in [`System::events`](super::System::events).
+    Event(usize),
 }
 
 /// An error of an analysis of the system, with the item that caused it.

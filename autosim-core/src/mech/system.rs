@@ -270,6 +270,8 @@ pub struct System {
     pub(crate) motions: Vec<Motion>,
     pub(crate) inputs: Vec<SymId>,
     pub(crate) parameters: Vec<SymId>,
+    pub(crate) discrete: Vec<SymId>,
+    pub(crate) events: Vec<super::event::Event>,
     pub(crate) time: SymId,
     /// Degrees of freedom declared so far, locked ones included: default
     /// names `q<k>`, `u<k>` count them, so locking one does not rename the
@@ -338,6 +340,8 @@ impl System {
             motions: Vec::new(),
             inputs: Vec::new(),
             parameters: Vec::new(),
+            discrete: Vec::new(),
+            events: Vec::new(),
             time,
             declared_dofs: 0,
         }

@@ -1,5 +1,5 @@
 //! Declarations: the names that exist before any expression is evaluated
-//! (parameters, inputs, user functions; then, after the bodies, `let`s and
+//! (parameters, inputs, discrete variables, user functions; then, after the bodies, `let`s and
 //! points to evaluate on first use, added states and the outputs of user
 //! subroutines), so any expression may use any of them.
 
@@ -7,7 +7,7 @@ use super::ResolvedModel;
 use super::scope::{Lazy, Named, Resolver};
 use crate::diag::Diagnostic;
 use crate::expr::{Number, SymId};
-use crate::mech::ModelError;
+use crate::mech::{ModelError, System};
 use crate::syntax::ast::{self, Item};
 
 /// Declares the parameters, inputs and user functions.
@@ -16,6 +16,7 @@ pub(super) fn declare_values(r: &mut Resolver<'_>, out: &mut ResolvedModel, mode
         match item {
             Item::Parameters(ps) => parameters(r, out, ps),
             Item::Inputs(is) => inputs(r, out, is),
+            Item::Discrete(ds) => discrete(r, out, ds),
             Item::ExternFn(f) => extern_fn(r, out, f),
             _ => {}
         }
@@ -92,13 +93,29 @@ fn coherent_value(p: &ast::Parameter, value: f64) -> (f64, Option<String>, Optio
 }
 
 fn inputs(r: &mut Resolver<'_>, out: &mut ResolvedModel, is: &ast::Inputs) {
+    run_time_values(r, out, is, System::add_input);
+}
+
+/// `discrete mode [1] = 0, ...;`: symbols like inputs, set only by events.
+fn discrete(r: &mut Resolver<'_>, out: &mut ResolvedModel, ds: &ast::Discretes) {
+    run_time_values(r, out, ds, System::add_discrete);
+}
+
+/// The entries of an `input` or `discrete` item, each declared by `add`
+/// with its value (0 when none is written) and unit.
+fn run_time_values(
+    r: &mut Resolver<'_>,
+    out: &mut ResolvedModel,
+    is: &ast::Inputs,
+    add: fn(&mut System, &str, f64, Option<&str>) -> Result<SymId, ModelError>,
+) {
     for i in &is.inputs {
         if !r.declare(&i.name, Named::Load) {
             continue;
         }
-        let default = i.default.as_ref().map_or(0.0, |v| finite_value(r, v));
+        let value = i.default.as_ref().map_or(0.0, |v| finite_value(r, v));
         let unit = i.unit.as_ref().map(|u| u.text.as_str());
-        let added = r.sys.add_input(&i.name.text, default, unit);
+        let added = add(&mut r.sys, &i.name.text, value, unit);
         bind_symbol(r, &i.name, added);
         out.item_docs.insert(i.name.text.clone(), is.docs.clone());
     }

@@ -1,7 +1,7 @@
 //! Items that use expressions, resolved in model order once every name is
 //! declared: points and `let`s (if nothing used them first), subroutine
-//! arguments, added states, gravity, loads, outputs, constraints and
-//! motions.
+//! arguments, added states, gravity, loads, outputs, constraints,
+//! motions and events.
 
 use super::ResolvedModel;
 use super::loads::{coefficients, force, moment};
@@ -48,6 +48,7 @@ pub(super) fn resolve_items(
             Item::Output(o) => output(r, out, o, outputs),
             Item::Constraint(c) => constraint(r, out, c),
             Item::Motion(m) => motion(r, out, m),
+            Item::Event(e) => super::events::event(r, out, e),
             _ => {}
         }
     }

@@ -9,6 +9,7 @@ mod bodies;
 mod body_options;
 mod constraint_load;
 mod declare;
+mod events;
 mod exprs;
 mod finite;
 mod items;
@@ -153,6 +154,7 @@ const TAKEN_TYPE_NAMES: &[&str] = &[
     "Inputs",
     "Externs",
     "Constants",
+    "Discrete",
     "Default",
     "Result",
     "Option",
@@ -191,7 +193,7 @@ fn check_model_name(r: &mut Resolver<'_>, name: &ast::Name) {
         });
     } else if TAKEN_TYPE_NAMES.contains(&text) {
         let why = match TAKEN_TYPE_NAMES.iter().position(|n| *n == text) {
-            Some(k) if k >= 5 => "the generated code uses Rust's prelude name unqualified",
+            Some(k) if k >= 6 => "the generated code uses Rust's prelude name unqualified",
             _ => "the generated module has an item of that name",
         };
         r.push(

@@ -44,6 +44,7 @@ impl ItemSpans {
             ItemRef::Subroutine(k) => sys.subroutines()[k].name.as_str(),
             ItemRef::Constraint(k) => sys.constraints()[k].name.as_str(),
             ItemRef::Motion(k) => sys.motions()[k].name.as_str(),
+            ItemRef::Event(k) => sys.events()[k].name.as_str(),
         };
         self.named(name)
     }

@@ -31,6 +31,8 @@ pub enum Leaf {
     SubOut(usize, usize),
     /// du/dt of speed `i` (outputs only; computed by the derivatives).
     Accel(usize),
+    /// Discrete variable number `i` (declaration order).
+    Discrete(usize),
 }
 
 /// An operation.

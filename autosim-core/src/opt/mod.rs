@@ -17,12 +17,12 @@ mod split;
 
 pub use error::ProgramError;
 pub use input::{
-    ConstraintInfo, Declared, Described, FloatType, Formulation, Input, MotionInfo, Options,
-    Quantity, SubroutineCall, UserCode,
+    ConstraintInfo, Declared, Described, EventCode, EventInfo, FloatType, Formulation, Input,
+    MotionInfo, Options, Quantity, SubroutineCall, UserCode,
 };
 pub use ir::{Ir, Leaf, Nid, Op};
 pub use program::interface::{Closure, Interface, StateLayout, StateVar};
 pub use program::interp::{At, Interpreter, SolveError, UserCalls};
-pub use program::{BlockKind, MassLayout, Program, build};
+pub use program::{Assigned, BlockKind, MassLayout, Program, build};
 pub use schedule::{Block, Guard, Ops, Stmt, Task};
 pub use split::Split;

@@ -7,8 +7,8 @@ use crate::expr::{SymId, SymbolKind};
 use crate::mech::{Equations, ItemRef};
 use crate::model::ResolvedModel;
 use crate::opt::{
-    ConstraintInfo, Declared, Described, Input, MotionInfo, Options, Quantity, SubroutineCall,
-    UserCode,
+    ConstraintInfo, Declared, Described, EventCode, EventInfo, Input, MotionInfo, Options,
+    Quantity, SubroutineCall, UserCode,
 };
 
 /// The input of `opt::build` for `model` with these equations.
@@ -35,6 +35,23 @@ pub fn opt_input(model: &ResolvedModel, equations: &Equations) -> Input {
             initial_q: coordinates.iter().map(|c| c.initial_q).collect(),
             initial_u: coordinates.iter().map(|c| c.initial_u).collect(),
             initial_states: sys.states().iter().map(|s| s.initial).collect(),
+            discrete: sys.discrete().to_vec(),
+            events: sys
+                .events()
+                .iter()
+                .map(|e| EventCode {
+                    indicator: e.indicator,
+                    sets: e
+                        .sets
+                        .iter()
+                        .filter_map(|(s, v)| {
+                            let k = sys.discrete().iter().position(|d| d == s)?;
+                            Some((k, *v))
+                        })
+                        .collect(),
+                    resets: e.resets.clone(),
+                })
+                .collect(),
         },
         described: model.described(equations),
         options: Options {
@@ -53,7 +70,9 @@ impl ResolvedModel {
         let symbol = |s: &SymId| {
             let sym = a.symbol(*s);
             let default = match sym.kind {
-                SymbolKind::Parameter { default } | SymbolKind::Input { default } => default,
+                SymbolKind::Parameter { default }
+                | SymbolKind::Input { default }
+                | SymbolKind::Discrete { default } => default,
                 _ => 0.0,
             };
             self.quantity(&sym.name, sym.unit.as_deref(), default)
@@ -84,6 +103,19 @@ impl ResolvedModel {
                 .collect(),
             subroutines,
             constraints: self.constraint_infos(eqs),
+            discrete: sys.discrete().iter().map(symbol).collect(),
+            events: sys
+                .events()
+                .iter()
+                .map(|e| EventInfo {
+                    name: e.name.clone(),
+                    direction: e.direction,
+                    stop: e.stop,
+                    unit: e.unit.clone().unwrap_or_default(),
+                    docs: self.item_docs.get(&e.name).cloned().unwrap_or_default(),
+                    span: self.spans.named(&e.name),
+                })
+                .collect(),
             motions: self.motion_infos(),
             cautions: [self.singular_starts(), self.moved_initials(eqs)].concat(),
             inferred_state_units: self

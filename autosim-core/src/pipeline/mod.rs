@@ -46,7 +46,7 @@ pub fn compile_scene(model: &ast::Model, scene: &Scene) -> Result<Compiled, Diag
     }
     let program = match build(opt_input(&resolved, &equations)) {
         Ok(p) => p,
-        Err(e) => return Err(at(&resolved, e.item(), e.to_string(), None)),
+        Err(e) => return Err(at(&resolved, e.item(), e.to_string(), e.help())),
     };
     check_literals(&resolved, &program)?;
     Ok(Compiled {

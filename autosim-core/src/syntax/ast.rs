@@ -10,8 +10,8 @@ use std::fmt;
 use crate::diag::Span;
 
 pub use super::keys::{
-    BodyKey, ConstraintKey, ForceKey, MomentKey, MotionKey, OptionKey, SceneKey, SettingKey,
-    StateKey,
+    BodyKey, ConstraintKey, EventKey, ForceKey, MomentKey, MotionKey, OptionKey, SceneKey,
+    SettingKey, StateKey,
 };
 
 /// A whole model: `model Name;` plus its items in source order.
@@ -58,6 +58,10 @@ pub enum Item {
     Constraint(Constraint),
     /// `motion drive { coordinate: q1, value: omega*t }`
     Motion(Motion),
+    /// `discrete mode [1] = 0, toff [s];`
+    Discrete(Discretes),
+    /// `event bounce [m] { indicator: h, direction: falling, reset: { v: -e*v } }`
+    Event(Event),
 }
 
 impl Item {
@@ -79,6 +83,8 @@ impl Item {
             Item::Output(x) => x.span,
             Item::Constraint(x) => x.span,
             Item::Motion(x) => x.span,
+            Item::Discrete(x) => x.span,
+            Item::Event(x) => x.span,
         }
     }
 }
@@ -356,6 +362,42 @@ pub struct State {
     pub unit: Option<Unit>,
     /// The options.
     pub options: Options<StateKey>,
+}
+
+/// `discrete mode [1] = 0, toff [s];`: the same shape as an `input`
+/// item (a name, a unit, an initial value that defaults to 0).
+pub type Discretes = Inputs;
+
+/// `event bounce [m] "impact" { indicator: h, direction: falling,
+/// reset: { v: -e*v }, set: { mode: 1 }, stop: false }`
+#[derive(Clone, Debug)]
+pub struct Event {
+    /// Doc comments.
+    pub docs: Vec<String>,
+    /// The `event` keyword through the name.
+    pub span: Span,
+    /// The event's name.
+    pub name: Name,
+    /// The unit of the indicator, if given.
+    pub unit: Option<Unit>,
+    /// Optional description.
+    pub label: Option<Label>,
+    /// `indicator`, `direction` and `stop` (the values of `set` and
+    /// `reset` are in [`Event::set`] and [`Event::reset`]).
+    pub options: Options<EventKey>,
+    /// `set: { name: value, ... }`: the key's span and the assignments.
+    pub set: Option<(Span, Vec<Assignment>)>,
+    /// `reset: { name: value, ... }`: the key's span and the assignments.
+    pub reset: Option<(Span, Vec<Assignment>)>,
+}
+
+/// `name: value` in an event's `set` or `reset`.
+#[derive(Clone, Debug)]
+pub struct Assignment {
+    /// The variable given a value.
+    pub target: Name,
+    /// Its new value (an expression of the values before the event).
+    pub value: Expr,
 }
 
 /// `output clock_angle [rad] = q(C);`

@@ -90,6 +90,22 @@ option_keys! {
 }
 
 option_keys! {
+    /// Keys of an `event` block.
+    EventKey, "event option" {
+        /// `indicator: h` — the function whose sign change is the event.
+        Indicator = "indicator",
+        /// `direction: falling` (or `rising`, `either`).
+        Direction = "direction",
+        /// `set: { mode: 1 }` — discrete variables given new values.
+        Set = "set",
+        /// `reset: { v: -e*v }` — states given new values.
+        Reset = "reset",
+        /// `stop: true` — the run ends at the event.
+        Stop = "stop",
+    }
+}
+
+option_keys! {
     /// Keys of a `motion` block.
     MotionKey, "motion option" {
         /// `coordinate: q` — the coordinate given as a function of time.

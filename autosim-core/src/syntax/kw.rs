@@ -17,6 +17,8 @@ syn::custom_keyword!(sub);
 syn::custom_keyword!(at);
 syn::custom_keyword!(constraint);
 syn::custom_keyword!(motion);
+syn::custom_keyword!(discrete);
+syn::custom_keyword!(event);
 
 /// Words that start an item: used for "did you mean", for error recovery
 /// (skip to the next item) and for the missing-`;` check.
@@ -37,4 +39,6 @@ pub(crate) const ITEM_STARTS: &[&str] = &[
     "output",
     "constraint",
     "motion",
+    "discrete",
+    "event",
 ];

@@ -22,6 +22,7 @@ mod cx;
 mod keys;
 mod kw;
 mod parse_block;
+mod parse_event;
 mod parse_expr;
 mod parse_items;
 mod scene;

@@ -153,7 +153,7 @@ pub(crate) fn entries<K: OptionKey>(content: ParseStream, cx: &Cx, assign: Assig
 
 /// After an entry: a `,`, the end, or (reported, then accepted) a missing
 /// comma before something that looks like the next entry.
-fn separator(content: ParseStream, cx: &Cx, last: Span, next_is_entry: bool) {
+pub(crate) fn separator(content: ParseStream, cx: &Cx, last: Span, next_is_entry: bool) {
     if content.is_empty() {
         return;
     }
@@ -220,7 +220,7 @@ fn entry<K: OptionKey>(
     ))
 }
 
-fn unknown_key<K: OptionKey>(text: &str, span: Span) -> Diagnostic {
+pub(crate) fn unknown_key<K: OptionKey>(text: &str, span: Span) -> Diagnostic {
     let valid: Vec<&str> = K::ALL.iter().map(|(text, _)| *text).collect();
     let mut diagnostic = Diagnostic::error(span, format!("unknown {} `{text}`", K::WHAT));
     if let Some(suggestion) = did_you_mean(text, valid.iter().copied()) {
@@ -229,7 +229,7 @@ fn unknown_key<K: OptionKey>(text: &str, span: Span) -> Diagnostic {
     diagnostic.note(format!("the {}s are: {}", K::WHAT, valid.join(", ")))
 }
 
-fn duplicate(key: &str, what: &str, span: Span, first: Span) -> Diagnostic {
+pub(crate) fn duplicate(key: &str, what: &str, span: Span, first: Span) -> Diagnostic {
     let diagnostic = Diagnostic::error(span, format!("duplicate {what} `{key}`"));
     match first.start() {
         Some(at) => diagnostic.note(format!("`{key}` was first given at {at}")),

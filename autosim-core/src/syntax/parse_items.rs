@@ -115,7 +115,8 @@ fn item(input: ParseStream, cx: &Cx, top: &mut Top) -> PResult<()> {
         once(cx, &mut top.gravity, gravity.span, "gravity");
         Item::Gravity(gravity)
     } else if input.peek(kw::input) {
-        Item::Inputs(inputs(input, cx, docs)?)
+        let keyword: kw::input = input.parse()?;
+        Item::Inputs(inputs(input, cx, docs, cx.span(keyword.span), "input")?)
     } else if input.peek(Token![extern]) {
         extern_item(input, cx, docs)?
     } else if input.peek(kw::state) {
@@ -125,6 +126,17 @@ fn item(input: ParseStream, cx: &Cx, top: &mut Top) -> PResult<()> {
     } else if input.peek(kw::constraint) {
         let keyword: kw::constraint = input.parse()?;
         Item::Constraint(block(input, cx, docs, cx.span(keyword.span), "constraint")?)
+    } else if input.peek(kw::discrete) {
+        let keyword: kw::discrete = input.parse()?;
+        Item::Discrete(inputs(
+            input,
+            cx,
+            docs,
+            cx.span(keyword.span),
+            "discrete variable",
+        )?)
+    } else if input.peek(kw::event) {
+        Item::Event(super::parse_event::event(input, cx, docs)?)
     } else if input.peek(kw::motion) {
         let keyword: kw::motion = input.parse()?;
         Item::Motion(block(input, cx, docs, cx.span(keyword.span), "motion")?)
@@ -291,11 +303,23 @@ fn gravity(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Gravity> {
     })
 }
 
-fn inputs(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Inputs> {
-    let keyword: kw::input = input.parse()?;
+/// The entries of an `input` (or `discrete`) item after its keyword at
+/// `span`: `name [unit] = default, ...;`, `what` naming one in messages.
+fn inputs(
+    input: ParseStream,
+    cx: &Cx,
+    docs: Vec<String>,
+    span: Span,
+    what: &str,
+) -> PResult<Inputs> {
     let mut inputs = Vec::new();
     loop {
-        let name = name(input, cx, "an input name")?;
+        let article = if what.starts_with(['a', 'e', 'i', 'o', 'u']) {
+            "an"
+        } else {
+            "a"
+        };
+        let name = name(input, cx, &format!("{article} {what} name"))?;
         let unit = unit(input, cx)?;
         let default = if input.peek(Token![=]) {
             input.parse::<Token![=]>()?;
@@ -321,14 +345,10 @@ fn inputs(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Inputs> {
             input.parse::<Token![,]>()?;
             continue;
         }
-        semi(input, cx, "the inputs", last)?;
+        semi(input, cx, &format!("the {what}s"), last)?;
         break;
     }
-    Ok(Inputs {
-        docs,
-        span: cx.span(keyword.span),
-        inputs,
-    })
+    Ok(Inputs { docs, span, inputs })
 }
 
 fn extern_item(input: ParseStream, cx: &Cx, docs: Vec<String>) -> PResult<Item> {

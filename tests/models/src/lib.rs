@@ -8,6 +8,7 @@
 pub mod via_macro {
     autosim::model!(file = "../../examples/models/andrews.sim");
     autosim::model!(file = "../../examples/models/bicycle.sim");
+    autosim::model!(file = "../../examples/models/bouncing_ball.sim");
     autosim::model!(file = "../../examples/models/chain_planar_1.sim");
     autosim::model!(file = "../../examples/models/chain_planar_10.sim");
     autosim::model!(file = "../../examples/models/chain_planar_2.sim");
@@ -26,6 +27,7 @@ pub mod via_macro {
     autosim::model!(file = "../../examples/models/four_bar.sim");
     autosim::model!(file = "../../examples/models/rolling_disc.sim");
     autosim::model!(file = "../../examples/models/satellite.sim");
+    autosim::model!(file = "../../examples/models/satellite_events.sim");
     autosim::model!(file = "../../examples/models/satellite_small.sim");
 }
 
@@ -44,6 +46,7 @@ pub mod scenes {
 pub mod via_build {
     autosim::include_model!(andrews);
     autosim::include_model!(bicycle);
+    autosim::include_model!(bouncing_ball);
     autosim::include_model!(chain_planar1);
     autosim::include_model!(chain_planar10);
     autosim::include_model!(chain_planar2);
@@ -62,5 +65,6 @@ pub mod via_build {
     autosim::include_model!(four_bar);
     autosim::include_model!(rolling_disc);
     autosim::include_model!(satellite);
+    autosim::include_model!(satellite_events);
     autosim::include_model!(satellite_small);
 }

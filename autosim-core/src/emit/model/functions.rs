@@ -71,6 +71,9 @@ pub(super) fn body(be: &BlockEmitter<'_>, kind: BlockKind) -> TokenStream {
         BlockKind::Constants => constants_new(be, block),
         BlockKind::Assembly => be.emit(block, true, Target::Array(&l.step)),
         BlockKind::Linearize => linearize_body(be, block),
+        BlockKind::EventIndicators | BlockKind::EventActions => {
+            be.emit(block, true, Target::Array(&l.y))
+        }
     }
 }
 
@@ -262,6 +265,9 @@ pub(super) fn ops_constant(kind: BlockKind) -> Option<(&'static str, &'static st
         BlockKind::Forcing => ("FORCING_OPS", "one `forcing` call"),
         BlockKind::Assembly => ("ASSEMBLY_OPS", "one `assembly_step` call"),
         BlockKind::Linearize => ("LINEARIZE_OPS", "one `linearize` call"),
-        BlockKind::Initial | BlockKind::Common => return None,
+        BlockKind::Initial
+        | BlockKind::Common
+        | BlockKind::EventIndicators
+        | BlockKind::EventActions => return None,
     })
 }

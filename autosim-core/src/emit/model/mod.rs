@@ -3,6 +3,7 @@
 //! operation counts. Reads the program and its interface only.
 
 mod assembly;
+mod events;
 mod functions;
 mod linear;
 mod structs;
@@ -113,6 +114,7 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
     };
     let parameters = structs::parameters(i);
     let inputs = structs::inputs(i);
+    let discrete = events::discrete_struct(i);
     let externs = structs::externs_trait(i);
     let constants = constants_struct(&be);
     let counts = counts(prog);
@@ -147,6 +149,8 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
             #parameters
 
             #inputs
+
+            #discrete
 
             #externs
 
@@ -298,6 +302,15 @@ fn model_type(be: &BlockEmitter<'_>) -> TokenStream {
     } else {
         (quote!(), quote!())
     };
+    let discrete_field = if i.discrete.is_empty() {
+        quote!()
+    } else {
+        quote!(
+            /// The discrete variables: set by the events, read by every
+            /// evaluation (saved and restored with the state).
+            pub discrete: Discrete,
+        )
+    };
     let default_impl = if i.has_externs() {
         quote!()
     } else {
@@ -317,6 +330,7 @@ fn model_type(be: &BlockEmitter<'_>) -> TokenStream {
             constants: Constants,
             /// Inputs read by every evaluation.
             pub inputs: Inputs,
+            #discrete_field
             #externs_field
         }
 
@@ -327,6 +341,14 @@ fn model_type(be: &BlockEmitter<'_>) -> TokenStream {
 /// `new` and `with_parameters`, with or without user code.
 fn constructors(i: &crate::opt::Interface) -> TokenStream {
     let model_ty = ident(&i.name);
+    let discrete = match i.discrete.is_empty() {
+        true => quote!(),
+        false => quote!(discrete: Discrete::default(),),
+    };
+    let discrete_last = match i.discrete.is_empty() {
+        true => quote!(),
+        false => quote!(, discrete: Discrete::default()),
+    };
     if i.has_externs() {
         quote! {
             /// The model with default parameters and inputs, calling `externs`.
@@ -335,7 +357,7 @@ fn constructors(i: &crate::opt::Interface) -> TokenStream {
             }
             /// The model with the given parameters, calling `externs`.
             pub fn with_parameters(parameters: Parameters, externs: E) -> Self {
-                #model_ty { constants: Constants::new(&parameters), parameters, inputs: Inputs::default(), externs }
+                #model_ty { constants: Constants::new(&parameters), parameters, inputs: Inputs::default(), #discrete externs }
             }
         }
     } else {
@@ -346,7 +368,7 @@ fn constructors(i: &crate::opt::Interface) -> TokenStream {
             }
             /// The model with the given parameters.
             pub fn with_parameters(parameters: Parameters) -> Self {
-                #model_ty { constants: Constants::new(&parameters), parameters, inputs: Inputs::default() }
+                #model_ty { constants: Constants::new(&parameters), parameters, inputs: Inputs::default() #discrete_last }
             }
         }
     }
@@ -592,6 +614,7 @@ fn model_trait_impl(be: &BlockEmitter<'_>, derivatives: &TokenStream) -> TokenSt
     let outs = functions::body(be, BlockKind::Outputs);
     let init = functions::body(be, BlockKind::Initial);
     let assembly = assembly::trait_methods(be);
+    let events = events::trait_items(be);
     let linearize = linear::trait_impl(
         be,
         &quote!(impl #generics #rt::Linearize for #model_ty #struct_generics #where_clause),
@@ -625,6 +648,8 @@ fn model_trait_impl(be: &BlockEmitter<'_>, derivatives: &TokenStream) -> TokenSt
             }
 
             #assembly
+
+            #events
         }
 
         #linearize

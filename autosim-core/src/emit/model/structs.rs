@@ -11,7 +11,7 @@ use quote::quote;
 /// A struct of values with their defaults (`Parameters`, `Inputs`): one
 /// documented field per quantity, and `Default` (derived when every
 /// default is zero, which clippy prefers).
-fn values_struct(
+pub(super) fn values_struct(
     name: &str,
     struct_doc: TokenStream,
     quantities: &[Quantity],

@@ -44,7 +44,7 @@ impl Checker<'_, '_> {
                     }
                 }
             }
-            Item::Inputs(is) => {
+            Item::Inputs(is) | Item::Discrete(is) => {
                 for i in is.inputs.iter().filter_map(|i| i.unit.as_ref()) {
                     self.meaning(i, false);
                 }
@@ -117,6 +117,7 @@ impl Checker<'_, '_> {
                 }
             }
             Item::Motion(m) => self.motion(m),
+            Item::Event(e) => self.event(e, inferred),
             Item::Settings(_) | Item::ExternFn(_) => {}
         }
     }
@@ -246,6 +247,27 @@ impl Checker<'_, '_> {
             let q = self.expr(&o.value);
             let what = format!("the derivative of `{}`", s.name.text);
             self.require_affine(q, &rate, &o.value, &what);
+        }
+    }
+
+    /// An event: its indicator in its declared unit, each new value in
+    /// the unit of the variable it is assigned to.
+    fn event(&mut self, e: &ast::Event, inferred: &mut Vec<(String, Affine)>) {
+        if let Some(o) = e.options.get(ast::EventKey::Indicator) {
+            let q = self.expr(&o.value);
+            let what = "the indicator of event";
+            self.declared(q, e.unit.as_ref(), &o.value, &e.name.text, inferred, what);
+        }
+        let lists = [&e.set, &e.reset];
+        for a in lists.into_iter().flatten().flat_map(|(_, list)| list) {
+            let q = self.expr(&a.value);
+            let Some((Named::Symbol(s), _)) = self.r.names.get(&a.target.text) else {
+                continue;
+            };
+            if let Measure::Dim(dim) = self.symbol(*s) {
+                let what = format!("the new value of `{}`", a.target.text);
+                self.require_affine(q, &dim, &a.value, &what);
+            }
         }
     }
 

@@ -3,7 +3,7 @@
 //! the state vector and what it solves for (`Interface`).
 
 use crate::diag::Span;
-use crate::mech::ConstraintKind;
+use crate::mech::{ConstraintKind, EventDirection};
 
 /// What generated code exposes of a model as the model declares it:
 /// names, units, defaults, docs and spans (opt adds the state vector and
@@ -29,6 +29,11 @@ pub struct Described {
     pub constraints: Vec<ConstraintInfo>,
     /// Prescribed motions in declaration order.
     pub motions: Vec<MotionInfo>,
+    /// Discrete variables in declaration order (`default`: the initial
+    /// value).
+    pub discrete: Vec<Quantity>,
+    /// Events in declaration order.
+    pub events: Vec<EventInfo>,
     /// Cautions for the user, printed in the model's documentation.
     pub cautions: Vec<String>,
     /// The units the unit check inferred for states declared without one
@@ -107,6 +112,23 @@ pub struct MotionInfo {
     pub name: String,
     /// The coordinate it drives.
     pub coordinate: String,
+    /// Doc comments.
+    pub docs: Vec<String>,
+    /// Where it is declared.
+    pub span: Span,
+}
+
+/// An event, as generated code and its documentation name it.
+#[derive(Clone, Debug)]
+pub struct EventInfo {
+    /// Name (the runtime's `EventIndicator::name`).
+    pub name: String,
+    /// Which sign changes fire it.
+    pub direction: EventDirection,
+    /// The run ends at the event.
+    pub stop: bool,
+    /// The unit of its indicator (empty when not given).
+    pub unit: String,
     /// Doc comments.
     pub docs: Vec<String>,
     /// Where it is declared.

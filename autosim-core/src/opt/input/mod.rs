@@ -4,7 +4,7 @@
 
 mod described;
 
-pub use described::{ConstraintInfo, Described, MotionInfo, Quantity, UserCode};
+pub use described::{ConstraintInfo, Described, EventInfo, MotionInfo, Quantity, UserCode};
 
 use crate::expr::{Arena, ExprId, SymId};
 use crate::mech::{Equations, ItemRef};
@@ -49,6 +49,23 @@ pub struct Declared {
     /// Each extra state's initial value (the order of
     /// `Equations::states`).
     pub initial_states: Vec<ExprId>,
+    /// Discrete variables in declaration order (`Leaf::Discrete` indices).
+    pub discrete: Vec<SymId>,
+    /// The events in declaration order.
+    pub events: Vec<EventCode>,
+}
+
+/// What an event computes: its indicator and the new values of its
+/// actions, all expressions of the values before the event.
+#[derive(Clone, Debug)]
+pub struct EventCode {
+    /// The indicator.
+    pub indicator: ExprId,
+    /// Discrete variables set: index in `Declared::discrete`, new value.
+    pub sets: Vec<(usize, ExprId)>,
+    /// States reset: the symbol (a coordinate, speed or added state), new
+    /// value.
+    pub resets: Vec<(SymId, ExprId)>,
 }
 
 /// A user subroutine: its arguments and the symbols it sets.

@@ -31,6 +31,8 @@ pub(crate) struct Lowering<'a> {
     pub(super) memo: FxHashMap<ExprId, Nid>,
     /// User-function calls lowered under earlier environments.
     calls: Vec<(ExprId, Nid)>,
+    /// The environment of the state (what events are lowered under).
+    base: Env,
 }
 
 impl<'a> Lowering<'a> {
@@ -58,6 +60,9 @@ impl<'a> Lowering<'a> {
         for (i, s) in declared.inputs.iter().enumerate() {
             env.insert(*s, ir.leaf(Leaf::Input(i)));
         }
+        for (i, s) in declared.discrete.iter().enumerate() {
+            env.insert(*s, ir.leaf(Leaf::Discrete(i)));
+        }
         env.insert(declared.time, ir.leaf(Leaf::Time));
         for (k, sub) in declared.subroutines.iter().enumerate() {
             for (j, o) in sub.outputs.iter().enumerate() {
@@ -71,6 +76,7 @@ impl<'a> Lowering<'a> {
             env,
             memo: FxHashMap::default(),
             calls: Vec::new(),
+            base: Env::default(),
         };
         let mut known = Vec::new();
         for (i, p) in eqs.prescribed.iter().enumerate() {
@@ -80,7 +86,16 @@ impl<'a> Lowering<'a> {
             known.push((eqs.speeds[p.speed], rate));
         }
         lw.extend(known);
+        lw.base = lw.env.clone();
         Ok(lw)
+    }
+
+    /// Lowers from now on under the environment of the state alone (the
+    /// time, the state, inputs, parameters and discrete variables, the
+    /// prescribed motions; no solved value).
+    pub fn bind_state(&mut self) {
+        let base = self.base.clone();
+        self.bind(base);
     }
 
     /// The current environment.

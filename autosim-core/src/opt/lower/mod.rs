@@ -1,12 +1,14 @@
 //! From the equations to IR nodes: one lowering context (`context.rs`:
 //! arena, IR, environment, user calls, errors naming their item, and the
 //! pieces both lowerings share) over the expression lowering (`expr.rs`),
-//! the two lowerings of a model (`tree_model.rs`, `constrained.rs`), and
-//! what they hand to scheduling (`equations.rs`).
+//! the two lowerings of a model (`tree_model.rs`, `constrained.rs`), the
+//! events (`events.rs`), and what they hand to scheduling
+//! (`equations.rs`).
 
 pub(crate) mod constrained;
 mod context;
 pub(crate) mod equations;
+pub(crate) mod events;
 mod expr;
 pub(crate) mod tree_model;
 

@@ -5,7 +5,9 @@
 
 use crate::expr::SymId;
 use crate::mech::Equations;
-use crate::opt::input::{ConstraintInfo, FloatType, Input, MotionInfo, Quantity, UserCode};
+use crate::opt::input::{
+    ConstraintInfo, EventInfo, FloatType, Input, MotionInfo, Quantity, UserCode,
+};
 use crate::opt::split::Split;
 
 /// One state variable.
@@ -127,6 +129,11 @@ pub struct Interface {
     /// The states of the linear model (state-vector positions; all but the
     /// dependent coordinates), when the linearization is generated.
     pub linear_states: Option<Vec<usize>>,
+    /// Discrete variables in declaration order (`Leaf::Discrete` indices;
+    /// `default` is the initial value).
+    pub discrete: Vec<Quantity>,
+    /// Events in declaration order (slots of the event indicators block).
+    pub events: Vec<EventInfo>,
     /// Cautions for the user, printed in the model's documentation (e.g. a
     /// body whose initial angles sit on its rotation sequence's
     /// singularity).
@@ -172,6 +179,8 @@ impl Interface {
             motions: d.motions.clone(),
             closures: closures(eqs, split),
             linear_states: None,
+            discrete: d.discrete.clone(),
+            events: d.events.clone(),
             cautions: d.cautions.clone(),
         }
     }

@@ -163,6 +163,10 @@ impl<'a> Interpreter<'a> {
             hoisted: &self.prog.hoisted,
         };
         env.leaves.insert(Leaf::Time, at.t);
+        // Discrete variables at their initial values.
+        for (i, d) in self.prog.interface.discrete.iter().enumerate() {
+            env.leaves.insert(Leaf::Discrete(i), d.default);
+        }
         let values = [
             (&self.params[..], Leaf::Param as fn(usize) -> Leaf),
             (at.x, Leaf::State),

@@ -8,11 +8,14 @@ pub(super) mod interp;
 pub(super) mod text;
 pub(super) mod verify;
 
+pub use crate::opt::lower::events::Assigned;
+
 use crate::opt::error::ProgramError;
 use crate::opt::input::{Formulation, Input};
 use crate::opt::ir::{Ir, Leaf, Nid};
 use crate::opt::linearize::{Linear, Linearizable};
 use crate::opt::lower::equations::Lowered;
+use crate::opt::lower::events::{self, LoweredEvents};
 use crate::opt::lower::{Given, Lowering, constrained, tree_model};
 use crate::opt::program::interface::{Interface, StateLayout};
 use crate::opt::schedule::naming::Naming;
@@ -48,6 +51,11 @@ pub enum BlockKind {
     /// What `derivatives` and `forcing` share, computed once for either
     /// (big models only, `common.rs`): slot `k` is `common[k]`.
     Common,
+    /// The event indicators (models with events): slot `k` is event `k`'s.
+    EventIndicators,
+    /// The new values of every event's actions (models with events), event
+    /// after event (`Program::event_assignments` says where each goes).
+    EventActions,
 }
 
 impl BlockKind {
@@ -63,6 +71,8 @@ impl BlockKind {
             BlockKind::Assembly => "assembly",
             BlockKind::Linearize => "linearize",
             BlockKind::Common => "common",
+            BlockKind::EventIndicators => "event_indicators",
+            BlockKind::EventActions => "event_actions",
         }
     }
 
@@ -95,6 +105,9 @@ pub struct Program {
     pub interface: Interface,
     /// What the mass matrix block computes.
     pub mass_layout: MassLayout,
+    /// For each event, what each value of its action assigns and its
+    /// slot in the event actions block (empty without events).
+    pub event_assignments: Vec<Vec<(Assigned, usize)>>,
 }
 
 /// What the mass matrix block computes.
@@ -157,6 +170,8 @@ impl Program {
             },
             BlockKind::Forcing => n,
             BlockKind::Assembly => 2 * self.interface.closures.len(),
+            BlockKind::EventIndicators => self.interface.events.len(),
+            BlockKind::EventActions => self.event_assignments.iter().map(Vec::len).sum(),
             BlockKind::Linearize => {
                 let nl = self.interface.linear_states.as_ref().map_or(0, Vec::len);
                 let (nw, ny) = (self.interface.inputs.len(), self.interface.outputs.len());
@@ -222,6 +237,7 @@ fn build_route(input: &mut Input, split: &Split, route: Route) -> Result<Program
         Route::Constrained => constrained::lower(&mut lw)?,
         _ => tree_model::lower(&mut lw, route == Route::Recursive)?,
     };
+    let events = events::lower(&mut lw)?;
     let mut ir = lw.into_ir();
     let linear = input
         .options
@@ -230,7 +246,7 @@ fn build_route(input: &mut Input, split: &Split, route: Route) -> Result<Program
     let mut interface = interface;
     interface.linear_states = linear.as_ref().map(|l| l.states.clone());
     let names = Naming::new(&ir, &interface, &lowered);
-    let program = schedule_blocks(ir, lowered, linear, &names, interface);
+    let program = schedule_blocks(ir, lowered, linear, events, &names, interface);
     debug_assert_eq!(program.verify(), Ok(()));
     Ok(program)
 }
@@ -290,6 +306,7 @@ fn schedule_blocks(
     mut ir: Ir,
     lowered: Lowered,
     linear: Option<Linear>,
+    events: Option<LoweredEvents>,
     names: &Naming,
     interface: Interface,
 ) -> Program {
@@ -358,12 +375,19 @@ fn schedule_blocks(
         schedule(&ir, &tasks, &all)
     });
 
+    let event_blocks = events.as_ref().map(|e| {
+        let g_tasks: Vec<Task> = stores(&e.indicators, 0).collect();
+        let a_tasks: Vec<Task> = stores(&e.actions, 0).collect();
+        [schedule(&ir, &g_tasks, &all), schedule(&ir, &a_tasks, &all)]
+    });
+
     let (common, common_values) = shared.unzip();
     let mut hoisted: Vec<Nid> = [&derivatives, &outputs, &mass_matrix, &forcing]
         .into_iter()
         .chain(common.as_ref())
         .chain(assembly.as_ref())
         .chain(linearize.as_ref())
+        .chain(event_blocks.iter().flatten())
         .flat_map(|b| b.hoisted.iter().copied())
         .collect();
     hoisted.sort();
@@ -384,6 +408,10 @@ fn schedule_blocks(
     blocks.extend(assembly.map(|a| (BlockKind::Assembly, a)));
     blocks.extend(linearize.map(|l| (BlockKind::Linearize, l)));
     blocks.extend(common.map(|c| (BlockKind::Common, c)));
+    if let Some([indicators, actions]) = event_blocks {
+        blocks.push((BlockKind::EventIndicators, indicators));
+        blocks.push((BlockKind::EventActions, actions));
+    }
     Program {
         ir,
         blocks,
@@ -393,6 +421,7 @@ fn schedule_blocks(
         outputs_need_derivatives,
         interface,
         mass_layout,
+        event_assignments: events.map(|e| e.assignments).unwrap_or_default(),
     }
 }
 

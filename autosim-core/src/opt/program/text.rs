@@ -31,6 +31,8 @@ impl Program {
             }
             BlockKind::Forcing => format!("{}[{}]", self.unused_name("f", "forcing"), k + 1),
             BlockKind::Linearize => self.linear_slot_name(k),
+            BlockKind::EventIndicators => format!("g_{}", self.interface.events[k].name),
+            BlockKind::EventActions => format!("a{}", k + 1),
             BlockKind::Assembly => {
                 let closures = &self.interface.closures;
                 match closures.get(k) {
@@ -237,6 +239,7 @@ impl TextPrinter<'_> {
             Leaf::Param(k) => i.parameters[k].name.clone(),
             Leaf::State(k) => i.states.state(k).name.clone(),
             Leaf::Input(k) => i.inputs[k].name.clone(),
+            Leaf::Discrete(k) => i.discrete[k].name.clone(),
             Leaf::Time => "t".to_string(),
             Leaf::SubOut(s, k) => i.subroutines[s].outputs[k].clone(),
             Leaf::Accel(k) => format!("{}'", i.states.speeds[k].name),

@@ -22,6 +22,7 @@ impl Naming {
         let layout = &interface.states;
         let mut reserved: FxHashSet<String> = layout.states().map(|s| s.name.clone()).collect();
         reserved.extend(interface.inputs.iter().map(|i| i.name.clone()));
+        reserved.extend(interface.discrete.iter().map(|d| d.name.clone()));
         for sub in &interface.subroutines {
             reserved.extend(sub.outputs.iter().cloned());
         }

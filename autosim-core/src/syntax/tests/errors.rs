@@ -133,7 +133,7 @@ test.sim:2:1: error: expected an item, found `bdy`
 2 | bdy B {}
   | ^^^
   = help: did you mean `body`?
-  = note: items start with one of: model, settings, parameters, parameter, body, point, let, force, moment, gravity, input, extern, state, output, constraint, motion
+  = note: items start with one of: model, settings, parameters, parameter, body, point, let, force, moment, gravity, input, extern, state, output, constraint, motion, discrete, event
 "#,
     );
 }

@@ -114,7 +114,7 @@ test.sim:1:10: error: expected an item, found `@`
   |
 1 | model M; @@ $ body B {}
   |          ^
-  = note: items start with one of: model, settings, parameters, parameter, body, point, let, force, moment, gravity, input, extern, state, output, constraint, motion
+  = note: items start with one of: model, settings, parameters, parameter, body, point, let, force, moment, gravity, input, extern, state, output, constraint, motion, discrete, event
 "#,
     );
 }
@@ -161,7 +161,7 @@ test.sim:1:10: error: expected an item, found `'`
   |
 1 | model M; 'a
   |          ^
-  = note: items start with one of: model, settings, parameters, parameter, body, point, let, force, moment, gravity, input, extern, state, output, constraint, motion
+  = note: items start with one of: model, settings, parameters, parameter, body, point, let, force, moment, gravity, input, extern, state, output, constraint, motion, discrete, event
 "#,
     );
     check(

@@ -2,6 +2,7 @@
 
 mod errors;
 mod errors_lex;
+mod events;
 mod expr;
 mod fuzz;
 mod satellite;

@@ -148,7 +148,11 @@ pub(crate) fn summary(model: &Model) -> String {
             Item::Force(f) => labelled("force", &f.name, &f.label, &f.options.entries),
             Item::Moment(m) => labelled("moment", &m.name, &m.label, &m.options.entries),
             Item::Gravity(g) => format!("gravity = {}", g.value),
-            Item::Inputs(i) => {
+            Item::Inputs(i) | Item::Discrete(i) => {
+                let keyword = match item {
+                    Item::Discrete(_) => "discrete",
+                    _ => "input",
+                };
                 let inputs: Vec<String> = i
                     .inputs
                     .iter()
@@ -161,7 +165,7 @@ pub(crate) fn summary(model: &Model) -> String {
                         format!("{}{}{default}", i.name.text, unit(&i.unit))
                     })
                     .collect();
-                format!("input {}", inputs.join(", "))
+                format!("{keyword} {}", inputs.join(", "))
             }
             Item::ExternFn(f) => {
                 let params: Vec<&str> = f.params.iter().map(|p| p.text.as_str()).collect();
@@ -196,6 +200,26 @@ pub(crate) fn summary(model: &Model) -> String {
                 opts(&c.options.entries)
             ),
             Item::Motion(m) => labelled("motion", &m.name, &m.label, &m.options.entries),
+            Item::Event(e) => {
+                let assigned = |list: &Option<(_, Vec<crate::syntax::ast::Assignment>)>, key| {
+                    list.as_ref().map_or(String::new(), |(_, list)| {
+                        let parts: Vec<String> = list
+                            .iter()
+                            .map(|a| format!("{}: {}", a.target.text, a.value))
+                            .collect();
+                        format!(" {key} {{ {} }}", parts.join(", "))
+                    })
+                };
+                format!(
+                    "event {}{}{} {}{}{}",
+                    e.name.text,
+                    unit(&e.unit),
+                    label(&e.label),
+                    opts(&e.options.entries),
+                    assigned(&e.set, "set"),
+                    assigned(&e.reset, "reset")
+                )
+            }
         };
         let _ = writeln!(out, "{line}");
     }
@@ -235,7 +259,7 @@ fn satellite_spans_are_file_locations() {
 }
 
 /// The summary of a model text that parses.
-fn summary_of(text: &str) -> String {
+pub(super) fn summary_of(text: &str) -> String {
     summary(&parse_file(text).unwrap_or_else(|r| panic!("{r}")))
 }
 

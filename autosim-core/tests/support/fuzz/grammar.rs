@@ -16,6 +16,7 @@ use super::vocab::*;
 
 mod bodies;
 mod constraints;
+mod events;
 mod exprs;
 mod items;
 mod loads;

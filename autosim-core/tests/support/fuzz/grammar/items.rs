@@ -1,6 +1,7 @@
 //! Items: settings, parameters, inputs, externs, points, `let`s, states and
 //! outputs, in the order of the model (bodies are in `bodies`, forces,
-//! moments and gravity in `loads`).
+//! moments and gravity in `loads`, discrete variables and events in
+//! `events`).
 
 use std::fmt::Write;
 
@@ -49,6 +50,7 @@ impl Grammar<'_> {
             let value = self.in_unit(value, unit_text(&unit));
             items.push(format!("output {name}{unit} = {value};"));
         }
+        self.event_items(&mut items);
         items
     }
 

@@ -1,0 +1,128 @@
+//! Events written in the model language (`discrete` and `event` items),
+//! checked against known answers: the bouncing ball's analytic bounce
+//! times and apex heights, its Zeno limit ending with the typed error, and
+//! its resting mode (`examples/models/bouncing_ball.sim`).
+
+use autosim::runtime::integrate::{DopriSettings, DormandPrince, Rk4};
+use autosim::runtime::io::Recording;
+use autosim::runtime::{IntegrationError, Model, RunError, RunSettings, Stepper, run};
+
+autosim::model!(file = "examples/models/bouncing_ball.sim");
+
+use bouncing_ball::{BouncingBall, Parameters};
+
+const G: f64 = 9.81;
+const H0: f64 = 1.0;
+
+/// The analytic instant of bounce `k` (1-based) from rest at `H0`: the
+/// first fall takes `t1 = sqrt(2 H0/g)`, the flight after bounce `j` takes
+/// `2 e^j t1`.
+fn bounce_time(e: f64, k: i32) -> f64 {
+    let t1 = (2.0 * H0 / G).sqrt();
+    t1 + (1..k).map(|j| 2.0 * e.powi(j) * t1).sum::<f64>()
+}
+
+/// The analytic apex after bounce `k`: `e^(2k) H0`, at `e^k t1` after it.
+fn apex(e: f64, k: i32) -> (f64, f64) {
+    let t1 = (2.0 * H0 / G).sqrt();
+    (bounce_time(e, k) + e.powi(k) * t1, e.powi(2 * k) * H0)
+}
+
+/// Runs the ball with restitution `e` to `stop`; the events recorded.
+fn bounce<S: Stepper<BouncingBall>>(
+    stepper: &mut S,
+    e: f64,
+    v_min: f64,
+    step: f64,
+    stop: f64,
+) -> Result<(Recording<BouncingBall>, BouncingBall), RunError<std::convert::Infallible>> {
+    let parameters = Parameters {
+        e,
+        v_min,
+        ..Parameters::default()
+    };
+    let mut ball = BouncingBall::with_parameters(parameters);
+    let mut x = ball.initial_state();
+    let settings = RunSettings::new(0.0, stop, step, stop / 10.0);
+    let mut recording = Recording::new();
+    run(&mut ball, stepper, &mut x, &settings, &mut recording)?;
+    Ok((recording, ball))
+}
+
+/// The worst error of the first ten bounce times and apex heights (and
+/// apex times) against the analytic values.
+fn worst_error(recording: &Recording<BouncingBall>, e: f64) -> f64 {
+    let named = |name: &str| -> Vec<(f64, f64)> {
+        let events = recording.events().iter().filter(|ev| ev.name == name);
+        events.map(|ev| (ev.t, ev.before[0])).collect()
+    };
+    let (bounces, apexes) = (named("bounce"), named("apex"));
+    assert!(
+        bounces.len() >= 10 && apexes.len() >= 10,
+        "{} bounces",
+        bounces.len()
+    );
+    let mut worst: f64 = 0.0;
+    for k in 1..=10 {
+        let (t, h) = bounces[k as usize - 1];
+        worst = worst.max((t - bounce_time(e, k)).abs()).max(h.abs());
+        let (ta, ha) = apex(e, k);
+        let (t, h) = apexes[k as usize - 1];
+        worst = worst.max((t - ta).abs()).max((h - ha).abs());
+    }
+    worst
+}
+
+#[test]
+fn bounce_times_and_apex_heights_match_the_analytic_ones() {
+    let e = 0.8;
+    let mut dopri = DormandPrince::new(DopriSettings::new(1e-12, 1e-12)).unwrap();
+    let (recording, ball) = bounce(&mut dopri, e, 0.01, 1e-3, 3.7).unwrap();
+    let worst = worst_error(&recording, e);
+    println!("Dormand-Prince at 1e-12: worst error of 10 bounces and apexes {worst:.1e}");
+    assert!(worst < 1e-10, "{worst:e}");
+    // The reset is the language's `v: -e*v`, exactly.
+    let first = &recording.events()[0];
+    assert_eq!(first.name, "bounce");
+    assert_eq!(first.after[1], -e * first.before[1]);
+    assert_eq!(ball.discrete.resting, 0.0);
+    // RK4 integrates free fall (a quadratic) exactly and the event is
+    // located on the cubic Hermite interpolant, exact for it too: the
+    // accuracy its step allows is rounding, at any step.
+    for h in [1e-2, 1e-3] {
+        let (recording, _) = bounce(&mut Rk4::new(), e, 0.01, h, 3.7).unwrap();
+        let worst = worst_error(&recording, e);
+        println!("RK4 h = {h}: worst error {worst:.1e}");
+        assert!(worst < 1e-11, "h = {h}: {worst:e}");
+    }
+}
+
+#[test]
+fn a_ball_without_a_minimum_rebound_speed_ends_with_the_zeno_error() {
+    let mut dopri = DormandPrince::new(DopriSettings::new(1e-10, 1e-10)).unwrap();
+    // e = 0.9 from 1 m: infinitely many bounces before t1 (1 + 2e/(1-e)).
+    let limit = (2.0 * H0 / G).sqrt() * (1.0 + 2.0 * 0.9 / 0.1);
+    match bounce(&mut dopri, 0.9, 0.0, 1e-3, 20.0) {
+        Err(RunError::Integration(IntegrationError::Zeno { t, name, events })) => {
+            println!("Zeno at {t} s (limit {limit} s) after {events} events of `{name}`");
+            assert_eq!(name, "bounce");
+            assert!(t < limit && t > 7.0, "{t} against {limit}");
+        }
+        other => panic!("expected the Zeno error, got {:?}", other.map(|_| ())),
+    }
+}
+
+#[test]
+fn the_resting_mode_ends_the_bounces() {
+    let mut dopri = DormandPrince::new(DopriSettings::new(1e-10, 1e-10)).unwrap();
+    let (recording, ball) = bounce(&mut dopri, 0.8, 0.5, 1e-3, 6.0).unwrap();
+    // Rebounds 0.8^k 4.43 m/s fall below 0.5 m/s after bounce 10.
+    let bounces = recording.events().iter().filter(|e| e.name == "bounce");
+    assert_eq!(bounces.count(), 10);
+    assert_eq!(ball.discrete.resting, 1.0);
+    let mut values = [0.0];
+    ball.discrete_values(&mut values);
+    assert_eq!(values, [1.0]);
+    assert_eq!(BouncingBall::DISCRETE_NAMES, ["resting"]);
+    assert_eq!(BouncingBall::EVENT_INDICATORS.len(), 2);
+}

@@ -34,9 +34,11 @@ pub mod log;
 
 mod cosim;
 mod directional;
+pub mod events;
 pub mod instance;
 mod state;
 
+pub use events::EventInterface;
 pub use layout::{Layout, Method, Setting, Variable};
 pub use state::Snapshot;
 
@@ -78,6 +80,7 @@ pub trait Export: 'static {
             states: <<M<Self> as Model>::State as StateArray<f64>>::LEN - Self::DEPENDENT.len(),
             outputs: <<M<Self> as Model>::Outputs as StateArray<f64>>::LEN,
             dependent: Self::DEPENDENT.len(),
+            discrete: M::<Self>::DISCRETE_NAMES.len(),
         }
     }
 }

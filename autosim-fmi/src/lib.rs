@@ -20,8 +20,11 @@
 //!   method from their last values) whenever the states change, first at
 //!   `fmi2ExitInitializationMode`;
 //! - Co-Simulation steps with the runtime's integrators ([`layout::Method`],
-//!   parameter `cs.method`), the inputs held over each communication step,
-//!   projected onto the position constraints after every integrator step;
+//!   parameter `cs.method`) through its run driver, the inputs held over
+//!   each communication step, projected onto the position constraints
+//!   after every integrator step, events located inside the steps;
+//! - a model's events (the `Model` trait's event items) are the FMU's
+//!   event indicators and discrete variables ([`events`]);
 //! - directional derivatives from the model's generated linearization
 //!   (when exported with `linearize: true`).
 

@@ -17,7 +17,7 @@
 use crate::Export;
 use crate::ffi::{
     Boolean, CallbackFunctions, Component, EventInfo, FALSE, FmiString, FmuState, FmuType, Integer,
-    LAST_SUCCESSFUL_TIME, Real, Status, StatusKind, TERMINATED, ValueReference,
+    LAST_SUCCESSFUL_TIME, Real, Status, StatusKind, TERMINATED, TRUE, ValueReference,
 };
 use crate::instance::{Fail, Instance, Mode, Outcome};
 use crate::log::Log;
@@ -536,18 +536,21 @@ pub unsafe fn enter_event_mode<E: Export>(c: Component) -> Status {
     }
 }
 
-/// `fmi2NewDiscreteStates`: the model has no discrete states and no
-/// events, so nothing changes.
+/// `fmi2NewDiscreteStates`: the events at the current instant, all of
+/// them in this one call ([`Instance::settle_events`]), so no further
+/// iteration is needed; no time events.
 pub unsafe fn new_discrete_states<E: Export>(c: Component, info: *mut EventInfo) -> Status {
+    let flag = |b: bool| if b { TRUE } else { FALSE };
     unsafe {
-        call::<E>(c, "fmi2NewDiscreteStates", &[Event], Some(ME), |_| {
+        call::<E>(c, "fmi2NewDiscreteStates", &[Event], Some(ME), |i| {
+            let settled = i.settle_events()?;
             put(
                 info,
                 EventInfo {
                     new_discrete_states_needed: FALSE,
-                    terminate_simulation: FALSE,
+                    terminate_simulation: flag(settled.terminate),
                     nominals_of_continuous_states_changed: FALSE,
-                    values_of_continuous_states_changed: FALSE,
+                    values_of_continuous_states_changed: flag(settled.states_changed),
                     next_event_time_defined: FALSE,
                     next_event_time: 0.0,
                 },
@@ -622,21 +625,13 @@ pub unsafe fn get_derivatives<E: Export>(c: Component, dx: *mut Real, n: usize) 
     }
 }
 
-/// `fmi2GetEventIndicators`: the model has none.
-pub unsafe fn get_event_indicators<E: Export>(c: Component, _z: *mut Real, n: usize) -> Status {
+/// `fmi2GetEventIndicators`: the model's indicators at the current time
+/// and state.
+pub unsafe fn get_event_indicators<E: Export>(c: Component, z: *mut Real, n: usize) -> Status {
     unsafe {
-        call::<E>(
-            c,
-            "fmi2GetEventIndicators",
-            ME_READ,
-            Some(ME),
-            |_| match n {
-                0 => Ok(()),
-                _ => Err(Fail::error(format!(
-                    "the FMU has no event indicators, not {n}"
-                ))),
-            },
-        )
+        call::<E>(c, "fmi2GetEventIndicators", ME_READ, Some(ME), |i| {
+            i.event_indicators(slice_mut(z, n)?)
+        })
     }
 }
 
@@ -707,7 +702,8 @@ pub unsafe fn get_real_status<E: Export>(
     }
 }
 
-/// `fmi2GetBooleanStatus`: the FMU never asks to terminate.
+/// `fmi2GetBooleanStatus`: whether a terminal event asked to end the
+/// simulation.
 pub unsafe fn get_boolean_status<E: Export>(
     c: Component,
     kind: StatusKind,
@@ -719,8 +715,8 @@ pub unsafe fn get_boolean_status<E: Export>(
             "fmi2GetBooleanStatus",
             CS_STATUS,
             Some(CS),
-            |_| match kind {
-                TERMINATED => put(value, FALSE),
+            |i| match kind {
+                TERMINATED => put(value, if i.terminated { TRUE } else { FALSE }),
                 _ => Err(no_status(kind)),
             },
         )

@@ -17,6 +17,17 @@ macro_rules! fmi2_functions {
             pub extern "C" fn fmi2GetTypesPlatform() -> FmiString {
                 c"default".as_ptr()
             }
+            /// Not an FMI function: the model's event indicators and
+            /// discrete variables as text (`autosim_fmi::EventInterface`),
+            /// read by `autosim-fmu` to write them into the description.
+            /// Writes what fits into `buffer` and returns the text's length.
+            ///
+            /// # Safety
+            /// `buffer` points to `length` writable bytes.
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn autosim_fmi_event_interface(buffer: *mut u8, length: usize) -> usize {
+                unsafe { $crate::events::write_event_interface::<$e>(buffer, length) }
+            }
             #[unsafe(no_mangle)]
             pub extern "C" fn fmi2GetVersion() -> FmiString {
                 c"2.0".as_ptr()

@@ -126,6 +126,10 @@ pub struct Instance<E: Export> {
     pub(crate) stepper: Option<Box<dyn Stepper<E::Model>>>,
     /// Co-Simulation: the step Dormand–Prince suggests next.
     pub(crate) h_next: f64,
+    /// The last known sign of every event indicator (0: not known yet).
+    pub(crate) signs: Vec<i8>,
+    /// A terminal event fired: the model asks to end the simulation.
+    pub(crate) terminated: bool,
 }
 
 impl<E: Export> Instance<E> {
@@ -156,6 +160,8 @@ impl<E: Export> Instance<E> {
             },
             stepper: None,
             h_next: 0.0,
+            signs: vec![0; E::Model::EVENT_INDICATORS.len()],
+            terminated: false,
         }
     }
 
@@ -290,6 +296,11 @@ impl<E: Export> Instance<E> {
                 self.assemble()?;
                 self.x.as_ref()[E::DEPENDENT[k]]
             }
+            Variable::Discrete(k) => {
+                let mut d = vec![0.0; self.layout.discrete];
+                self.model.discrete_values(&mut d);
+                d[k]
+            }
         })
     }
 
@@ -326,6 +337,13 @@ impl<E: Export> Instance<E> {
                 self.model.input_values(&mut w);
                 w[k] = value;
                 self.model.set_input_values(&w);
+                self.touch();
+            }
+            Variable::Discrete(k) if before_start => {
+                let mut d = vec![0.0; self.layout.discrete];
+                self.model.discrete_values(&mut d);
+                d[k] = value;
+                self.model.set_discrete_values(&d);
                 self.touch();
             }
             Variable::State(k) if before_start => {

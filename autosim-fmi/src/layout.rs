@@ -12,6 +12,7 @@
 //! | then | their derivatives `der(<state>)`, same order | local |
 //! | then | the outputs | output |
 //! | then | the dependent coordinates of position constraints | local (calculated) |
+//! | then | the model's discrete variables (changed by events) | local (discrete) |
 
 /// Which kind of variable a value reference names, with its position
 /// among the variables of that kind.
@@ -33,6 +34,8 @@ pub enum Variable {
     Output(usize),
     /// Dependent coordinate `k` (a local solved from the constraints).
     Dependent(usize),
+    /// Discrete variable `k` (`Model::DISCRETE_NAMES` order).
+    Discrete(usize),
 }
 
 /// The Co-Simulation settings, parameters of every autosim FMU.
@@ -103,6 +106,8 @@ pub struct Layout {
     pub outputs: usize,
     /// Dependent coordinates.
     pub dependent: usize,
+    /// Discrete variables.
+    pub discrete: usize,
 }
 
 /// Number of Co-Simulation settings.
@@ -127,10 +132,13 @@ impl Layout {
     fn first_dependent(&self) -> usize {
         self.first_output() + self.outputs
     }
+    fn first_discrete(&self) -> usize {
+        self.first_dependent() + self.dependent
+    }
 
     /// Number of variables (and value references).
     pub fn len(&self) -> usize {
-        self.first_dependent() + self.dependent
+        self.first_discrete() + self.discrete
     }
 
     /// `false`: every FMU has at least `time` and the settings.
@@ -153,12 +161,13 @@ impl Layout {
             return Some(Variable::Setting(setting));
         }
         type Kind = (usize, usize, fn(usize) -> Variable);
-        let kinds: [Kind; 5] = [
+        let kinds: [Kind; 6] = [
             (self.first_input(), self.inputs, Variable::Input),
             (self.first_state(), self.states, Variable::State),
             (self.first_derivative(), self.states, Variable::Derivative),
             (self.first_output(), self.outputs, Variable::Output),
             (self.first_dependent(), self.dependent, Variable::Dependent),
+            (self.first_discrete(), self.discrete, Variable::Discrete),
         ];
         kinds
             .into_iter()
@@ -183,6 +192,7 @@ impl Layout {
             Variable::Derivative(k) => self.first_derivative() + k,
             Variable::Output(k) => self.first_output() + k,
             Variable::Dependent(k) => self.first_dependent() + k,
+            Variable::Discrete(k) => self.first_discrete() + k,
         };
         v as u32
     }
@@ -200,8 +210,9 @@ mod tests {
             states: 4,
             outputs: 2,
             dependent: 2,
+            discrete: 1,
         };
-        assert_eq!(layout.len(), 1 + 3 + 3 + 2 + 4 + 4 + 2 + 2);
+        assert_eq!(layout.len(), 1 + 3 + 3 + 2 + 4 + 4 + 2 + 2 + 1);
         for vr in 0..layout.len() as u32 {
             let v = layout.variable(vr).expect("a variable");
             assert_eq!(layout.reference(v), vr);

@@ -20,8 +20,11 @@
 //!   method from their last values) whenever the states change, first at
 //!   `fmi2ExitInitializationMode`;
 //! - Co-Simulation steps with the runtime's integrators ([`layout::Method`],
-//!   parameter `cs.method`), the inputs held over each communication step,
-//!   projected onto the position constraints after every integrator step;
+//!   parameter `cs.method`) through its run driver, the inputs held over
+//!   each communication step, projected onto the position constraints
+//!   after every integrator step, events located inside the steps;
+//! - a model's events (the `Model` trait's event items) are the FMU's
+//!   event indicators and discrete variables ([`events`]);
 //! - directional derivatives from the model's generated linearization
 //!   (when exported with `linearize: true`).
 
@@ -34,9 +37,11 @@ pub mod log;
 
 mod cosim;
 mod directional;
+pub mod events;
 pub mod instance;
 mod state;
 
+pub use events::EventInterface;
 pub use layout::{Layout, Method, Setting, Variable};
 pub use state::Snapshot;
 
@@ -78,6 +83,7 @@ pub trait Export: 'static {
             states: <<M<Self> as Model>::State as StateArray<f64>>::LEN - Self::DEPENDENT.len(),
             outputs: <<M<Self> as Model>::Outputs as StateArray<f64>>::LEN,
             dependent: Self::DEPENDENT.len(),
+            discrete: M::<Self>::DISCRETE_NAMES.len(),
         }
     }
 }

@@ -1,6 +1,7 @@
 //! `fmi2GetFMUstate` and its family: a saved instance is its time, whole
-//! state vector, parameters, inputs and settings (the model's state is
-//! small and plain), serialized as little-endian numbers behind a header.
+//! state vector, parameters, inputs, discrete variables, settings and the
+//! event indicators' known signs (the model's state is small and plain),
+//! serialized as little-endian numbers behind a header.
 
 use crate::Export;
 use crate::instance::{Fail, Instance, Outcome, Settings};
@@ -14,13 +15,17 @@ pub struct Snapshot {
     x: Vec<f64>,
     parameters: Vec<f64>,
     inputs: Vec<f64>,
+    discrete: Vec<f64>,
     started: Vec<bool>,
+    /// The event indicators' last known signs (-1, 0, 1).
+    signs: Vec<i8>,
+    terminated: bool,
     settings: Settings,
     h_next: f64,
 }
 
 /// The first bytes of a serialized state.
-const MAGIC: &[u8; 8] = b"autosim2";
+const MAGIC: &[u8; 8] = b"autosim3";
 
 impl<E: Export> Instance<E> {
     /// The instance's state.
@@ -29,12 +34,17 @@ impl<E: Export> Instance<E> {
         self.model.parameter_values(&mut parameters);
         let mut inputs = vec![0.0; self.layout.inputs];
         self.model.input_values(&mut inputs);
+        let mut discrete = vec![0.0; self.layout.discrete];
+        self.model.discrete_values(&mut discrete);
         Snapshot {
             t: self.t,
             x: self.x.as_ref().to_vec(),
             parameters,
             inputs,
+            discrete,
             started: self.started.clone(),
+            signs: self.signs.clone(),
+            terminated: self.terminated,
             settings: self.settings,
             h_next: self.h_next,
         }
@@ -46,6 +56,8 @@ impl<E: Export> Instance<E> {
         let fits = s.x.len() == n
             && s.parameters.len() == self.layout.parameters
             && s.inputs.len() == self.layout.inputs
+            && s.discrete.len() == self.layout.discrete
+            && s.signs.len() == self.signs.len()
             && s.started.len() == self.started.len();
         if !fits {
             return Err(Fail::error("the FMU state belongs to another model"));
@@ -54,7 +66,10 @@ impl<E: Export> Instance<E> {
         self.x.as_mut().copy_from_slice(&s.x);
         self.model.set_parameter_values(&s.parameters);
         self.model.set_input_values(&s.inputs);
+        self.model.set_discrete_values(&s.discrete);
         self.started.clone_from(&s.started);
+        self.signs.clone_from(&s.signs);
+        self.terminated = s.terminated;
         self.settings = s.settings;
         self.h_next = s.h_next;
         if let Some(stepper) = self.stepper.as_mut() {
@@ -72,11 +87,20 @@ impl Snapshot {
     /// The bytes of `fmi2SerializeFMUstate`.
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut out = MAGIC.to_vec();
-        for n in [self.x.len(), self.parameters.len(), self.inputs.len()] {
+        let counts = [
+            self.x.len(),
+            self.parameters.len(),
+            self.inputs.len(),
+            self.discrete.len(),
+        ];
+        for n in counts {
             out.extend((n as u64).to_le_bytes());
         }
         out.extend((self.started.len() as u64).to_le_bytes());
         out.extend(self.started.iter().map(|&b| b as u8));
+        out.extend((self.signs.len() as u64).to_le_bytes());
+        out.extend(self.signs.iter().map(|&s| s as u8));
+        out.push(self.terminated as u8);
         out.extend((self.settings.method as i32 as u64).to_le_bytes());
         let numbers = [
             self.t,
@@ -89,6 +113,7 @@ impl Snapshot {
             .chain(&self.x)
             .chain(&self.parameters)
             .chain(&self.inputs)
+            .chain(&self.discrete)
         {
             out.extend(v.to_le_bytes());
         }
@@ -101,14 +126,18 @@ impl Snapshot {
         if r.take(MAGIC.len())? != MAGIC {
             return Err("the bytes are not a serialized autosim FMU state".into());
         }
-        let (nx, np, nw) = (r.count()?, r.count()?, r.count()?);
+        let (nx, np, nw, nd) = (r.count()?, r.count()?, r.count()?, r.count()?);
         let ns = r.count()?;
         let started = r.take(ns)?.iter().map(|&b| b != 0).collect();
+        let nz = r.count()?;
+        let signs = r.take(nz)?.iter().map(|&b| b as i8).collect();
+        let terminated = r.take(1)?[0] != 0;
         let method = Method::from_value(r.count()? as i32)
             .ok_or("the serialized state names no known cs.method")?;
         let (t, tolerance, step, h_next) = (r.real()?, r.real()?, r.real()?, r.real()?);
         let mut reals = |n: usize| (0..n).map(|_| r.real()).collect::<Result<Vec<_>, _>>();
         let (x, parameters, inputs) = (reals(nx)?, reals(np)?, reals(nw)?);
+        let discrete = reals(nd)?;
         if r.at != bytes.len() {
             return Err("the serialized state has trailing bytes".into());
         }
@@ -117,7 +146,10 @@ impl Snapshot {
             x,
             parameters,
             inputs,
+            discrete,
             started,
+            signs,
+            terminated,
             settings: Settings {
                 method,
                 tolerance,
@@ -173,7 +205,10 @@ mod tests {
             x: vec![0.1, -2.0, 3.0],
             parameters: vec![9.81],
             inputs: vec![],
+            discrete: vec![2.0],
             started: vec![true, false, true],
+            signs: vec![-1, 0, 1],
+            terminated: true,
             settings: Settings {
                 method: Method::Rk4,
                 tolerance: 1e-9,

@@ -99,6 +99,11 @@ pub(crate) fn build(
         write_workspace(work, &generated)?;
         let mut c = cargo_command(&target);
         c.arg("--manifest-path").arg(work.join("Cargo.toml"));
+        for (fmu, p) in fmus.iter().zip(prepared) {
+            if fmu.user_crate.is_none() {
+                opt_level(&mut c, &crate_name(p), fmu.opt_level);
+            }
+        }
         run(c)?;
     }
     let mut libraries = Vec::with_capacity(fmus.len());
@@ -106,10 +111,12 @@ pub(crate) fn build(
         let name = match &fmu.user_crate {
             Some(dir) => {
                 let dir = dir.canonicalize().map_err(io(dir))?;
+                let name = package_name(&dir)?;
                 let mut c = cargo_command(&target);
                 c.arg("--manifest-path").arg(dir.join("Cargo.toml"));
+                opt_level(&mut c, &name, fmu.opt_level);
                 run(c)?;
-                package_name(&dir)?
+                name
             }
             None => crate_name(p),
         };
@@ -136,6 +143,16 @@ fn cargo_command(target: &Path) -> Command {
         c.env_remove(var);
     }
     c
+}
+
+/// Builds package `name` at `level` instead of the release profile's
+/// (a profile override on the command line; its dependencies keep theirs).
+fn opt_level(c: &mut Command, name: &str, level: Option<u8>) {
+    if let Some(level) = level {
+        c.arg("--config").arg(format!(
+            "profile.release.package.{name:?}.opt-level={level}"
+        ));
+    }
 }
 
 fn run(mut command: Command) -> Result<(), FmuError> {

@@ -7,7 +7,7 @@ use crate::units::{Unit, unit_definitions};
 use autosim_core::opt::dependencies::{Dependencies, Depends};
 use autosim_core::opt::{Interpreter, Program, Quantity};
 use autosim_fmi::log::CATEGORIES;
-use autosim_fmi::{Layout, Method, Setting, Variable};
+use autosim_fmi::{EventInterface, Layout, Method, Setting, Variable};
 use std::fmt::Write as _;
 
 /// The `DefaultExperiment` of an FMU.
@@ -46,6 +46,10 @@ pub struct Options {
     pub experiment: Experiment,
     /// Whether `fmi2GetDirectionalDerivative` is provided.
     pub directional: bool,
+    /// The model's event indicators and discrete variables (from the
+    /// built library, see [`EventInterface`]); empty for a model without
+    /// events.
+    pub events: EventInterface,
 }
 
 /// A GUID for a description text (without its GUID): name-based (UUID
@@ -56,8 +60,8 @@ pub fn guid(text: &str) -> String {
     format!("{{{id}}}")
 }
 
-/// The value-reference numbering of a program's FMU.
-pub fn layout(program: &Program, deps: &Dependencies) -> Layout {
+/// The value-reference numbering of a program's FMU with these events.
+pub fn layout(program: &Program, deps: &Dependencies, events: &EventInterface) -> Layout {
     let i = &program.interface;
     Layout {
         parameters: i.parameters.len(),
@@ -65,6 +69,7 @@ pub fn layout(program: &Program, deps: &Dependencies) -> Layout {
         states: i.states.len() - deps.dependent.len(),
         outputs: i.outputs.len(),
         dependent: deps.dependent.len(),
+        discrete: events.discrete.len(),
     }
 }
 
@@ -128,7 +133,12 @@ fn join_docs(lines: &[String]) -> String {
 }
 
 /// The model's variables in value-reference order.
-fn scalars(program: &Program, deps: &Dependencies, layout: &Layout) -> Vec<Scalar> {
+fn scalars(
+    program: &Program,
+    deps: &Dependencies,
+    layout: &Layout,
+    events: &EventInterface,
+) -> Vec<Scalar> {
     let i = &program.interface;
     let defaults: Vec<f64> = i.parameters.iter().map(|p| p.default).collect();
     let x0 = Interpreter::new(program, &defaults).initial_state();
@@ -221,6 +231,17 @@ fn scalars(program: &Program, deps: &Dependencies, layout: &Layout) -> Vec<Scala
                     element: real(&s.unit, None, None),
                 }
             }
+            Variable::Discrete(k) => {
+                let (name, unit, start) = &events.discrete[k];
+                Scalar {
+                    name: name.clone(),
+                    causality: "local",
+                    variability: "discrete",
+                    initial: Some("exact"),
+                    description: format!("Discrete variable {name}, changed only by events"),
+                    element: real(unit, Some(*start), None),
+                }
+            }
         });
     }
     out
@@ -260,17 +281,18 @@ fn setting(s: Setting) -> Scalar {
 
 /// The `modelDescription.xml` text of a compiled model.
 pub fn model_description(program: &Program, deps: &Dependencies, options: &Options) -> String {
-    let layout = layout(program, deps);
-    let vars = scalars(program, deps, &layout);
+    let layout = layout(program, deps, &options.events);
+    let vars = scalars(program, deps, &layout, &options.events);
     let i = &program.interface;
     let mut x = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     let _ = writeln!(
         x,
-        "<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{}\" guid=\"{}\" description=\"{}\" generationTool=\"autosim {}\" variableNamingConvention=\"flat\" numberOfEventIndicators=\"0\">",
+        "<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{}\" guid=\"{}\" description=\"{}\" generationTool=\"autosim {}\" variableNamingConvention=\"flat\" numberOfEventIndicators=\"{}\">",
         escape(&i.name),
         escape(&options.guid),
         escape(&join_docs(&i.docs)),
         env!("CARGO_PKG_VERSION"),
+        options.events.indicators.len(),
     );
     let dd = options.directional;
     let common = format!(

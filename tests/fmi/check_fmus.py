@@ -16,7 +16,12 @@ manifest:
 and, once, for the FMU named `sequence_checks`: two instances interleaved
 with different parameters give their separate answers, a call the
 standard forbids in the instance's state returns fmi2Error (not a crash),
-`fmi2Reset` recovers, and FMU states survive serialization.
+`fmi2Reset` recovers, and FMU states survive serialization; for an FMU
+with `events` (the bouncing ball): Model Exchange with CVode locating the
+impacts and Co-Simulation locating them inside its steps both follow the
+analytic bounces (impact times, heights and speeds, the discrete impact
+count, the terminal event's time), and a saved FMU state brings the
+discrete variable back.
 
 Prints one line per check and exits with 1 if any failed.
 """
@@ -365,6 +370,111 @@ def check_sequences(name: str, fmu: str, unzipdir: str, spec: dict[str, Any]) ->
            f"{len(data)} bytes; {spec['watch']} at t = 0.2: {first:.12g} and after restoring {again:.12g}")
 
 
+def bouncing_ball(t: float, g: float, e: float, h0: float) -> tuple[float, float, int]:
+    """The analytic ball dropped from rest at h0: height, speed and impacts
+    so far at time t (impact n at t1 + sum_{i<n} 2 e^i v1 / g, each
+    rebound at e times the impact speed)."""
+    t1 = np.sqrt(2.0 * h0 / g)
+    if t < t1:
+        return h0 - 0.5 * g * t * t, -g * t, 0
+    start, speed, n = t1, e * g * t1, 1
+    while t >= start + 2.0 * speed / g:
+        start, speed, n = start + 2.0 * speed / g, e * speed, n + 1
+    s = t - start
+    return speed * s - 0.5 * g * s * s, speed - g * s, n
+
+
+def impact_times(g: float, e: float, h0: float, until: float) -> list[float]:
+    t1 = np.sqrt(2.0 * h0 / g)
+    times, speed = [t1], e * g * t1
+    while times[-1] + 2.0 * speed / g < until:
+        times.append(times[-1] + 2.0 * speed / g)
+        speed *= e
+    return times
+
+
+def trajectory_error(result: np.ndarray, ev: dict[str, Any]) -> tuple[float, int]:
+    """Largest |z - z_exact| + |v - v_exact|/g over the result's rows away
+    from impacts (where the exact state jumps), and the rows compared."""
+    g, e, h0 = ev["g"], ev["restitution"], ev["h0"]
+    impacts = impact_times(g, e, h0, ev["stop"])
+    worst, rows = 0.0, 0
+    for t, z, v in zip(result["time"], result["z"], result["v"]):
+        if min(abs(t - ti) for ti in impacts) < 1e-6:
+            continue
+        ze, ve, _ = bouncing_ball(float(t), g, e, h0)
+        worst = max(worst, abs(z - ze), abs(v - ve) / g)
+        rows += 1
+    return worst, rows
+
+
+def check_events(name: str, fmu: str, unzipdir: str, ev: dict[str, Any]) -> None:
+    g, e, h0, stop_event = ev["g"], ev["restitution"], ev["h0"], ev["stop_event"]
+    exact = impact_times(g, e, h0, stop_event)
+    md = read_model_description(fmu)
+    report(name, "numberOfEventIndicators", md.numberOfEventIndicators == ev["indicators"],
+           f"{md.numberOfEventIndicators} declared, model has {ev['indicators']}")
+    common = dict(stop_time=ev["stop"], output_interval=ev["interval"], output=["z", "v", "bounces"])
+
+    me = simulate_fmu(fmu, fmi_type="ModelExchange", relative_tolerance=ev["me_tolerance"],
+                      record_events=True, **common)
+    jumps = np.nonzero(np.diff(me["bounces"]) > 0)[0] + 1
+    found = [float(me["time"][i]) for i in jumps]
+    ok = len(found) == len(exact) and me["bounces"][-1] == len(exact)
+    err = max((abs(a - b) for a, b in zip(found, exact)), default=np.inf) if ok else np.inf
+    report(name, "ME impacts vs analytic", ok and err <= ev["me_time_bound"],
+           f"{len(found)} impacts (analytic {len(exact)} before the stop), "
+           f"max time error {err:.1e}, bound {ev['me_time_bound']:.0e}")
+    worst, rows = trajectory_error(me, ev)
+    report(name, "ME trajectory vs analytic", worst <= ev["me_bound"],
+           f"max error {worst:.1e} over {rows} rows, bound {ev['me_bound']:.0e}")
+    end = float(me["time"][-1])
+    report(name, "ME terminal event", abs(end - stop_event) <= ev["me_time_bound"],
+           f"ends at t = {end:.12g}, event at {stop_event}")
+
+    cs = simulate_fmu(fmu, fmi_type="CoSimulation", relative_tolerance=ev["cs_tolerance"], **common)
+    worst, rows = trajectory_error(cs, ev)
+    report(name, "CS trajectory vs analytic", worst <= ev["cs_bound"],
+           f"max error {worst:.1e} over {rows} communication points, bound {ev['cs_bound']:.0e}")
+    end = float(cs["time"][-1])
+    ok = abs(end - stop_event) <= ev["cs_time_bound"] and cs["bounces"][-1] == len(exact)
+    report(name, "CS terminal event", ok,
+           f"ends at t = {end:.12g} (event at {stop_event}) after {cs['bounces'][-1]:.0f} impacts")
+
+    # The discrete variable in a saved, serialized FMU state.
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    s = FMU2Slave(guid=md.guid, unzipDirectory=unzipdir,
+                  modelIdentifier=md.coSimulation.modelIdentifier, instanceName="events")
+    s.instantiate()
+    s.setupExperiment(startTime=0.0, tolerance=ev["cs_tolerance"])
+    s.enterInitializationMode()
+    s.exitInitializationMode()
+    h = ev["interval"]
+    saved_at, until = 150, 230
+    for k in range(saved_at):
+        s.doStep(k * h, h)
+    state = s.getFMUstate()
+    saved = s.serializeFMUstate(state)
+    s.freeFMUstate(state)
+    before = s.getReal([vr["bounces"]])[0]
+    for k in range(saved_at, until):
+        s.doStep(k * h, h)
+    first = s.getReal([vr["z"], vr["bounces"]])
+    state = s.deSerializeFMUstate(saved)
+    s.setFMUstate(state)
+    s.freeFMUstate(state)
+    restored = s.getReal([vr["bounces"]])[0]
+    for k in range(saved_at, until):
+        s.doStep(k * h, h)
+    again = s.getReal([vr["z"], vr["bounces"]])
+    s.terminate()
+    s.freeInstance()
+    ok = restored == before and first == again and first[1] > before
+    report(name, "discrete in FMU state", ok,
+           f"bounces {before:.0f} saved at t = {saved_at * h:g}, {first[1]:.0f} at t = {until * h:g}, "
+           f"restored {restored:.0f}, again {again[1]:.0f}; z {first[0]:.12g} and {again[0]:.12g}")
+
+
 def main() -> int:
     with open(sys.argv[1]) as f:
         manifest = json.load(f)
@@ -375,7 +485,10 @@ def main() -> int:
         check_symbols(name, fmu)
         unzipdir = extract(fmu)
         try:
-            check_runs(name, fmu, spec)
+            if "events" in spec:
+                check_events(name, fmu, unzipdir, spec["events"])
+            else:
+                check_runs(name, fmu, spec)
             check_jacobian(name, fmu, unzipdir, spec)
             if "sequence_checks" in spec:
                 check_sequences(name, fmu, unzipdir, spec["sequence_checks"])

@@ -63,6 +63,7 @@ impl<M: Model> Driver<M> {
                 max_step: M::Float::ZERO,
                 events: 0,
                 terminal_event: None,
+                next_step: settings.step,
             },
             t: settings.start,
             h: settings.step,
@@ -90,6 +91,7 @@ impl<M: Model> Driver<M> {
         self.summary.end_time = self.t;
         self.summary.events = events;
         self.summary.terminal_event = terminal;
+        self.summary.next_step = self.h;
         self.summary
     }
 

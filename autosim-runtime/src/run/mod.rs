@@ -147,6 +147,10 @@ pub struct RunSummary<F> {
     /// The terminal event that stopped the run before its stop time (an
     /// index into [`Model::EVENT_INDICATORS`]), if one did.
     pub terminal_event: Option<usize>,
+    /// The step an adaptive method would try next (its last suggestion:
+    /// where a run continuing this one starts); `step` for fixed-step
+    /// methods.
+    pub next_step: F,
 }
 
 /// Receives the time, state and outputs at every output time of a

@@ -25,9 +25,10 @@ const FMPY: &str = "fmpy==0.3.32";
 /// Models of `examples/models` exported as FMUs here: every model without
 /// user code; the satellite from its user crate `examples/fmu_satellite`
 /// and [`USER_CODE`] from theirs.
-const EXPORTED: [&str; 20] = [
+const EXPORTED: [&str; 21] = [
     "andrews",
     "bicycle",
+    "bouncing_ball",
     "chain_planar_1",
     "chain_planar_10",
     "chain_planar_2",

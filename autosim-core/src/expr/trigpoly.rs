@@ -122,14 +122,14 @@ impl Arena {
         if a.len() * b.len() > MAX_MONOMIALS * MAX_MONOMIALS {
             return None;
         }
-        let mut acc = Poly::new();
+        let mut terms = Poly::new();
         for (ma, ca) in a {
             for (mb, cb) in b {
                 let mono = multiply_monomials(ma, mb);
-                let reduced = self.reduce(mono, *ca * *cb);
-                acc = add(&acc, &reduced);
+                terms.extend(self.reduce(mono, *ca * *cb));
             }
         }
+        let acc = combine(terms);
         (acc.len() <= MAX_MONOMIALS).then_some(acc)
     }
 
@@ -179,6 +179,35 @@ fn scale(p: &Poly, c: Number) -> Poly {
         return Poly::new();
     }
     p.iter().map(|(m, k)| (m.clone(), *k * c)).collect()
+}
+
+/// The sum of `terms` as a polynomial, exactly as adding them one at a
+/// time with [`add`] gives it (like monomials summed in the order given, a
+/// sum that is zero dropped), in one sort instead of a pass per term.
+fn combine(mut terms: Poly) -> Poly {
+    // Stable: the coefficients of one monomial stay in the order given.
+    terms.sort_by(|x, y| x.0.cmp(&y.0));
+    let mut out = Poly::with_capacity(terms.len());
+    let mut run: Option<(Monomial, Option<Number>)> = None;
+    for (mono, c) in terms {
+        run = match run {
+            Some((m, sum)) if m == mono => {
+                // `add` drops a zero sum, and the next term starts afresh.
+                let next = match sum {
+                    None => c,
+                    Some(s) => s + c,
+                };
+                let zero = sum.is_some() && next.is_zero();
+                Some((m, (!zero).then_some(next)))
+            }
+            previous => {
+                out.extend(previous.and_then(|(m, sum)| sum.map(|s| (m, s))));
+                Some((mono, Some(c)))
+            }
+        };
+    }
+    out.extend(run.and_then(|(m, sum)| sum.map(|s| (m, s))));
+    out
 }
 
 /// `a + b`, like monomials combined, zeros dropped.

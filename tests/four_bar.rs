@@ -174,19 +174,20 @@ fn automatic_dependents_keep_declared_initial_values() {
     let dependents: Vec<_> = c
         .program
         .interface
+        .model
         .constraints
         .iter()
         .map(|k| k.dependent_coordinate.clone().unwrap_or_default())
         .collect();
     assert!(!dependents.contains(&"q1".to_string()), "{dependents:?}");
     assert!(
-        c.program.interface.cautions.is_empty(),
+        c.program.interface.model.cautions.is_empty(),
         "{:?}",
-        c.program.interface.cautions
+        c.program.interface.model.cautions
     );
     // Every angle declared: two must move, and the documentation says so.
     let c = compile_source(&SourceFile::new("four_bar.sim", undeclared.as_str())).unwrap();
-    let cautions = &c.program.interface.cautions;
+    let cautions = &c.program.interface.model.cautions;
     assert_eq!(cautions.len(), 2, "{cautions:?}");
     assert!(
         cautions[0].starts_with("Assembly solves `q")

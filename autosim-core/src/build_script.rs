@@ -182,7 +182,7 @@ impl Config {
             .map_err(|d| BuildError::Model(d.render(&SourceFile::new(path, String::new()))))?;
         let compiled = compile_source_scene(&file, &self.scene)
             .map_err(|d| BuildError::Model(d.render(&file)))?;
-        let name = compiled.program.interface.name.clone();
+        let name = compiled.program.interface.model.name.clone();
         let module = emit
             .module_name
             .clone()

@@ -24,6 +24,7 @@ fn compile_file(name: &str) -> Compiled {
 fn params_from(c: &Compiled, data: &serde_json::Value) -> Vec<f64> {
     c.program
         .interface
+        .model
         .parameters
         .iter()
         .map(|p| {

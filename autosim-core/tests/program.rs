@@ -172,6 +172,7 @@ fn big_models_compute_the_shared_terms_once() {
     }
     let params: Vec<f64> = recursive
         .interface
+        .model
         .parameters
         .iter()
         .map(|q| q.default)

@@ -64,10 +64,10 @@ pub fn guid(text: &str) -> String {
 pub fn layout(program: &Program, deps: &Dependencies, events: &EventInterface) -> Layout {
     let i = &program.interface;
     Layout {
-        parameters: i.parameters.len(),
-        inputs: i.inputs.len(),
+        parameters: i.model.parameters.len(),
+        inputs: i.model.inputs.len(),
         states: i.states.len() - deps.dependent.len(),
-        outputs: i.outputs.len(),
+        outputs: i.model.outputs.len(),
         dependent: deps.dependent.len(),
         discrete: events.discrete.len(),
     }
@@ -140,7 +140,7 @@ fn scalars(
     events: &EventInterface,
 ) -> Vec<Scalar> {
     let i = &program.interface;
-    let defaults: Vec<f64> = i.parameters.iter().map(|p| p.default).collect();
+    let defaults: Vec<f64> = i.model.parameters.iter().map(|p| p.default).collect();
     let x0 = Interpreter::new(program, &defaults).initial_state();
     let states: Vec<usize> = (0..i.states.len())
         .filter(|s| !deps.dependent.contains(s))
@@ -160,7 +160,7 @@ fn scalars(
                 element: real("s", None, None),
             },
             Variable::Parameter(k) => {
-                let p = &i.parameters[k];
+                let p = &i.model.parameters[k];
                 Scalar {
                     name: p.name.clone(),
                     causality: "parameter",
@@ -172,7 +172,7 @@ fn scalars(
             }
             Variable::Setting(s) => setting(s),
             Variable::Input(k) => {
-                let w = &i.inputs[k];
+                let w = &i.model.inputs[k];
                 Scalar {
                     name: w.name.clone(),
                     causality: "input",
@@ -207,7 +207,7 @@ fn scalars(
                 }
             }
             Variable::Output(k) => {
-                let y = &i.outputs[k];
+                let y = &i.model.outputs[k];
                 Scalar {
                     name: y.name.clone(),
                     causality: "output",
@@ -288,9 +288,9 @@ pub fn model_description(program: &Program, deps: &Dependencies, options: &Optio
     let _ = writeln!(
         x,
         "<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{}\" guid=\"{}\" description=\"{}\" generationTool=\"autosim {}\" variableNamingConvention=\"flat\" numberOfEventIndicators=\"{}\">",
-        escape(&i.name),
+        escape(&i.model.name),
         escape(&options.guid),
-        escape(&join_docs(&i.docs)),
+        escape(&join_docs(&i.model.docs)),
         env!("CARGO_PKG_VERSION"),
         options.events.indicators.len(),
     );
@@ -345,9 +345,9 @@ pub fn model_description(program: &Program, deps: &Dependencies, options: &Optio
         let _ = writeln!(x, ">\n      {}\n    </ScalarVariable>", v.element);
     }
     x += "  </ModelVariables>\n";
-    let ny = i.outputs.len();
-    let first_residual = ny - i.motions.len() - i.closures.len();
-    x += &model_structure(deps, &layout, first_residual..ny - i.motions.len());
+    let ny = i.model.outputs.len();
+    let first_residual = ny - i.model.motions.len() - i.closures.len();
+    x += &model_structure(deps, &layout, first_residual..ny - i.model.motions.len());
     x + "</fmiModelDescription>\n"
 }
 

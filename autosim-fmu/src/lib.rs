@@ -270,7 +270,7 @@ fn fmu_scene(path: &Path, scene: &Scene) -> Result<(Scene, Program), FmuError> {
 fn prepare(fmu: &Fmu) -> Result<Prepared, FmuError> {
     let (scene, program) = fmu_scene(&fmu.model, &fmu.scene)?;
     let deps = Dependencies::of(&program);
-    let identifier = program.interface.name.clone();
+    let identifier = program.interface.model.name.clone();
     let linearize = program.interface.linear_states.is_some();
     let mut options = description::Options {
         identifier: identifier.clone(),

@@ -255,7 +255,7 @@ impl BlockEmitter<'_> {
                     out.extend(quote!(let #id = #x[#k];));
                 }
                 Leaf::Input(i) => {
-                    let id = ident(&self.prog.interface.inputs[i].name);
+                    let id = ident(&self.prog.interface.model.inputs[i].name);
                     out.extend(quote!(let #id = self.inputs.#id;));
                 }
                 Leaf::Accel(i) => {
@@ -264,7 +264,7 @@ impl BlockEmitter<'_> {
                     out.extend(quote!(let #id = #dx[#k];));
                 }
                 Leaf::Discrete(i) => {
-                    let id = ident(&self.prog.interface.discrete[i].name);
+                    let id = ident(&self.prog.interface.model.discrete[i].name);
                     out.extend(quote!(let #id = self.discrete.#id;));
                 }
                 Leaf::Param(_) | Leaf::Time | Leaf::SubOut(..) => {}
@@ -304,7 +304,7 @@ impl BlockEmitter<'_> {
     /// `let [a, _, b] = self.externs.sub(args);` (its results checked in a
     /// function that returns `Result`).
     fn call_subroutine(&self, block: &Block, printer: &ExprPrinter<'_>, k: usize) -> TokenStream {
-        let sub = &self.prog.interface.subroutines[k];
+        let sub = &self.prog.interface.model.subroutines[k];
         let f = ident(&sub.name);
         let pats: Vec<TokenStream> = sub
             .outputs
@@ -353,7 +353,7 @@ impl BlockEmitter<'_> {
             }
             Guard::Regular { constraint } => {
                 let k = Literal::usize_unsuffixed(constraint);
-                let name = &self.prog.interface.constraints[constraint].name;
+                let name = &self.prog.interface.model.constraints[constraint].name;
                 quote! {
                     if !#m::is_regular(#e) {
                         return Err(#rt::ModelError::SingularConstraints { constraint: #k, name: #name });

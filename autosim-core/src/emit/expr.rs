@@ -194,9 +194,9 @@ impl Locals {
         let i = &prog.interface;
         let mut taken: rustc_hash::FxHashSet<String> =
             i.states.states().map(|s| s.name.clone()).collect();
-        taken.extend(i.inputs.iter().map(|x| x.name.clone()));
-        taken.extend(i.discrete.iter().map(|x| x.name.clone()));
-        for sub in &i.subroutines {
+        taken.extend(i.model.inputs.iter().map(|x| x.name.clone()));
+        taken.extend(i.model.discrete.iter().map(|x| x.name.clone()));
+        for sub in &i.model.subroutines {
             taken.extend(sub.outputs.iter().cloned());
         }
         for (_, b) in &prog.blocks {
@@ -386,7 +386,7 @@ impl ExprPrinter<'_> {
                 let xs: Vec<TokenStream> = args.iter().map(|a| self.expr(*a)).collect();
                 match f {
                     Func::User(u) => {
-                        let declared = &self.prog.interface.extern_fns[u.index()].name;
+                        let declared = &self.prog.interface.model.extern_fns[u.index()].name;
                         let name = ident(declared);
                         let call = quote!(self.externs.#name(#(#xs),*));
                         match &self.user_check {
@@ -408,7 +408,7 @@ impl ExprPrinter<'_> {
         let i = &self.prog.interface;
         match l {
             Leaf::Param(k) => {
-                let id = ident(&i.parameters[k].name);
+                let id = ident(&i.model.parameters[k].name);
                 let p = &self.locals.p;
                 quote!(#p.#id)
             }
@@ -417,16 +417,16 @@ impl ExprPrinter<'_> {
                 quote!(#id)
             }
             Leaf::Input(k) => {
-                let id = ident(&i.inputs[k].name);
+                let id = ident(&i.model.inputs[k].name);
                 quote!(#id)
             }
             Leaf::Discrete(k) => {
-                let id = ident(&i.discrete[k].name);
+                let id = ident(&i.model.discrete[k].name);
                 quote!(#id)
             }
             Leaf::Time => quote!(t),
             Leaf::SubOut(s, k) => {
-                let id = ident(&i.subroutines[s].outputs[k]);
+                let id = ident(&i.model.subroutines[s].outputs[k]);
                 quote!(#id)
             }
             Leaf::Accel(k) => {

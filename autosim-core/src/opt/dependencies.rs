@@ -92,7 +92,7 @@ impl Dependencies {
                 .into_iter()
                 .map(|v| reads(program, v))
                 .collect();
-        let ny = program.interface.outputs.len();
+        let ny = program.interface.model.outputs.len();
         let outputs = stored(&program.block(BlockKind::Outputs).stmts, 0..ny)
             .into_iter()
             .map(|v| {

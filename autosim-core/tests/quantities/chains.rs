@@ -163,6 +163,7 @@ fn chain_energy_matches_sympy() {
         let params: Vec<f64> = c
             .program
             .interface
+            .model
             .parameters
             .iter()
             .map(|p| match p.name.as_str() {

@@ -114,6 +114,7 @@ fn four_bar_pin_forces_match_newton_euler() {
     let params: Vec<f64> = c
         .program
         .interface
+        .model
         .parameters
         .iter()
         .map(|x| p(&x.name))

@@ -21,6 +21,7 @@ fn rolling_disc_friction_matches_newton() {
     let params: Vec<f64> = c
         .program
         .interface
+        .model
         .parameters
         .iter()
         .map(|p| data["parameters"][&p.name].as_f64().expect("parameter"))

@@ -92,6 +92,7 @@ fn satellite_quantities_match_newton_euler() {
     let params: Vec<f64> = c
         .program
         .interface
+        .model
         .parameters
         .iter()
         .map(|q| p(&q.name))

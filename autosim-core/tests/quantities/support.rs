@@ -26,6 +26,7 @@ pub fn model_text(file: &str) -> String {
 pub fn output_names(c: &Compiled) -> Vec<String> {
     c.program
         .interface
+        .model
         .outputs
         .iter()
         .map(|o| o.name.clone())
@@ -37,6 +38,7 @@ pub fn outputs_at(c: &Compiled, x: &[f64], t: f64) -> Vec<f64> {
     let params: Vec<f64> = c
         .program
         .interface
+        .model
         .parameters
         .iter()
         .map(|p| p.default)

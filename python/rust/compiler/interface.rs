@@ -19,12 +19,14 @@ pub fn to_json(interface: &Interface) -> String {
         .chain(layout.extra.iter().map(|s| state(s, "extra")))
         .collect();
     let user_code: Vec<&str> = interface
+        .model
         .extern_fns
         .iter()
-        .chain(&interface.subroutines)
+        .chain(&interface.model.subroutines)
         .map(|u| u.name.as_str())
         .collect();
     let constraints: Vec<Value> = interface
+        .model
         .constraints
         .iter()
         .map(|c| {
@@ -42,24 +44,25 @@ pub fn to_json(interface: &Interface) -> String {
         })
         .collect();
     let motions: Vec<Value> = interface
+        .model
         .motions
         .iter()
         .map(|m| json!({"name": m.name, "coordinate": m.coordinate, "doc": docs(&m.docs)}))
         .collect();
     let value = json!({
-        "name": interface.name,
-        "doc": docs(&interface.docs),
-        "parameters": quantities(&interface.parameters),
-        "inputs": quantities(&interface.inputs),
+        "name": interface.model.name,
+        "doc": docs(&interface.model.docs),
+        "parameters": quantities(&interface.model.parameters),
+        "inputs": quantities(&interface.model.inputs),
         "states": states,
         "n_speeds": layout.n_speeds(),
-        "outputs": quantities(&interface.outputs),
+        "outputs": quantities(&interface.model.outputs),
         "user_code": user_code,
         "constraints": constraints,
         "motions": motions,
         "dependent_coordinates": interface.closures.iter().map(|c| c.slot).collect::<Vec<_>>(),
         "linear_states": interface.linear_states,
-        "cautions": interface.cautions,
+        "cautions": interface.model.cautions,
     });
     value.to_string()
 }

@@ -164,7 +164,7 @@ fn compile_text(text: &str, path: &str, options: Options) -> Result<(String, Str
     if interface.float == FloatType::F32 {
         return Err(Failure::Model(format!(
             "{path}: error: model `{}` computes in f32 (`float = f32`); NumPy arrays are float64, so the Python package loads f64 models only\n  = help: remove the f32 setting\n",
-            interface.name
+            interface.model.name
         )));
     }
     let emit = EmitOptions {

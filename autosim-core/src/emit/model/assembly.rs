@@ -27,7 +27,7 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> TokenStream {
     let names: Vec<&String> = i
         .closures
         .iter()
-        .map(|c| &i.constraints[c.constraint].name)
+        .map(|c| &i.model.constraints[c.constraint].name)
         .collect();
     let slots: Vec<Literal> = i
         .closures

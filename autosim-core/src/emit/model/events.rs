@@ -15,17 +15,17 @@ use quote::quote;
 
 /// Whether the model has anything of events to generate.
 pub(super) fn has_events(i: &Interface) -> bool {
-    !i.events.is_empty() || !i.discrete.is_empty()
+    !i.model.events.is_empty() || !i.model.discrete.is_empty()
 }
 
 /// `Discrete` and its `Default` (the initial values), if the model
 /// declares discrete variables.
 pub(super) fn discrete_struct(i: &Interface) -> TokenStream {
-    if i.discrete.is_empty() {
+    if i.model.discrete.is_empty() {
         return TokenStream::new();
     }
     let doc = quote!(#[doc = r" Discrete variables of the model (modes the equations read), changed only by its events; `Default` holds their initial values."]);
-    structs::values_struct("Discrete", doc, &i.discrete, i.float)
+    structs::values_struct("Discrete", doc, &i.model.discrete, i.float)
 }
 
 /// The `Model` items of events and discrete variables.
@@ -36,7 +36,7 @@ pub(super) fn trait_items(be: &BlockEmitter<'_>) -> TokenStream {
     }
     let rt = &be.rt;
     let ty = float_type(be.float);
-    let indicators = i.events.iter().map(|e| {
+    let indicators = i.model.events.iter().map(|e| {
         let name = &e.name;
         match e.direction {
             EventDirection::Rising => quote!(#rt::EventIndicator::rising(#name)),
@@ -44,19 +44,19 @@ pub(super) fn trait_items(be: &BlockEmitter<'_>) -> TokenStream {
             EventDirection::Either => quote!(#rt::EventIndicator::either(#name)),
         }
     });
-    let names = i.discrete.iter().map(|d| &d.name);
-    let units = i.discrete.iter().map(|d| &d.unit);
-    let functions = if i.events.is_empty() {
+    let names = i.model.discrete.iter().map(|d| &d.name);
+    let units = i.model.discrete.iter().map(|d| &d.unit);
+    let functions = if i.model.events.is_empty() {
         TokenStream::new()
     } else {
         let g = event_indicators(be);
         let e = event(be);
         quote!(#g #e)
     };
-    let access = if i.discrete.is_empty() {
+    let access = if i.model.discrete.is_empty() {
         TokenStream::new()
     } else {
-        let (get, set) = by_index(&i.discrete, &quote!(self.discrete));
+        let (get, set) = by_index(&i.model.discrete, &quote!(self.discrete));
         quote! {
             fn discrete_values(&self, values: &mut [#ty]) {
                 #get
@@ -87,7 +87,7 @@ fn event_indicators(be: &BlockEmitter<'_>) -> TokenStream {
     let n_states = Literal::usize_unsuffixed(prog.states().len());
     let functions::Args { t, x } = functions::args(prog, BlockKind::EventIndicators, be.locals);
     let ly = &be.locals.y;
-    let len = Literal::usize_unsuffixed(prog.interface.events.len());
+    let len = Literal::usize_unsuffixed(prog.interface.model.events.len());
     let body = be.emit(
         prog.block(BlockKind::EventIndicators),
         true,
@@ -133,7 +133,7 @@ fn event(be: &BlockEmitter<'_>) -> TokenStream {
     let arms = prog
         .event_assignments
         .iter()
-        .zip(&i.events)
+        .zip(&i.model.events)
         .enumerate()
         .map(|(k, (list, e))| {
             let k = Literal::usize_unsuffixed(k);
@@ -145,7 +145,7 @@ fn event(be: &BlockEmitter<'_>) -> TokenStream {
                         quote!(#lx[#s] = #ly[#slot];)
                     }
                     Assigned::Discrete(d) => {
-                        let id = ident(&i.discrete[*d].name);
+                        let id = ident(&i.model.discrete[*d].name);
                         quote!(self.discrete.#id = #ly[#slot];)
                     }
                 }

@@ -193,7 +193,7 @@ pub(super) fn ops_per_call(prog: &Program, kind: BlockKind, block: &Block) -> Op
 pub(super) fn linear_sizes(prog: &Program) -> (usize, usize, usize) {
     let i = &prog.interface;
     let nl = i.linear_states.as_ref().map_or(0, Vec::len);
-    (nl, i.inputs.len(), i.outputs.len())
+    (nl, i.model.inputs.len(), i.model.outputs.len())
 }
 
 /// The body of `linearize`: the matrices start at zero, the block writes

@@ -65,13 +65,13 @@ pub(super) fn values_struct(
 /// `Parameters` and its `Default`.
 pub(super) fn parameters(i: &Interface) -> TokenStream {
     let doc = quote!(#[doc = r" Parameters of the model, with their defaults."]);
-    values_struct("Parameters", doc, &i.parameters, i.float)
+    values_struct("Parameters", doc, &i.model.parameters, i.float)
 }
 
 /// `Inputs` and its `Default`.
 pub(super) fn inputs(i: &Interface) -> TokenStream {
     let doc = quote!(#[doc = r" Inputs of the model, supplied by the caller at run time."]);
-    values_struct("Inputs", doc, &i.inputs, i.float)
+    values_struct("Inputs", doc, &i.model.inputs, i.float)
 }
 
 /// The `Externs` trait: one method per user function and subroutine
@@ -91,13 +91,13 @@ pub(super) fn externs_trait(i: &Interface) -> TokenStream {
             .collect()
     };
     let mut methods = Vec::new();
-    for f in &i.extern_fns {
+    for f in &i.model.extern_fns {
         let id = ident(&f.name);
         let ps = params(&f.params);
         let d = docs(&f.docs);
         methods.push(quote!(#d fn #id(&mut self, #(#ps),*) -> #ty;));
     }
-    for s in &i.subroutines {
+    for s in &i.model.subroutines {
         let id = ident(&s.name);
         let ps = params(&s.params);
         let mut d = docs(&s.docs);

@@ -5,9 +5,7 @@
 
 use crate::expr::SymId;
 use crate::mech::Equations;
-use crate::opt::input::{
-    ConstraintInfo, EventInfo, FloatType, Input, MotionInfo, Quantity, UserCode,
-};
+use crate::opt::input::{Described, FloatType, Input};
 use crate::opt::split::Split;
 
 /// One state variable.
@@ -86,7 +84,7 @@ impl StateLayout {
 }
 
 /// What assembly solves: each position constraint (an index into
-/// [`Interface::constraints`]) for its dependent coordinate (a position in
+/// [`Described::constraints`]) for its dependent coordinate (a position in
 /// the state vector), in the order of the assembly block's slots.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Closure {
@@ -97,31 +95,21 @@ pub struct Closure {
 }
 
 /// Everything about a model's interface that generated code and its
-/// documentation name.
+/// documentation name: the model as it declares itself, and what opt adds
+/// (the float type, the state vector, what assembly and the linearization
+/// solve for).
 #[derive(Clone, Debug)]
 pub struct Interface {
-    /// The model's name (the generated type).
-    pub name: String,
-    /// The model's doc comments.
-    pub docs: Vec<String>,
+    /// The model as it declares itself: names, units, defaults, docs and
+    /// spans of its parameters (`Leaf::Param` indices), inputs
+    /// (`Leaf::Input`), outputs (slots of the outputs block), user code,
+    /// constraints (`Guard::Regular` indices), motions, discrete variables
+    /// (`Leaf::Discrete`) and events (slots of the event indicators block).
+    pub model: Described,
     /// Float type of generated code.
     pub float: FloatType,
-    /// Parameters in declaration order (`Leaf::Param` indices).
-    pub parameters: Vec<Quantity>,
-    /// Inputs in declaration order (`Leaf::Input` indices).
-    pub inputs: Vec<Quantity>,
     /// The state vector (`Leaf::State` indices).
     pub states: StateLayout,
-    /// Outputs in order (slots of the outputs block).
-    pub outputs: Vec<Quantity>,
-    /// User functions, by `UserFnId` index.
-    pub extern_fns: Vec<UserCode>,
-    /// User subroutines in declaration order.
-    pub subroutines: Vec<UserCode>,
-    /// Constraints in declaration order (`Guard::Regular` indices).
-    pub constraints: Vec<ConstraintInfo>,
-    /// Prescribed motions in declaration order.
-    pub motions: Vec<MotionInfo>,
     /// The position constraints and their dependent coordinates, in the
     /// order of the assembly block's slots (empty without position
     /// constraints).
@@ -129,15 +117,6 @@ pub struct Interface {
     /// The states of the linear model (state-vector positions; all but the
     /// dependent coordinates), when the linearization is generated.
     pub linear_states: Option<Vec<usize>>,
-    /// Discrete variables in declaration order (`Leaf::Discrete` indices;
-    /// `default` is the initial value).
-    pub discrete: Vec<Quantity>,
-    /// Events in declaration order (slots of the event indicators block).
-    pub events: Vec<EventInfo>,
-    /// Cautions for the user, printed in the model's documentation (e.g. a
-    /// body whose initial angles sit on its rotation sequence's
-    /// singularity).
-    pub cautions: Vec<String>,
 }
 
 impl Interface {
@@ -158,11 +137,8 @@ impl Interface {
             }
         };
         Interface {
-            name: d.name.clone(),
-            docs: d.docs.clone(),
+            model: d.clone(),
             float: input.options.float,
-            parameters: d.parameters.clone(),
-            inputs: d.inputs.clone(),
             states: StateLayout {
                 coordinates: split
                     .coordinates
@@ -172,23 +148,15 @@ impl Interface {
                 speeds: split.free.iter().map(|&k| state(&eqs.speeds[k])).collect(),
                 extra: eqs.states.iter().map(state).collect(),
             },
-            outputs: d.outputs.clone(),
-            extern_fns: d.extern_fns.clone(),
-            subroutines: d.subroutines.clone(),
-            constraints: d.constraints.clone(),
-            motions: d.motions.clone(),
             closures: closures(eqs, split),
             linear_states: None,
-            discrete: d.discrete.clone(),
-            events: d.events.clone(),
-            cautions: d.cautions.clone(),
         }
     }
 
     /// Whether generated code calls user code (and so has an `Externs`
     /// type parameter).
     pub fn has_externs(&self) -> bool {
-        !self.extern_fns.is_empty() || !self.subroutines.is_empty()
+        !self.model.extern_fns.is_empty() || !self.model.subroutines.is_empty()
     }
 }
 

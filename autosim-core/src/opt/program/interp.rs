@@ -164,7 +164,7 @@ impl<'a> Interpreter<'a> {
         };
         env.leaves.insert(Leaf::Time, at.t);
         // Discrete variables at their initial values.
-        for (i, d) in self.prog.interface.discrete.iter().enumerate() {
+        for (i, d) in self.prog.interface.model.discrete.iter().enumerate() {
             env.leaves.insert(Leaf::Discrete(i), d.default);
         }
         let values = [

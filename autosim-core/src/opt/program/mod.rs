@@ -161,7 +161,7 @@ impl Program {
         let n = self.n();
         match kind {
             BlockKind::Derivatives | BlockKind::Initial => self.states().len(),
-            BlockKind::Outputs => self.interface.outputs.len(),
+            BlockKind::Outputs => self.interface.model.outputs.len(),
             BlockKind::Constants => self.hoisted.len(),
             BlockKind::Common => self.common.len(),
             BlockKind::MassMatrix => match self.mass_layout {
@@ -170,11 +170,14 @@ impl Program {
             },
             BlockKind::Forcing => n,
             BlockKind::Assembly => 2 * self.interface.closures.len(),
-            BlockKind::EventIndicators => self.interface.events.len(),
+            BlockKind::EventIndicators => self.interface.model.events.len(),
             BlockKind::EventActions => self.event_assignments.iter().map(Vec::len).sum(),
             BlockKind::Linearize => {
                 let nl = self.interface.linear_states.as_ref().map_or(0, Vec::len);
-                let (nw, ny) = (self.interface.inputs.len(), self.interface.outputs.len());
+                let (nw, ny) = (
+                    self.interface.model.inputs.len(),
+                    self.interface.model.outputs.len(),
+                );
                 (nl + ny) * (nl + nw)
             }
         }
@@ -261,7 +264,7 @@ fn stores(values: &[Nid], first: usize) -> impl Iterator<Item = Task> + '_ {
 
 /// What the linearization differentiates.
 fn linearizable<'a>(lowered: &'a Lowered, interface: &Interface) -> Linearizable<'a> {
-    let n_outputs = interface.outputs.len();
+    let n_outputs = interface.model.outputs.len();
     Linearizable {
         kinematics: &lowered.kinematics,
         extra: &lowered.extra_in_rates,
@@ -274,7 +277,7 @@ fn linearizable<'a>(lowered: &'a Lowered, interface: &Interface) -> Linearizable
             let slots = interface.closures.iter().map(|c| c.slot).collect();
             (a.residuals.as_slice(), slots, &a.elim)
         }),
-        inputs: interface.inputs.len(),
+        inputs: interface.model.inputs.len(),
     }
 }
 

@@ -19,7 +19,7 @@ impl Program {
         match kind {
             BlockKind::Derivatives => format!("{}'", self.states().state(k).name),
             BlockKind::Initial => format!("{}(0)", self.states().state(k).name),
-            BlockKind::Outputs => self.interface.outputs[k].name.clone(),
+            BlockKind::Outputs => self.interface.model.outputs[k].name.clone(),
             BlockKind::Constants => format!("p{}", k + 1),
             BlockKind::Common => format!("s{}", k + 1),
             BlockKind::MassMatrix => {
@@ -31,7 +31,7 @@ impl Program {
             }
             BlockKind::Forcing => format!("{}[{}]", self.unused_name("f", "forcing"), k + 1),
             BlockKind::Linearize => self.linear_slot_name(k),
-            BlockKind::EventIndicators => format!("g_{}", self.interface.events[k].name),
+            BlockKind::EventIndicators => format!("g_{}", self.interface.model.events[k].name),
             BlockKind::EventActions => format!("a{}", k + 1),
             BlockKind::Assembly => {
                 let closures = &self.interface.closures;
@@ -39,7 +39,7 @@ impl Program {
                     Some(c) => format!("Δ{}", self.states().state(c.slot).name),
                     None => {
                         let c = closures[k - closures.len()].constraint;
-                        format!("{}(residual)", self.interface.constraints[c].name)
+                        format!("{}(residual)", self.interface.model.constraints[c].name)
                     }
                 }
             }
@@ -50,7 +50,12 @@ impl Program {
     /// parameter `M` and the mass matrix `M[1,1]` must not read alike).
     fn unused_name<'a>(&self, short: &'a str, long: &'a str) -> &'a str {
         let i = &self.interface;
-        let quantities = i.parameters.iter().chain(&i.inputs).chain(&i.outputs);
+        let quantities = i
+            .model
+            .parameters
+            .iter()
+            .chain(&i.model.inputs)
+            .chain(&i.model.outputs);
         let states = (0..self.states().len()).map(|k| &self.states().state(k).name);
         let taken = quantities
             .map(|q| &q.name)
@@ -64,7 +69,7 @@ impl Program {
     fn linear_slot_name(&self, k: usize) -> String {
         let i = &self.interface;
         let nl = i.linear_states.as_ref().map_or(0, Vec::len);
-        let (nw, ny) = (i.inputs.len(), i.outputs.len());
+        let (nw, ny) = (i.model.inputs.len(), i.model.outputs.len());
         let mut k = k;
         for (name, rows, cols) in [("A", nl, nl), ("B", nl, nw), ("C", ny, nl), ("D", ny, nw)] {
             if k < rows * cols {
@@ -98,7 +103,7 @@ impl Program {
                     writeln!(out, "{} = {}", block.names[cos], p.def(*cos))?;
                 }
                 Stmt::CallSub(k) => {
-                    let sub = &self.interface.subroutines[*k];
+                    let sub = &self.interface.model.subroutines[*k];
                     let args: Vec<String> =
                         self.sub_args[*k].iter().map(|a| p.expr(*a, 0)).collect();
                     writeln!(
@@ -117,7 +122,7 @@ impl Program {
                         ),
                         Guard::Regular { constraint } => format!(
                             "!= 0   (pivot of constraint {})",
-                            self.interface.constraints[*constraint].name
+                            self.interface.model.constraints[*constraint].name
                         ),
                     };
                     writeln!(out, "require {} {condition}", p.expr(*pivot, 0))?
@@ -137,7 +142,7 @@ impl Program {
 impl fmt::Display for Program {
     /// The whole program: the state layout, then every block.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "program {}", self.interface.name)?;
+        writeln!(f, "program {}", self.interface.model.name)?;
         let names = |v: &[crate::opt::program::interface::StateVar]| {
             v.iter()
                 .map(|s| s.name.as_str())
@@ -225,7 +230,7 @@ impl TextPrinter<'_> {
             Op::Call(f, args) => {
                 let xs: Vec<String> = args.iter().map(|a| self.expr(*a, 0)).collect();
                 let name = match f {
-                    Func::User(u) => self.prog.interface.extern_fns[u.index()].name.clone(),
+                    Func::User(u) => self.prog.interface.model.extern_fns[u.index()].name.clone(),
                     other => other.builtin_name().unwrap_or("?").to_string(),
                 };
                 (format!("{name}({})", xs.join(", ")), 4)
@@ -236,12 +241,12 @@ impl TextPrinter<'_> {
     fn leaf(&self, l: Leaf) -> String {
         let i = &self.prog.interface;
         match l {
-            Leaf::Param(k) => i.parameters[k].name.clone(),
+            Leaf::Param(k) => i.model.parameters[k].name.clone(),
             Leaf::State(k) => i.states.state(k).name.clone(),
-            Leaf::Input(k) => i.inputs[k].name.clone(),
-            Leaf::Discrete(k) => i.discrete[k].name.clone(),
+            Leaf::Input(k) => i.model.inputs[k].name.clone(),
+            Leaf::Discrete(k) => i.model.discrete[k].name.clone(),
             Leaf::Time => "t".to_string(),
-            Leaf::SubOut(s, k) => i.subroutines[s].outputs[k].clone(),
+            Leaf::SubOut(s, k) => i.model.subroutines[s].outputs[k].clone(),
             Leaf::Accel(k) => format!("{}'", i.states.speeds[k].name),
         }
     }

@@ -126,8 +126,8 @@ impl<'a> BlockCheck<'a> {
     fn names(&self) -> Result<(), String> {
         let i = &self.prog.interface;
         let mut taken: FxHashSet<&str> = i.states.states().map(|s| s.name.as_str()).collect();
-        taken.extend(i.inputs.iter().map(|x| x.name.as_str()));
-        for sub in &i.subroutines {
+        taken.extend(i.model.inputs.iter().map(|x| x.name.as_str()));
+        for sub in &i.model.subroutines {
             taken.extend(sub.outputs.iter().map(String::as_str));
         }
         let mut seen: FxHashSet<&str> = FxHashSet::default();
@@ -202,7 +202,7 @@ impl<'a> BlockCheck<'a> {
             }
             Leaf::SubOut(s, _) if !self.subs_called.contains(&s) => Err(format!(
                 "reads an output of `{}` before calling it",
-                self.prog.interface.subroutines[s].name
+                self.prog.interface.model.subroutines[s].name
             )),
             _ => Ok(()),
         }

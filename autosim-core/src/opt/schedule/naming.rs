@@ -21,9 +21,9 @@ impl Naming {
     pub fn new(ir: &Ir, interface: &Interface, lowered: &Lowered) -> Naming {
         let layout = &interface.states;
         let mut reserved: FxHashSet<String> = layout.states().map(|s| s.name.clone()).collect();
-        reserved.extend(interface.inputs.iter().map(|i| i.name.clone()));
-        reserved.extend(interface.discrete.iter().map(|d| d.name.clone()));
-        for sub in &interface.subroutines {
+        reserved.extend(interface.model.inputs.iter().map(|i| i.name.clone()));
+        reserved.extend(interface.model.discrete.iter().map(|d| d.name.clone()));
+        for sub in &interface.model.subroutines {
             reserved.extend(sub.outputs.iter().cloned());
         }
         for r in [

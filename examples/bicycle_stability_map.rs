@@ -20,6 +20,10 @@ use plotters::prelude::*;
 mod output_folder;
 use output_folder::output_folder;
 
+#[path = "common/legend.rs"]
+mod legend;
+use legend::draw_legend;
+
 autosim::model!(file = "examples/models/bicycle.sim", linearize = true);
 use bicycle::Bicycle;
 
@@ -197,13 +201,7 @@ fn draw(
             ("sans-serif", 14),
         )
     }))?;
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 14))
-        .draw()?;
+    draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
     root.present()?;
     Ok(())
 }

@@ -32,6 +32,10 @@ use plotters::prelude::*;
 mod output_folder;
 use output_folder::output_folder;
 
+#[path = "common/legend.rs"]
+mod legend;
+use legend::draw_legend;
+
 #[allow(dead_code, unused_macros)] // the Monte Carlo uses thrust and cmd only
 #[path = "common/figure8.rs"]
 mod figure8;
@@ -234,13 +238,7 @@ fn draw(svg: &mut String, errors: &[f64], nominal: f64, p95: f64) -> Result<(), 
         .draw_series(line(p95, RED))?
         .label(format!("95th percentile ({p95:.2} mrad)"))
         .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(2)));
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .label_font(("sans-serif", 14))
-        .draw()?;
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     root.present()?;
     Ok(())
 }

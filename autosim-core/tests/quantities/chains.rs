@@ -1,7 +1,9 @@
 //! Static cases with known answers, the chains' reactions against
 //! Pinocchio's RNEA and their energy against SymPy's.
 
-use super::support::{close, compile_text, model_text, output_names, outputs_at, outputs_with};
+use super::support::{
+    close, compile_text, model_text, output_names, outputs_at, outputs_with, parameter_values,
+};
 use autosim_core::pipeline::Compiled;
 
 /// A pendulum hanging at rest carries its weight at the hinge, straight
@@ -160,17 +162,10 @@ fn chain_energy_matches_sympy() {
         text.push_str("output ke [J] = kinetic_energy();\noutput ke_parts [J] = kinetic_energy(B1) + kinetic_energy(B2, B3);\n");
         let c = compile_text(&file, &text);
         let data = autosim_test_support::load(&format!("chain-{kind}-3-trajectory"));
-        let params: Vec<f64> = c
-            .program
-            .interface
-            .model
-            .parameters
-            .iter()
-            .map(|p| match p.name.as_str() {
-                "c" => 0.0,
-                n => data["parameters"][n].as_f64().unwrap_or(p.default),
-            })
-            .collect();
+        let params = parameter_values(&c, |p| match p.name.as_str() {
+            "c" => 0.0,
+            n => data["parameters"][n].as_f64().unwrap_or(p.default),
+        });
         let mut worst: f64 = 0.0;
         for r in data["records"].as_array().expect("records") {
             let mut x = autosim_test_support::floats(&r["q"]);

@@ -8,7 +8,7 @@
 //! their power is `λ·(v_E − v_T)`, so `(λ2, λ3)` is the force the pin
 //! exerts on the coupler at E (and minus it on the rocker at T).
 
-use super::support::{compile_text, model_text, outputs_with};
+use super::support::{compile_text, model_text, outputs_with, parameter_values};
 use autosim_test_support::{floats, load, max_diff, worst_of};
 use nalgebra::{Matrix2, Vector2};
 
@@ -111,14 +111,7 @@ fn four_bar_pin_forces_match_newton_euler() {
         }
     }
     let c = compile_text("four_bar.sim", &text);
-    let params: Vec<f64> = c
-        .program
-        .interface
-        .model
-        .parameters
-        .iter()
-        .map(|x| p(&x.name))
-        .collect();
+    let params = parameter_values(&c, |x| p(&x.name));
     let (mut worst, mut worst_balance) = (0.0f64, 0.0f64);
     let samples = data["samples"].as_array().expect("samples");
     for s in samples {

@@ -7,7 +7,7 @@
 //! contact's horizontal force is the mass times the centre's horizontal
 //! acceleration (`du_x`, `du_y`: the translation speeds are `dq/dt` in N).
 
-use super::support::{compile_text, model_text, outputs_with};
+use super::support::{compile_text, model_text, outputs_with, parameter_values};
 use autosim_test_support::{floats, load, max_diff, worst_of};
 
 #[test]
@@ -18,14 +18,9 @@ fn rolling_disc_friction_matches_newton() {
     text.push_str("output friction_n1 [N] = constraint_force(roll_n1);\n");
     text.push_str("output friction_n2 [N] = constraint_force(roll_n2);\n");
     let c = compile_text("rolling_disc.sim", &text);
-    let params: Vec<f64> = c
-        .program
-        .interface
-        .model
-        .parameters
-        .iter()
-        .map(|p| data["parameters"][&p.name].as_f64().expect("parameter"))
-        .collect();
+    let params = parameter_values(&c, |p| {
+        data["parameters"][&p.name].as_f64().expect("parameter")
+    });
     let mut worst = 0.0f64;
     let samples = data["samples"].as_array().expect("samples");
     for s in samples {

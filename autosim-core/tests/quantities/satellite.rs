@@ -5,7 +5,7 @@
 //! reference's own.
 
 use super::newton_euler::{boom_hinge_reaction, satellite_masses, satellite_motion};
-use super::support::{compile_text, model_text, output_names, outputs_calling};
+use super::support::{compile_text, model_text, output_names, outputs_calling, parameter_values};
 use autosim_core::opt::UserCalls;
 use autosim_core::pipeline::Compiled;
 use autosim_test_support::{SatelliteSample, load, satellite_samples, worst_of};
@@ -89,14 +89,7 @@ fn satellite_quantities_match_newton_euler() {
             .unwrap_or_else(|| panic!("no parameter {n}"))
     };
     let c = satellite_with_quantities();
-    let params: Vec<f64> = c
-        .program
-        .interface
-        .model
-        .parameters
-        .iter()
-        .map(|q| p(&q.name))
-        .collect();
+    let params = parameter_values(&c, |q| p(&q.name));
     let masses = satellite_masses(&p);
     let o = Vector3::from(O);
     let (mut worst_reaction, mut worst_momenta, mut worst_energy) = (0.0f64, 0.0f64, 0.0f64);

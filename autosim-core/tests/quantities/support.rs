@@ -2,7 +2,7 @@
 //! interpreter.
 
 use autosim_core::diag::SourceFile;
-use autosim_core::opt::{At, Interpreter, UserCalls};
+use autosim_core::opt::{At, Interpreter, Quantity, UserCalls};
 use autosim_core::pipeline::{Compiled, compile_source};
 
 /// The compiled program of `text` (panics with the rendered diagnostics).
@@ -35,15 +35,13 @@ pub fn output_names(c: &Compiled) -> Vec<String> {
 
 /// The outputs of `c` at state `x` (default parameters, no user code).
 pub fn outputs_at(c: &Compiled, x: &[f64], t: f64) -> Vec<f64> {
-    let params: Vec<f64> = c
-        .program
-        .interface
-        .model
-        .parameters
-        .iter()
-        .map(|p| p.default)
-        .collect();
-    outputs_with(c, &params, x, t)
+    outputs_with(c, &parameter_values(c, |p| p.default), x, t)
+}
+
+/// The value `value` gives each of `c`'s parameters, in declaration order.
+pub fn parameter_values(c: &Compiled, value: impl Fn(&Quantity) -> f64) -> Vec<f64> {
+    let parameters = &c.program.interface.model.parameters;
+    parameters.iter().map(value).collect()
 }
 
 /// The outputs of `c` at state `x` with these parameters (user functions

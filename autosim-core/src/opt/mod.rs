@@ -7,6 +7,7 @@
 pub mod dependencies;
 mod error;
 mod input;
+mod interface;
 mod ir;
 mod linearize;
 mod lower;
@@ -20,8 +21,8 @@ pub use input::{
     ConstraintInfo, Declared, Described, EventCode, EventInfo, FloatType, Formulation, Input,
     MotionInfo, Options, Quantity, SubroutineCall, UserCode,
 };
+pub use interface::{Closure, Interface, StateLayout, StateVar};
 pub use ir::{Ir, Leaf, Nid, Op};
-pub use program::interface::{Closure, Interface, StateLayout, StateVar};
 pub use program::interp::{At, Interpreter, SolveError, UserCalls};
 pub use program::{Assigned, BlockKind, MassLayout, Program, build};
 pub use schedule::{Block, Guard, Ops, Stmt, Task};

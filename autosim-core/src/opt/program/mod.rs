@@ -3,7 +3,6 @@
 //! unrolled solve of the mass matrix; outputs; the mass matrix and forcing
 //! alone; the initial state), plus the interface generated code exposes.
 
-pub(super) mod interface;
 pub(super) mod interp;
 pub(super) mod text;
 pub(super) mod verify;
@@ -12,12 +11,12 @@ pub use crate::opt::lower::events::Assigned;
 
 use crate::opt::error::ProgramError;
 use crate::opt::input::{Formulation, Input};
+use crate::opt::interface::{Interface, StateLayout};
 use crate::opt::ir::{Ir, Leaf, Nid};
 use crate::opt::linearize::{Linear, Linearizable};
 use crate::opt::lower::equations::Lowered;
 use crate::opt::lower::events::{self, LoweredEvents};
 use crate::opt::lower::{Given, Lowering, constrained, tree_model};
-use crate::opt::program::interface::{Interface, StateLayout};
 use crate::opt::schedule::naming::Naming;
 use crate::opt::schedule::{Block, Guard, Options, Task, common, cost, schedule};
 use crate::opt::solve::Solver;

@@ -143,7 +143,7 @@ impl fmt::Display for Program {
     /// The whole program: the state layout, then every block.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "program {}", self.interface.model.name)?;
-        let names = |v: &[crate::opt::program::interface::StateVar]| {
+        let names = |v: &[crate::opt::interface::StateVar]| {
             v.iter()
                 .map(|s| s.name.as_str())
                 .collect::<Vec<_>>()

@@ -2,9 +2,9 @@
 //! and the names generated ones must avoid.
 
 use crate::expr::Func;
+use crate::opt::interface::{Interface, StateLayout};
 use crate::opt::ir::{Ir, Leaf, Nid, Op};
 use crate::opt::lower::equations::Lowered;
-use crate::opt::program::interface::{Interface, StateLayout};
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// Names for generated code: hints for readable values, and the names the

@@ -39,6 +39,56 @@ fn snapshot_markdown() {
     );
 }
 
+/// The Markdown documentation of a model with events lists its discrete
+/// variables (initial value, unit, description) and events (indicator
+/// unit, direction, actions, description), prints each indicator and new
+/// value as computed, and counts their operations (the bouncing ball's
+/// lines, as its file declares them).
+#[test]
+fn markdown_lists_discrete_variables_and_events() {
+    let file = "bouncing_ball.sim";
+    let text = std::fs::read_to_string(models_dir().join(file)).expect("model file");
+    let src = SourceFile::new(file, text);
+    let c = compile_source(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)));
+    let md = markdown(&c.program, file);
+    for line in [
+        "## Discrete variables",
+        "| `resting` | 0 | 1 (inferred) | 1 once the ball rests on the floor, 0 while it bounces. |",
+        "## Events",
+        "| `apex` | m/s | falling | observed | The top of each flight (observed only: no action). |",
+        "### Event indicators",
+        "g_bounce = h",
+        "g_apex = v",
+        "### Event `bounce`",
+        "| event indicators | 0 | 0 | 0 | 0 |",
+    ] {
+        assert!(md.lines().any(|l| l == line), "no line `{line}` in:\n{md}");
+    }
+    let bounce = md
+        .lines()
+        .find(|l| l.starts_with("| `bounce` |"))
+        .expect("the bounce row");
+    assert!(
+        bounce.starts_with(
+            "| `bounce` | m | falling | set `resting`; reset `v` | The ball reaches the floor"
+        ),
+        "{bounce}"
+    );
+    let equations = md
+        .split("### Event `bounce`")
+        .nth(1)
+        .expect("its equations");
+    assert!(
+        equations.contains("v⁺ = ") && equations.contains("resting⁺ = "),
+        "{equations}"
+    );
+    assert!(
+        !md.contains("### Event `apex`"),
+        "an observed event has no new values"
+    );
+    insta::assert_snapshot!("bouncing_ball_markdown", md);
+}
+
 /// Every example model, generated twice in one process, is byte-identical.
 #[test]
 fn generation_is_deterministic() {

@@ -67,6 +67,7 @@ fn satellite_program_matches_reference() {
             t: s["t"].as_f64().unwrap(),
             x: &x,
             inputs: &[],
+            discrete: &[],
         };
         let dx = it.derivatives(at, &mut user).unwrap();
         let e_dq = rel_err(&dx[..n], &floats(&s["dq"]));

@@ -193,6 +193,7 @@ fn big_models_compute_the_shared_terms_once() {
             t: 0.0,
             x: &x,
             inputs: &[],
+            discrete: &[],
         };
         let dr = rec.derivatives(at, &mut user).expect("regular");
         let dm = mat.derivatives(at, &mut user).expect("regular");

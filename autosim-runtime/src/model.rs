@@ -74,8 +74,9 @@ pub enum ModelError {
         name: &'static str,
     },
     /// A user function or subroutine (the model's `extern`s) returned NaN
-    /// or infinity. Generated `derivatives` and `outputs` check every
-    /// result of user code they call ([`check_user_result`]).
+    /// or infinity. Generated `derivatives`, `outputs`, `event_indicators`
+    /// and `event` check every result of user code they call
+    /// ([`check_user_result`]).
     NonFiniteUserResult {
         /// The function's name, as the model declares it.
         function: &'static str,

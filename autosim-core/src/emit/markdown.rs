@@ -1,10 +1,11 @@
 //! Markdown documentation of a model (the paper's RTF documentation in
 //! today's form): parameters with units and defaults, states, inputs,
-//! outputs, user code, constraints and motions, operation counts, and the
-//! equations as computed (the program's text form).
+//! outputs, user code, constraints and motions, discrete variables and
+//! events, operation counts, and the equations as computed (the program's
+//! text form).
 
-use crate::mech::ConstraintKind;
-use crate::opt::{At, BlockKind, Interpreter, Program, UserCalls};
+use crate::mech::{ConstraintKind, EventDirection};
+use crate::opt::{Assigned, At, BlockKind, Interpreter, Program, UserCalls};
 use std::fmt::Write;
 
 /// The Markdown document of a compiled model read from `source`.
@@ -26,6 +27,7 @@ fn write_document(s: &mut String, prog: &Program, source: &str) -> std::fmt::Res
     }
     write_tables(s, prog)?;
     write_constraints(s, prog)?;
+    write_events(s, prog)?;
     write_linear(s, prog)?;
     write_costs(s, prog)?;
     write_equations(s, prog)
@@ -195,6 +197,7 @@ fn write_linear(s: &mut String, prog: &Program) -> std::fmt::Result {
         t: 0.0,
         x: &x,
         inputs: &inputs,
+        discrete: &[],
     };
     let Ok(values) = it.block_at(BlockKind::Linearize, at, &mut user) else {
         return Ok(());
@@ -221,6 +224,78 @@ fn write_linear(s: &mut String, prog: &Program) -> std::fmt::Result {
     Ok(())
 }
 
+/// The discrete variables (initial value, unit, description) and the
+/// events (indicator's unit, direction, actions, description); nothing
+/// for a model without them. The indicators and new values themselves
+/// are printed with the equations.
+fn write_events(s: &mut String, prog: &Program) -> std::fmt::Result {
+    let i = &prog.interface;
+    if !i.model.discrete.is_empty() {
+        writeln!(
+            s,
+            "\n## Discrete variables\n\nModes the equations read, changed only by events.\n\n| name | initial value | unit | description |\n| --- | --- | --- | --- |"
+        )?;
+        for d in &i.model.discrete {
+            let doc = joined(d.docs.as_deref().unwrap_or_default());
+            let unit = shown_unit(&d.unit, &d.inferred_unit);
+            writeln!(s, "| `{}` | {} | {unit} | {doc} |", d.name, d.default)?;
+        }
+    }
+    if i.model.events.is_empty() {
+        return Ok(());
+    }
+    writeln!(
+        s,
+        "\n## Events\n\nEach happens where its indicator `g_<name>` (under \"Equations\") changes sign in its direction; its actions are computed from the values before it.\n\n| name | indicator unit | direction | actions | description |\n| --- | --- | --- | --- | --- |"
+    )?;
+    for (k, e) in i.model.events.iter().enumerate() {
+        let direction = match e.direction {
+            EventDirection::Rising => "rising",
+            EventDirection::Falling => "falling",
+            EventDirection::Either => "either",
+        };
+        writeln!(
+            s,
+            "| `{}` | {} | {direction} | {} | {} |",
+            e.name,
+            e.unit,
+            actions(prog, k, e.stop),
+            joined(&e.docs)
+        )?;
+    }
+    Ok(())
+}
+
+/// Doc comment lines as one table cell.
+fn joined(lines: &[String]) -> String {
+    let words: Vec<&str> = lines.iter().map(|l| l.trim()).collect();
+    words.join(" ")
+}
+
+/// What event `k` does: `set` and `reset` of the variables it assigns,
+/// `stop`, or `observed` for an event without actions.
+fn actions(prog: &Program, k: usize, stop: bool) -> String {
+    let mut parts = Vec::new();
+    for (verb, discrete) in [("set", true), ("reset", false)] {
+        let names: Vec<String> = (0..prog.event_assignments[k].len())
+            .filter(|&j| {
+                matches!(prog.event_assignments[k][j].0, Assigned::Discrete(_)) == discrete
+            })
+            .map(|j| format!("`{}`", prog.assigned_name(k, j)))
+            .collect();
+        if !names.is_empty() {
+            parts.push(format!("{verb} {}", names.join(", ")));
+        }
+    }
+    if stop {
+        parts.push("stop the run".to_string());
+    }
+    match parts.is_empty() {
+        true => "observed".to_string(),
+        false => parts.join("; "),
+    }
+}
+
 /// Operation counts of the calls a simulation makes.
 fn write_costs(s: &mut String, prog: &Program) -> std::fmt::Result {
     writeln!(
@@ -244,6 +319,23 @@ fn write_costs(s: &mut String, prog: &Program) -> std::fmt::Result {
         writeln!(
             s,
             "| assembly (one Newton step) | {} | {} | {} | {} |",
+            o.adds, o.muls, o.divs, o.funcs
+        )?;
+    }
+    let events = prog.interface.model.events.iter().enumerate();
+    let event_blocks = prog
+        .try_block(BlockKind::EventIndicators)
+        .map(|b| ("event indicators".to_string(), b))
+        .into_iter()
+        .chain(events.map(|(k, e)| {
+            let b = prog.block(BlockKind::EventAction(k));
+            (format!("event `{}`", e.name), b)
+        }));
+    for (name, block) in event_blocks {
+        let o = block.ops;
+        writeln!(
+            s,
+            "| {name} | {} | {} | {} | {} |",
             o.adds, o.muls, o.divs, o.funcs
         )?;
     }
@@ -274,6 +366,30 @@ fn write_equations(s: &mut String, prog: &Program) -> std::fmt::Result {
     if !prog.interface.model.outputs.is_empty() {
         writeln!(s, "\n### Outputs\n\n```text")?;
         prog.write_block(s, BlockKind::Outputs)?;
+        writeln!(s, "```")?;
+    }
+    write_event_equations(s, prog)
+}
+
+/// The event indicators, then each event's new values (`x⁺`), as
+/// computed (nothing without events).
+fn write_event_equations(s: &mut String, prog: &Program) -> std::fmt::Result {
+    if prog.try_block(BlockKind::EventIndicators).is_none() {
+        return Ok(());
+    }
+    writeln!(s, "\n### Event indicators\n\n```text")?;
+    prog.write_block(s, BlockKind::EventIndicators)?;
+    writeln!(s, "```")?;
+    for (k, e) in prog.interface.model.events.iter().enumerate() {
+        if prog.event_assignments[k].is_empty() {
+            continue;
+        }
+        writeln!(
+            s,
+            "\n### Event `{}`\n\nThe new values `x⁺` it assigns.\n\n```text",
+            e.name
+        )?;
+        prog.write_block(s, BlockKind::EventAction(k))?;
         writeln!(s, "```")?;
     }
     Ok(())

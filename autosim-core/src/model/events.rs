@@ -1,11 +1,13 @@
 //! `event` items: the indicator, its direction, the actions (discrete
 //! variables set, states reset, the run stopped), each mistake a
-//! diagnostic at the text that makes it.
+//! diagnostic at the text that makes it. Indicators and new values may
+//! call `extern fn` user functions; they may not read an `extern sub`'s
+//! outputs.
 
 use super::ResolvedModel;
 use super::scope::{Named, Resolver};
 use crate::diag::{Diagnostic, Span, did_you_mean};
-use crate::expr::{ExprId, Func, Node, SymId, SymbolKind};
+use crate::expr::{ExprId, SymId, SymbolKind};
 use crate::mech::{Event, EventDirection};
 use crate::syntax::ast::{self, EventKey};
 
@@ -49,7 +51,8 @@ pub(super) fn event(r: &mut Resolver<'_>, out: &mut ResolvedModel, e: &ast::Even
 }
 
 /// A scalar of the state an event reads: no acceleration, no quantity
-/// only outputs may read, no user code.
+/// only outputs may read, no output of a user subroutine (user functions
+/// are called where the event computes it).
 fn value(r: &mut Resolver<'_>, e: &ast::Expr, what: &str) -> Option<ExprId> {
     let x = r.scalar(e, what)?;
     if !r.without_acceleration(&[x], e.span(), what) {
@@ -60,38 +63,18 @@ fn value(r: &mut Resolver<'_>, e: &ast::Expr, what: &str) -> Option<ExprId> {
         .free_symbols(x)
         .into_iter()
         .find(|&s| matches!(arena.symbol(s).kind, SymbolKind::ExternOutput { .. }));
-    let reason = match sub {
-        Some(s) => Some(format!("the subroutine output `{}`", arena.symbol(s).name)),
-        None => calls_user_function(r, x).map(|f| format!("the user function `{f}`")),
-    };
-    match reason {
+    match sub {
         None => Some(x),
-        Some(reason) => {
+        Some(s) => {
+            let name = arena.symbol(s).name.clone();
             r.push(
-                Diagnostic::error(e.span(), format!("{what} cannot use {reason}"))
-                    .note("events do not call user code yet: indicators and actions are computed from the time, the state, the inputs, the parameters and the discrete variables")
-                    .help("compute the value from those, or keep the decision in a discrete variable that an event sets"),
+                Diagnostic::error(e.span(), format!("{what} cannot use the subroutine output `{name}`"))
+                    .note("an `extern sub` is called by `derivatives` and `outputs` only; events call user code through `extern fn` functions")
+                    .help("declare the computation as an `extern fn` of the values it needs and call it here, or keep the decision in a discrete variable that an event sets"),
             );
             None
         }
     }
-}
-
-/// The name of a user function `x` calls, if any.
-fn calls_user_function(r: &Resolver<'_>, x: ExprId) -> Option<String> {
-    let arena = &r.sys.arena;
-    let mut stack = vec![x];
-    let mut seen = rustc_hash::FxHashSet::default();
-    while let Some(e) = stack.pop() {
-        if !seen.insert(e) {
-            continue;
-        }
-        if let Node::Func(Func::User(f), _) = arena.node(e) {
-            return Some(arena.user_fn(*f).name.clone());
-        }
-        stack.extend(arena.children(e));
-    }
-    None
 }
 
 /// `direction: rising | falling | either` (default `either`).

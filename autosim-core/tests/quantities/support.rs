@@ -65,7 +65,12 @@ pub fn outputs_calling(
     user: &mut UserCalls<'_>,
 ) -> Vec<f64> {
     let it = Interpreter::new(&c.program, params);
-    let at = At { t, x, inputs: &[] };
+    let at = At {
+        t,
+        x,
+        inputs: &[],
+        discrete: &[],
+    };
     it.outputs(at, user).expect("outputs")
 }
 

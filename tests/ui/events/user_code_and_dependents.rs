@@ -1,11 +1,12 @@
-// An event cannot call user code yet.
+// An event may call an `extern fn`, but not read an `extern sub`'s outputs.
 autosim::model! {
     model Ball;
     parameters { g = 9.81 [m/s^2] }
-    extern fn floor(t [s]) -> [m];
+    extern fn restitution(speed [m/s]);
+    extern sub floor(t) -> (level [m]);
     body B { translate: 3, q: [h], u: [v], mass: 1, inertia: 0, initial: [1] }
     gravity = -g*n3;
-    event bounce [m] { indicator: h - floor(t), direction: falling, reset: { v: -v } }
+    event bounce [m] { indicator: h - level, direction: falling, reset: { v: -restitution(-v)*v } }
 }
 
 /// A constrained model: the dependent coordinate cannot be reset.

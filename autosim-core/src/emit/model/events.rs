@@ -2,14 +2,15 @@
 //! discrete variables, and the `Model` items of events
 //! (`EVENT_INDICATORS`, `DISCRETE_NAMES`, `DISCRETE_UNITS`,
 //! `event_indicators`, `event`, `discrete_values`,
-//! `set_discrete_values`). A model without events or discrete variables
-//! generates none of it (the trait's defaults).
+//! `set_discrete_values`) with the inherent `EVENT_OPS`. A model without
+//! events or discrete variables generates none of it (the trait's
+//! defaults).
 
 use super::{by_index, functions, structs};
-use crate::emit::block::{BlockEmitter, Target};
+use crate::emit::block::BlockEmitter;
 use crate::emit::expr::{float_type, ident};
 use crate::mech::EventDirection;
-use crate::opt::{Assigned, BlockKind, Interface};
+use crate::opt::{Assigned, Block, BlockKind, Interface};
 use proc_macro2::{Literal, TokenStream};
 use quote::quote;
 
@@ -88,11 +89,7 @@ fn event_indicators(be: &BlockEmitter<'_>) -> TokenStream {
     let functions::Args { t, x } = functions::args(prog, BlockKind::EventIndicators, be.locals);
     let ly = &be.locals.y;
     let len = Literal::usize_unsuffixed(prog.interface.model.events.len());
-    let body = be.emit(
-        prog.block(BlockKind::EventIndicators),
-        true,
-        Target::Array(ly),
-    );
+    let body = functions::body(be, BlockKind::EventIndicators);
     quote! {
         fn event_indicators(&mut self, #t: #ty, #x: &[#ty; #n_states], g: &mut [#ty]) -> Result<(), #rt::ModelError> {
             let mut #ly = [0.0; #len];
@@ -105,64 +102,98 @@ fn event_indicators(be: &BlockEmitter<'_>) -> TokenStream {
     }
 }
 
-/// `event`: every action's new value from the values before the event
-/// (one block), then the assignments of the event that fired.
+/// `event`: one arm per event, computing only the firing event's new
+/// values (its block, from the values before the event), then assigning
+/// them.
 fn event(be: &BlockEmitter<'_>) -> TokenStream {
     let prog = be.prog;
     let i = &prog.interface;
     let rt = &be.rt;
     let ty = float_type(be.float);
     let n_states = Literal::usize_unsuffixed(prog.states().len());
-    let ly = &be.locals.y;
     let lx = &be.locals.x;
-    let n_values = prog.slots(BlockKind::EventActions);
-    let functions::Args { t, x } = functions::args(prog, BlockKind::EventActions, be.locals);
+    let kinds: Vec<BlockKind> = (0..i.model.events.len())
+        .map(BlockKind::EventAction)
+        .collect();
+    let reads = |f: fn(&Block) -> bool| kinds.iter().any(|k| f(prog.block(*k)));
     let resets = prog
         .event_assignments
         .iter()
         .flatten()
         .any(|(a, _)| matches!(a, Assigned::State(_)));
-    let x = if resets { quote!(#lx) } else { x };
-    let values = if n_values == 0 {
-        TokenStream::new()
+    let t = if reads(Block::reads_time) {
+        quote!(t)
     } else {
-        let len = Literal::usize_unsuffixed(n_values);
-        let body = be.emit(prog.block(BlockKind::EventActions), true, Target::Array(ly));
-        quote!(let mut #ly = [0.0; #len]; #body)
+        quote!(_)
     };
-    let arms = prog
-        .event_assignments
+    let x = if reads(Block::reads_state) || resets {
+        quote!(#lx)
+    } else {
+        quote!(_)
+    };
+    let arms = kinds
         .iter()
         .zip(&i.model.events)
         .enumerate()
-        .map(|(k, (list, e))| {
+        .map(|(k, (kind, e))| {
+            let values = action(be, *kind, &prog.event_assignments[k]);
             let k = Literal::usize_unsuffixed(k);
-            let assign = list.iter().map(|(target, slot)| {
-                let slot = Literal::usize_unsuffixed(*slot);
-                match target {
-                    Assigned::State(s) => {
-                        let s = Literal::usize_unsuffixed(*s);
-                        quote!(#lx[#s] = #ly[#slot];)
-                    }
-                    Assigned::Discrete(d) => {
-                        let id = ident(&i.model.discrete[*d].name);
-                        quote!(self.discrete.#id = #ly[#slot];)
-                    }
-                }
-            });
             let outcome = match e.stop {
                 true => quote!(#rt::EventOutcome::Stop),
                 false => quote!(#rt::EventOutcome::Continue),
             };
-            quote!(#k => { #(#assign)* Ok(#outcome) })
+            quote!(#k => { #values Ok(#outcome) })
         });
     quote! {
         fn event(&mut self, index: usize, #t: #ty, #x: &mut [#ty; #n_states]) -> Result<#rt::EventOutcome, #rt::ModelError> {
-            #values
             match index {
                 #(#arms)*
                 _ => Ok(#rt::EventOutcome::Continue),
             }
         }
+    }
+}
+
+/// The statements of one event's action: its new values into a local
+/// array, then each assigned to its state or discrete variable.
+fn action(be: &BlockEmitter<'_>, kind: BlockKind, list: &[(Assigned, usize)]) -> TokenStream {
+    if list.is_empty() {
+        return TokenStream::new();
+    }
+    let i = &be.prog.interface;
+    let (ly, lx) = (&be.locals.y, &be.locals.x);
+    let len = Literal::usize_unsuffixed(list.len());
+    let body = functions::body(be, kind);
+    let assign = list.iter().map(|(target, slot)| {
+        let slot = Literal::usize_unsuffixed(*slot);
+        match target {
+            Assigned::State(s) => {
+                let s = Literal::usize_unsuffixed(*s);
+                quote!(#lx[#s] = #ly[#slot];)
+            }
+            Assigned::Discrete(d) => {
+                let id = ident(&i.model.discrete[*d].name);
+                quote!(self.discrete.#id = #ly[#slot];)
+            }
+        }
+    });
+    quote!(let mut #ly = [0.0; #len]; #body #(#assign)*)
+}
+
+/// `EVENT_OPS`: the operations of each event's action (one `event` call
+/// for it), in declaration order.
+pub(super) fn ops_constant(be: &BlockEmitter<'_>) -> TokenStream {
+    let prog = be.prog;
+    let rt = &be.rt;
+    let n = prog.interface.model.events.len();
+    if n == 0 {
+        return TokenStream::new();
+    }
+    let values = (0..n).map(|k| super::ops_tokens(rt, &prog.block(BlockKind::EventAction(k)).ops));
+    let len = Literal::usize_unsuffixed(n);
+    quote! {
+        /// Operations of one `event` call for each event (its action's
+        /// new values), in declaration order.
+        pub const EVENT_OPS: [#rt::OpCount; #len] = [#(#values),*];
     }
 }

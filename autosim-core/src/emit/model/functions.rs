@@ -71,8 +71,8 @@ pub(super) fn body(be: &BlockEmitter<'_>, kind: BlockKind) -> TokenStream {
         BlockKind::Constants => constants_new(be, block),
         BlockKind::Assembly => be.emit(block, true, Target::Array(&l.step)),
         BlockKind::Linearize => linearize_body(be, block),
-        BlockKind::EventIndicators | BlockKind::EventActions => {
-            be.emit(block, true, Target::Array(&l.y))
+        BlockKind::EventIndicators | BlockKind::EventAction(_) => {
+            be.emit_checked(block, true, Target::Array(&l.y))
         }
     }
 }
@@ -265,9 +265,8 @@ pub(super) fn ops_constant(kind: BlockKind) -> Option<(&'static str, &'static st
         BlockKind::Forcing => ("FORCING_OPS", "one `forcing` call"),
         BlockKind::Assembly => ("ASSEMBLY_OPS", "one `assembly_step` call"),
         BlockKind::Linearize => ("LINEARIZE_OPS", "one `linearize` call"),
-        BlockKind::Initial
-        | BlockKind::Common
-        | BlockKind::EventIndicators
-        | BlockKind::EventActions => return None,
+        BlockKind::EventIndicators => ("EVENT_INDICATOR_OPS", "one `event_indicators` call"),
+        // `EVENT_OPS` lists the actions' costs, one per event.
+        BlockKind::Initial | BlockKind::Common | BlockKind::EventAction(_) => return None,
     })
 }

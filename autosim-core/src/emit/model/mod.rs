@@ -396,6 +396,7 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
             let value = ops_tokens(rt, &functions::ops_per_call(prog, *kind, block));
             Some(quote!(#[doc = #d] pub const #name: #rt::OpCount = #value;))
         })
+        .chain([events::ops_constant(be)])
         .collect();
     let functions::Args { t: mt, x: mx } = functions::args(prog, BlockKind::MassMatrix, be.locals);
     let functions::Args { t: ft, x: fx } = functions::args(prog, BlockKind::Forcing, be.locals);

@@ -1,7 +1,8 @@
 //! Lowering the events: each indicator, and the new values of each
 //! event's actions, under the environment of the state alone (an event
-//! reads no solved value). Lowered after everything else, so a model
-//! without events numbers its IR as before.
+//! reads no solved value; it may call user functions, whose calls keep
+//! the model's order). Lowered after everything else, so a model without
+//! events numbers its IR as before.
 
 use super::Lowering;
 use super::context::UnboundSymbol;
@@ -24,11 +25,14 @@ pub enum Assigned {
 pub(crate) struct LoweredEvents {
     /// Each event's indicator.
     pub indicators: Vec<Nid>,
-    /// The new values of every event's actions, event after event.
-    pub actions: Vec<Nid>,
-    /// For each event, what each of its values (a slot of `actions`)
+    /// The new values of each event's actions.
+    pub actions: Vec<Vec<Nid>>,
+    /// For each event, what each of its values (a slot of its `actions`)
     /// assigns.
     pub assignments: Vec<Vec<(Assigned, usize)>>,
+    /// Every user-function call in the order the model makes them (the
+    /// events' calls among them).
+    pub call_order: Vec<Nid>,
 }
 
 /// Lowers every event (`None` without events).
@@ -41,21 +45,23 @@ pub(crate) fn lower(lw: &mut Lowering<'_>) -> Result<Option<LoweredEvents>, Prog
     let mut out = LoweredEvents::default();
     for (k, event) in given.declared.events.iter().enumerate() {
         out.indicators.push(reading(lw, event.indicator, k)?);
-        let mut assignments = Vec::new();
+        let (mut assignments, mut actions) = (Vec::new(), Vec::new());
         for &(d, value) in &event.sets {
-            assignments.push((Assigned::Discrete(d), out.actions.len()));
-            out.actions.push(reading(lw, value, k)?);
+            assignments.push((Assigned::Discrete(d), actions.len()));
+            actions.push(reading(lw, value, k)?);
         }
         for &(s, value) in &event.resets {
             let slot = resettable_slot(lw, s).ok_or_else(|| ProgramError::EventReset {
                 name: lw.name(s).to_string(),
                 item: ItemRef::Event(k),
             })?;
-            assignments.push((Assigned::State(slot), out.actions.len()));
-            out.actions.push(reading(lw, value, k)?);
+            assignments.push((Assigned::State(slot), actions.len()));
+            actions.push(reading(lw, value, k)?);
         }
+        out.actions.push(actions);
         out.assignments.push(assignments);
     }
+    out.call_order = lw.call_order();
     Ok(Some(out))
 }
 

@@ -25,7 +25,8 @@ pub struct UserCalls<'u> {
     pub subroutine: &'u mut dyn FnMut(usize, &[f64]) -> Vec<f64>,
 }
 
-/// Where a block is evaluated: the time, the state and the inputs.
+/// Where a block is evaluated: the time, the state, the inputs and the
+/// discrete variables.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct At<'x> {
     /// The time.
@@ -34,6 +35,9 @@ pub struct At<'x> {
     pub x: &'x [f64],
     /// The inputs (declaration order).
     pub inputs: &'x [f64],
+    /// The discrete variables (declaration order); those past its end (all
+    /// of them for an empty slice) at their initial values.
+    pub discrete: &'x [f64],
 }
 
 /// Runs a program's blocks with given parameter values.
@@ -163,9 +167,9 @@ impl<'a> Interpreter<'a> {
             hoisted: &self.prog.hoisted,
         };
         env.leaves.insert(Leaf::Time, at.t);
-        // Discrete variables at their initial values.
         for (i, d) in self.prog.interface.model.discrete.iter().enumerate() {
-            env.leaves.insert(Leaf::Discrete(i), d.default);
+            let value = at.discrete.get(i).copied().unwrap_or(d.default);
+            env.leaves.insert(Leaf::Discrete(i), value);
         }
         let values = [
             (&self.params[..], Leaf::Param as fn(usize) -> Leaf),

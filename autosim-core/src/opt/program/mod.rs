@@ -52,9 +52,9 @@ pub enum BlockKind {
     Common,
     /// The event indicators (models with events): slot `k` is event `k`'s.
     EventIndicators,
-    /// The new values of every event's actions (models with events), event
-    /// after event (`Program::event_assignments` says where each goes).
-    EventActions,
+    /// The new values of the actions of event `k` (models with events;
+    /// `Program::event_assignments[k]` says where each goes).
+    EventAction(usize),
 }
 
 impl BlockKind {
@@ -71,7 +71,7 @@ impl BlockKind {
             BlockKind::Linearize => "linearize",
             BlockKind::Common => "common",
             BlockKind::EventIndicators => "event_indicators",
-            BlockKind::EventActions => "event_actions",
+            BlockKind::EventAction(_) => "event_action",
         }
     }
 
@@ -105,7 +105,7 @@ pub struct Program {
     /// What the mass matrix block computes.
     pub mass_layout: MassLayout,
     /// For each event, what each value of its action assigns and its
-    /// slot in the event actions block (empty without events).
+    /// slot in the event's action block (empty without events).
     pub event_assignments: Vec<Vec<(Assigned, usize)>>,
 }
 
@@ -170,7 +170,7 @@ impl Program {
             BlockKind::Forcing => n,
             BlockKind::Assembly => 2 * self.interface.closures.len(),
             BlockKind::EventIndicators => self.interface.model.events.len(),
-            BlockKind::EventActions => self.event_assignments.iter().map(Vec::len).sum(),
+            BlockKind::EventAction(k) => self.event_assignments.get(k).map_or(0, Vec::len),
             BlockKind::Linearize => {
                 let nl = self.interface.linear_states.as_ref().map_or(0, Vec::len);
                 let (nw, ny) = (
@@ -377,10 +377,24 @@ fn schedule_blocks(
         schedule(&ir, &tasks, &all)
     });
 
-    let event_blocks = events.as_ref().map(|e| {
+    let event_blocks: Vec<(BlockKind, Block)> = events.as_ref().map_or(Vec::new(), |e| {
+        let in_order = Options {
+            call_order: &e.call_order,
+            ..all
+        };
         let g_tasks: Vec<Task> = stores(&e.indicators, 0).collect();
-        let a_tasks: Vec<Task> = stores(&e.actions, 0).collect();
-        [schedule(&ir, &g_tasks, &all), schedule(&ir, &a_tasks, &all)]
+        let mut blocks = vec![(
+            BlockKind::EventIndicators,
+            schedule(&ir, &g_tasks, &in_order),
+        )];
+        for (k, values) in e.actions.iter().enumerate() {
+            let a_tasks: Vec<Task> = stores(values, 0).collect();
+            blocks.push((
+                BlockKind::EventAction(k),
+                schedule(&ir, &a_tasks, &in_order),
+            ));
+        }
+        blocks
     });
 
     let (common, common_values) = shared.unzip();
@@ -389,7 +403,7 @@ fn schedule_blocks(
         .chain(common.as_ref())
         .chain(assembly.as_ref())
         .chain(linearize.as_ref())
-        .chain(event_blocks.iter().flatten())
+        .chain(event_blocks.iter().map(|(_, b)| b))
         .flat_map(|b| b.hoisted.iter().copied())
         .collect();
     hoisted.sort();
@@ -410,10 +424,7 @@ fn schedule_blocks(
     blocks.extend(assembly.map(|a| (BlockKind::Assembly, a)));
     blocks.extend(linearize.map(|l| (BlockKind::Linearize, l)));
     blocks.extend(common.map(|c| (BlockKind::Common, c)));
-    if let Some([indicators, actions]) = event_blocks {
-        blocks.push((BlockKind::EventIndicators, indicators));
-        blocks.push((BlockKind::EventActions, actions));
-    }
+    blocks.extend(event_blocks);
     Program {
         ir,
         blocks,

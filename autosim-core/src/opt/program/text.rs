@@ -6,14 +6,15 @@
 
 use crate::expr::Func;
 use crate::opt::ir::{Ir, Leaf, Nid, Op};
-use crate::opt::program::{BlockKind, MassLayout, Program};
+use crate::opt::program::{Assigned, BlockKind, MassLayout, Program};
 use crate::opt::schedule::{Guard, Stmt};
 use rustc_hash::FxHashMap;
 use std::fmt::{self, Write};
 
 impl Program {
     /// The name of slot `k` of a block of this kind, as the text form
-    /// prints it (`q1'`, `M[2,1]`, `f[1]`, an output's name, `p3`, ...).
+    /// prints it (`q1'`, `M[2,1]`, `f[1]`, an output's name, `p3`, an
+    /// event's indicator `g_bounce`, the new value `v⁺` of an action, ...).
     pub fn slot_name(&self, kind: BlockKind, k: usize) -> String {
         let n = self.n().max(1);
         match kind {
@@ -32,7 +33,7 @@ impl Program {
             BlockKind::Forcing => format!("{}[{}]", self.unused_name("f", "forcing"), k + 1),
             BlockKind::Linearize => self.linear_slot_name(k),
             BlockKind::EventIndicators => format!("g_{}", self.interface.model.events[k].name),
-            BlockKind::EventActions => format!("a{}", k + 1),
+            BlockKind::EventAction(e) => format!("{}⁺", self.assigned_name(e, k)),
             BlockKind::Assembly => {
                 let closures = &self.interface.closures;
                 match closures.get(k) {
@@ -43,6 +44,15 @@ impl Program {
                     }
                 }
             }
+        }
+    }
+
+    /// The name of the state or discrete variable that value `k` of event
+    /// `e`'s action assigns.
+    pub fn assigned_name(&self, e: usize, k: usize) -> &str {
+        match self.event_assignments[e][k].0 {
+            Assigned::State(s) => &self.states().state(s).name,
+            Assigned::Discrete(d) => &self.interface.model.discrete[d].name,
         }
     }
 

@@ -299,6 +299,27 @@ fn merge(mut a: Value, fields: Value) -> Value {
     a
 }
 
+/// The event checks of a bouncing ball (`check_events` in
+/// `tests/fmi/check_fmus.py`) dropped from rest at 1 m with restitution
+/// 0.8 under g = 9.81, run to 3 s; `model` adds what is the FMU's own (its
+/// variables' names, its event indicators, an impact counter, a terminal
+/// event).
+fn ball_events(model: Value) -> Value {
+    merge(
+        json!({
+            "g": 9.81, "restitution": 0.8, "h0": 1.0, "speed": "v",
+            "stop": 3.0, "interval": 0.01,
+            // CVode at rtol 1e-10 locating the zero crossings: impact
+            // times and the state after them to 1e-7.
+            "me_tolerance": 1e-10, "me_time_bound": 1e-7, "me_bound": 1e-7,
+            // Dormand–Prince at 1e-12 with the run driver's event location
+            // (to the rounding of the time on its interpolant).
+            "cs_tolerance": 1e-12, "cs_time_bound": 1e-9, "cs_bound": 1e-9,
+        }),
+        model,
+    )
+}
+
 /// The other models with user code, each built from its crate in
 /// `tests/fmi/user/<model>` (not yet `features`: its `ModelStructure`
 /// lists seven dependencies of `der(u5)` on the gyro's coordinates that
@@ -441,20 +462,20 @@ fn fmpy_validates_simulates_and_differentiates_every_exported_fmu() {
             json!({ "name": "Satellite", "invariant": [["camera_rate", "q8"]] }),
         ),
     ];
+    // The bouncing ball of `tests/fmi/ball_fmu` (its `RESTITUTION` and
+    // `STOP`, its impact counter), dropped from rest at 1 m (`ball.sim`).
     specs.push(json!({
         "name": "Ball",
-        // The bouncing ball of `tests/fmi/ball_fmu` (its `RESTITUTION` and
-        // `STOP`), dropped from rest at 1 m (`ball.sim`).
-        "events": {
-            "g": 9.81, "restitution": 0.8, "h0": 1.0, "stop_event": 2.505,
-            "indicators": 3, "stop": 3.0, "interval": 0.01,
-            // CVode at rtol 1e-10 locating the zero crossings: impact
-            // times and the state after them to 1e-7.
-            "me_tolerance": 1e-10, "me_time_bound": 1e-7, "me_bound": 1e-7,
-            // Dormand–Prince at 1e-12 with the run driver's event location
-            // (to the rounding of the time on its interpolant).
-            "cs_tolerance": 1e-12, "cs_time_bound": 1e-9, "cs_bound": 1e-9,
-        },
+        "events": ball_events(json!({
+            "height": "z", "counter": "bounces", "stop_event": 2.505, "indicators": 3,
+        })),
+    }));
+    // The language's bouncing ball (`examples/models/bouncing_ball.sim`,
+    // restitution 0.8 by default; `bounce` and `apex`, no terminal event;
+    // its resting mode only after 4 s).
+    specs.push(json!({
+        "name": "BouncingBall",
+        "events": ball_events(json!({ "height": "h", "indicators": 2 })),
     }));
     let with_reference: Vec<String> = specs
         .iter()

@@ -14,7 +14,7 @@
 //! | `satellite` | `satellite.sim`, Figure 8 commands, thrusters off | 15 s | max abs error of the bus attitude q4, q5, q6 at 15 s |
 //! | `satellite-small` | the same with `small = [B, E, F]` | 15 s | the same, against the **full** model's reference (model + integration error) |
 //! | `satellite-thrusters` | `satellite.sim` with the Figure 8 thrusters on | 15 s | the same, against RK4 at h = 10 µs |
-//! | `satellite-events` | `satellite.sim` with the thrusters as events (`common/slew_events.rs`) | 15 s | the same, against Dormand–Prince at 1e-12 |
+//! | `satellite-events` | `satellite_events.sim`: the thrusters as `discrete` modes and `event` items of the language | 15 s | the same, against Dormand–Prince at 1e-12 |
 //! | `chain-spatial-5` | `chain_spatial_5.sim`, released from q = (0.6, -0.5, 0.4, 0.7, -0.3) | 5 s | max abs error of q1..q5 at 5 s |
 //! | `chain-spatial-3-stiff` | `chain_spatial_3_stiff.sim` (k × 10⁴), released from q1 = 0.1 | 1 s | max abs error of q1..q3 at 1 s |
 //!
@@ -74,11 +74,6 @@ use std::time::Instant;
 #[path = "../common/figure8.rs"]
 mod figure8;
 use figure8::Figure8;
-// The thrusters as events (the paper's Figure 8 decisions at located
-// instants), shared with `tests/satellite_events.rs`.
-#[macro_use]
-#[path = "../common/slew_events.rs"]
-mod slew_events;
 
 mod method;
 mod report;
@@ -99,6 +94,11 @@ mod wp {
         SatelliteF32, float = f32;
         SatelliteSmall, small = [B, E, F];
         SatelliteSmallF32, small = [B, E, F], float = f32;
+    );
+    // The thrusters as events in the model language (the paper's Figure 8
+    // decisions at located instants); its only user code is CMD.
+    from_file!("examples/models/satellite_events.sim":
+        SatelliteEvents;
     );
     from_file!("examples/models/chain_spatial_5.sim":
         ChainSpatial5;
@@ -139,10 +139,15 @@ figure8_externs!(
     scene::rigid_boom => f64,
 );
 
-slew_events_externs!(wp::satellite);
+impl wp::satellite_events::Externs for Figure8 {
+    fn cmd(&mut self, t: f64) -> [f64; 2] {
+        Figure8::cmd(self, t)
+    }
+}
 
-/// The satellite with its thrusters switched by events.
-type SatEvents = slew_events::EventSlew<wp::satellite::Satellite<slew_events::Modes>>;
+/// The satellite with its thrusters switched by events (the language form;
+/// the user code gives the commands only).
+type SatEvents = wp::satellite_events::SatelliteEvents<Figure8>;
 /// The satellite with the Figure 8 user code, in `f64`.
 type Sat = wp::satellite::Satellite<Figure8>;
 /// The satellite in `f32`.

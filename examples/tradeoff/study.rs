@@ -9,7 +9,6 @@ use autosim::runtime::Model;
 use crate::figure8::Figure8;
 use crate::method::{Method, integrate, reference, short};
 use crate::report::{print_header, print_row};
-use crate::slew_events::{EventSlew, Modes};
 use crate::{Chain5, Chain5F32, Sat, SatEvents, SatF32, Small, SmallF32, Stiff, StiffF32};
 
 /// Runs costing more evaluations than this are skipped.
@@ -191,9 +190,10 @@ fn sat_x0() -> <Sat as Model>::State {
     Sat::new(Figure8::commands_only()).initial_state()
 }
 
-/// The satellite with its thrusters as events, all pairs off.
+/// The satellite with its thrusters as events, all pairs off (the
+/// discrete variables' initial values).
 fn sat_events() -> SatEvents {
-    EventSlew::new(crate::wp::satellite::Satellite::new(Modes::default()))
+    SatEvents::new(Figure8::commands_only())
 }
 
 /// The initial state of the small-variable satellite.
@@ -272,10 +272,11 @@ pub(crate) fn references() -> References {
             attitude_error,
         )
     };
+    let events_x0 = sat_events().initial_state();
     let events_ref = refs(
         "satellite-events",
-        reference(sat_events(), sat_x0, T_SAT, 1e-12),
-        reference(sat_events(), sat_x0, T_SAT, 1e-13),
+        reference(sat_events(), events_x0, T_SAT, 1e-12),
+        reference(sat_events(), events_x0, T_SAT, 1e-13),
         attitude_error,
     );
     let small_model_error = attitude_error(&small_ref, &sat_ref);
@@ -361,7 +362,12 @@ pub(crate) fn sweeps(refs: &References) -> Vec<Row> {
         None,
         attitude_error,
     );
-    sweep(&events, &sat_events, sat_x0, &mut rows);
+    sweep(
+        &events,
+        &sat_events,
+        sat_events().initial_state(),
+        &mut rows,
+    );
     // The chains are measured on their coordinates, each against its own
     // reference.
     let on_coordinates = |(name, t_end, steps, reference), float| {

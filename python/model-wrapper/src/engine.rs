@@ -5,7 +5,7 @@
 
 use crate::Generated;
 use crate::inputs::InputSource;
-use crate::simulate::{Request, Trajectory, simulate};
+use crate::simulate::{Failure, Request, Trajectory, simulate};
 use crate::study::{self, Outcome, Plan};
 use autosim_runtime::analysis::Trim;
 use autosim_runtime::study::Layout;
@@ -24,6 +24,8 @@ pub struct Sizes {
     pub outputs: usize,
     /// Parameters.
     pub parameters: usize,
+    /// Discrete variables.
+    pub discrete: usize,
 }
 
 /// Why a call on many states failed: the row and the model's error.
@@ -48,6 +50,9 @@ pub trait Engine: Send + Sync {
     fn set_inputs(&mut self, values: &[f64]);
     /// The model's default initial state.
     fn initial_state(&self) -> Vec<f64>;
+    /// The discrete variables' values (declaration order): their initial
+    /// values, which the equations read outside a simulation.
+    fn discrete(&self) -> Vec<f64>;
     /// `dx/dt` at `(t, x)` with the current inputs.
     fn derivatives(&mut self, t: f64, x: &[f64], dx: &mut [f64]) -> Result<(), ModelError>;
     /// Outputs at `(t, x)` with the current inputs.
@@ -86,7 +91,7 @@ pub trait Engine: Send + Sync {
         &mut self,
         request: &Request,
         inputs: Box<dyn InputSource>,
-    ) -> Result<Trajectory, String>;
+    ) -> Result<Trajectory, Failure>;
     /// Runs a study of copies of this model (its parameters and inputs as
     /// they are now).
     fn study(&self, plan: &Plan, request: study::Request<'_>) -> Result<Outcome, String>;
@@ -114,6 +119,7 @@ impl<M: Generated> Engine for Adapter<M> {
             inputs: M::INPUT_NAMES.len(),
             outputs: M::OUTPUT_NAMES.len(),
             parameters: M::PARAMETER_NAMES.len(),
+            discrete: M::DISCRETE_NAMES.len(),
         }
     }
 
@@ -147,6 +153,12 @@ impl<M: Generated> Engine for Adapter<M> {
 
     fn initial_state(&self) -> Vec<f64> {
         self.0.initial_state().as_ref().to_vec()
+    }
+
+    fn discrete(&self) -> Vec<f64> {
+        let mut v = vec![0.0; M::DISCRETE_NAMES.len()];
+        self.0.discrete_values(&mut v);
+        v
     }
 
     fn derivatives(&mut self, t: f64, x: &[f64], dx: &mut [f64]) -> Result<(), ModelError> {
@@ -241,7 +253,7 @@ impl<M: Generated> Engine for Adapter<M> {
         &mut self,
         request: &Request,
         inputs: Box<dyn InputSource>,
-    ) -> Result<Trajectory, String> {
+    ) -> Result<Trajectory, Failure> {
         simulate(&self.0, request, inputs)
     }
 

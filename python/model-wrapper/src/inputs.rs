@@ -1,9 +1,10 @@
 //! Inputs over time during a simulation: held, a table interpolated
 //! linearly in time, or a Python callable (in `native`), applied by
 //! [`Driven`], the model seen by the integrators, which sets the inputs at
-//! each evaluation's time.
+//! each evaluation's time (and forwards the model's events and discrete
+//! variables).
 
-use autosim_runtime::{Model, ModelError};
+use autosim_runtime::{EventIndicator, EventOutcome, Model, ModelError};
 
 /// Where a simulation's inputs come from.
 pub trait InputSource: Send {
@@ -116,6 +117,9 @@ impl<M: Model<Float = f64>> Model for Driven<M> {
     const INPUT_UNITS: &'static [&'static str] = M::INPUT_UNITS;
     const OUTPUT_NAMES: &'static [&'static str] = M::OUTPUT_NAMES;
     const OUTPUT_UNITS: &'static [&'static str] = M::OUTPUT_UNITS;
+    const EVENT_INDICATORS: &'static [EventIndicator] = M::EVENT_INDICATORS;
+    const DISCRETE_NAMES: &'static [&'static str] = M::DISCRETE_NAMES;
+    const DISCRETE_UNITS: &'static [&'static str] = M::DISCRETE_UNITS;
 
     fn derivatives(&mut self, t: f64, x: &M::State, dx: &mut M::State) -> Result<(), ModelError> {
         self.apply(t);
@@ -155,5 +159,28 @@ impl<M: Model<Float = f64>> Model for Driven<M> {
 
     fn initial_state(&self) -> M::State {
         self.model.initial_state()
+    }
+
+    fn event_indicators(&mut self, t: f64, x: &M::State, g: &mut [f64]) -> Result<(), ModelError> {
+        self.apply(t);
+        self.model.event_indicators(t, x, g)
+    }
+
+    fn event(
+        &mut self,
+        index: usize,
+        t: f64,
+        x: &mut M::State,
+    ) -> Result<EventOutcome, ModelError> {
+        self.apply(t);
+        self.model.event(index, t, x)
+    }
+
+    fn discrete_values(&self, values: &mut [f64]) {
+        self.model.discrete_values(values);
+    }
+
+    fn set_discrete_values(&mut self, values: &[f64]) {
+        self.model.set_discrete_values(values);
     }
 }

@@ -22,6 +22,7 @@ mod engine;
 mod inputs;
 mod native;
 mod simulate;
+mod simulate_args;
 pub mod study;
 mod study_args;
 

@@ -8,7 +8,8 @@
 use crate::Generated;
 use crate::engine::{Adapter, Engine, RowError, Sizes};
 use crate::inputs::{Held, InputSource, Table};
-use crate::simulate::{Request, Trajectory};
+use crate::simulate::{Failure, Request, Trajectory};
+use crate::simulate_args::{event_settings, failure_error, trajectory_dict};
 use crate::study::{self, Outcome};
 use crate::study_args::{plan, results_dict, summary_dict};
 use autosim_runtime::ModelError;
@@ -274,6 +275,11 @@ impl NativeModel {
         PyArray1::from_vec(py, self.engine.initial_state())
     }
 
+    /// The discrete variables' initial values (declaration order).
+    fn discrete<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        PyArray1::from_vec(py, self.engine.discrete())
+    }
+
     /// `dx/dt` at `(t, x)` with the current inputs.
     fn derivatives<'py>(
         &mut self,
@@ -457,10 +463,12 @@ impl NativeModel {
 
     /// Integrates from `x0` at `t0` to `t_end` with `method`, reporting at
     /// `times`; inputs held (`inputs=None`), from a table (`table=(t, u)`)
-    /// or from a callable. Returns a dict of arrays `t`, `x`, `y`, `u` and
-    /// counts `steps`, `rejected_steps`, `evaluations`. The GIL is
-    /// released (a callable takes it back at each call).
-    #[pyo3(signature = (method, t0, t_end, h, rtol, atol, times, x0, max_steps, table=None, function=None))]
+    /// or from a callable; the discrete variables starting at `discrete0`
+    /// (default: the model's), events located as `events` =
+    /// `(time_tolerance, interior_samples, zeno_events, zeno_interval)`
+    /// says. Returns the dict of `simulate_args::trajectory_dict`. The GIL
+    /// is released (a callable takes it back at each call).
+    #[pyo3(signature = (method, t0, t_end, h, rtol, atol, times, x0, max_steps, table=None, function=None, discrete0=None, events=(0.0, 4, 100, 0.0)))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
         &mut self,
@@ -476,9 +484,15 @@ impl NativeModel {
         max_steps: u64,
         table: Option<(PyReadonlyArray1<'_, f64>, PyReadonlyArray2<'_, f64>)>,
         function: Option<Py<PyAny>>,
+        discrete0: Option<PyReadonlyArray1<'_, f64>>,
+        events: (f64, u32, u32, f64),
     ) -> PyResult<Bound<'py, PyDict>> {
         let x0 = vector(&x0, self.sizes.states, "x0")?.into_owned();
         let times = vector(&times, times.len(), "t_eval")?.into_owned();
+        let discrete0 = match &discrete0 {
+            Some(d) => Some(vector(d, self.sizes.discrete, "discrete0")?.into_owned()),
+            None => None,
+        };
         let ni = self.sizes.inputs;
         let failure = Arc::new(Mutex::new(None));
         let source: Box<dyn InputSource> = match (table, function) {
@@ -504,26 +518,19 @@ impl NativeModel {
             times,
             x0,
             max_steps,
+            discrete0,
+            events: event_settings(events)?,
         };
         let engine = &mut self.engine;
         let result = py
             .detach(|| unpanicked(|| engine.simulate(&request, source)))
+            .map_err(Failure::Message)
             .and_then(|r| r);
         if let Some(e) = failure.lock().unwrap_or_else(|p| p.into_inner()).take() {
             return Err(e);
         }
-        let run: Trajectory = result.map_err(|e| simulation_error(py, e))?;
-        let n = run.t.len();
-        let recorded = if run.u.len() == n * ni { ni } else { 0 };
-        let out = PyDict::new(py);
-        out.set_item("t", PyArray1::from_vec(py, run.t))?;
-        out.set_item("x", rows(py, run.x, n, self.sizes.states)?)?;
-        out.set_item("y", rows(py, run.y, n, self.sizes.outputs)?)?;
-        out.set_item("u", rows(py, run.u, n, recorded)?)?;
-        out.set_item("steps", run.steps)?;
-        out.set_item("rejected_steps", run.rejected_steps)?;
-        out.set_item("evaluations", run.evaluations)?;
-        Ok(out)
+        let run: Trajectory = result.map_err(|e| failure_error(py, e))?;
+        trajectory_dict(py, run, &self.sizes)
     }
 
     /// A study's description, the output times of its runs and its

@@ -1,6 +1,8 @@
 //! One simulation: the integrator the caller names, the runtime's
-//! `run_at` driver reporting at the requested times, and the time history
-//! collected into flat vectors for NumPy.
+//! `run_at` driver reporting at the requested times (events located, as
+//! in every run of the runtime), and the time history — states, outputs,
+//! inputs, discrete variables and the events that fired — collected into
+//! flat vectors for NumPy.
 
 use crate::Generated;
 use crate::inputs::{Driven, InputSource};
@@ -8,7 +10,10 @@ use autosim_runtime::integrate::{
     AbmOrder, AdamsBashforthMoulton, DopriSettings, DormandPrince, Euler, Heun, Rk4, SdirkSettings,
     Stepper,
 };
-use autosim_runtime::{Model, Observer, RunSettings, StateArray, run_at};
+use autosim_runtime::run::EventSettings;
+use autosim_runtime::{
+    EventRecord, IntegrationError, Model, Observer, RunError, RunSettings, StateArray, run_at,
+};
 use core::convert::Infallible;
 
 /// The integrators, by the names Python uses.
@@ -34,6 +39,60 @@ pub struct Request {
     pub x0: Vec<f64>,
     /// Step limit.
     pub max_steps: u64,
+    /// Initial values of the discrete variables (`None`: the model's own).
+    pub discrete0: Option<Vec<f64>>,
+    /// How events are located and when chattering stops the run.
+    pub events: EventSettings<f64>,
+}
+
+/// Why a simulation failed.
+pub enum Failure {
+    /// The message (bad settings, an integration or model error).
+    Message(String),
+    /// Events chattered: the message, the last event's name, its time and
+    /// the events in the chain.
+    Zeno {
+        /// The runtime's message.
+        message: String,
+        /// The event that fired last.
+        event: &'static str,
+        /// Its time.
+        t: f64,
+        /// Events in the chain.
+        events: u32,
+    },
+}
+
+impl Failure {
+    /// The message.
+    pub fn message(&self) -> &str {
+        match self {
+            Failure::Message(m) | Failure::Zeno { message: m, .. } => m,
+        }
+    }
+}
+
+impl From<String> for Failure {
+    fn from(message: String) -> Self {
+        Failure::Message(message)
+    }
+}
+
+/// The events of a run, in the order they fired, row-major.
+#[derive(Default)]
+pub struct EventLog {
+    /// Their instants.
+    pub t: Vec<f64>,
+    /// Which indicator fired (index into the model's events).
+    pub index: Vec<usize>,
+    /// States before each action, one row per event.
+    pub x_before: Vec<f64>,
+    /// States after.
+    pub x_after: Vec<f64>,
+    /// Discrete variables before.
+    pub d_before: Vec<f64>,
+    /// Discrete variables after.
+    pub d_after: Vec<f64>,
 }
 
 /// A finished simulation, row-major.
@@ -47,6 +106,12 @@ pub struct Trajectory {
     pub y: Vec<f64>,
     /// Inputs, one row per time.
     pub u: Vec<f64>,
+    /// Discrete variables, one row per time.
+    pub d: Vec<f64>,
+    /// The events that fired.
+    pub events: EventLog,
+    /// The terminal event that stopped the run early, if one did.
+    pub terminal_event: Option<usize>,
     /// Accepted steps.
     pub steps: u64,
     /// Rejected trial steps.
@@ -67,6 +132,20 @@ impl<M: Model<Float = f64>> Observer<M> for Trajectory {
         self.u.extend_from_slice(inputs);
         Ok(())
     }
+    fn observe_discrete(&mut self, values: &[f64]) -> Result<(), Infallible> {
+        self.d.extend_from_slice(values);
+        Ok(())
+    }
+    fn observe_event(&mut self, event: &EventRecord<'_, M>) -> Result<(), Infallible> {
+        let log = &mut self.events;
+        log.t.push(event.t);
+        log.index.push(event.index);
+        log.x_before.extend_from_slice(event.before.as_ref());
+        log.x_after.extend_from_slice(event.after.as_ref());
+        log.d_before.extend_from_slice(event.discrete_before);
+        log.d_after.extend_from_slice(event.discrete_after);
+        Ok(())
+    }
 }
 
 /// Runs `model` (a copy: its inputs end where the source left them) as
@@ -74,14 +153,18 @@ impl<M: Model<Float = f64>> Observer<M> for Trajectory {
 ///
 /// # Errors
 /// The integration error's message (it names the time, and the state or
-/// speed at fault), or an unknown method.
+/// speed at fault), or an unknown method; chattering events as
+/// [`Failure::Zeno`].
 pub fn simulate<M: Generated>(
     model: &M,
     request: &Request,
     source: Box<dyn InputSource>,
-) -> Result<Trajectory, String> {
+) -> Result<Trajectory, Failure> {
     let mut stepper = stepper::<M>(request)?;
     let mut driven = Driven::new(model.clone(), source);
+    if let Some(d0) = &request.discrete0 {
+        driven.model.set_discrete_values(d0);
+    }
     let mut x = M::State::zeros();
     x.as_mut().copy_from_slice(&request.x0);
     let settings = RunSettings::new(
@@ -90,7 +173,8 @@ pub fn simulate<M: Generated>(
         request.h,
         request.t_end - request.t0,
     )
-    .with_max_steps(request.max_steps);
+    .with_max_steps(request.max_steps)
+    .with_events(request.events);
     let mut out = Trajectory::default();
     let summary = run_at(
         &mut driven,
@@ -100,14 +184,28 @@ pub fn simulate<M: Generated>(
         &request.times,
         &mut out,
     )
-    .map_err(|e| e.to_string())?;
+    .map_err(failure)?;
     if M::INPUT_NAMES.len() > autosim_runtime::run::MAX_RECORDED_INPUTS {
         out.u.clear();
     }
     out.steps = summary.steps;
     out.rejected_steps = summary.rejected_steps;
     out.evaluations = summary.evaluations;
+    out.terminal_event = summary.terminal_event;
     Ok(out)
+}
+
+fn failure(e: RunError<Infallible>) -> Failure {
+    let message = e.to_string();
+    match e {
+        RunError::Integration(IntegrationError::Zeno { t, name, events }) => Failure::Zeno {
+            message,
+            event: name,
+            t,
+            events,
+        },
+        _ => Failure::Message(message),
+    }
 }
 
 fn stepper<M: Generated>(request: &Request) -> Result<Box<dyn Stepper<Driven<M>>>, String> {

@@ -1,9 +1,10 @@
 //! A model's interface as JSON, the form the Python package (and a model's
 //! native module, which embeds it) reads: names, units, defaults and docs
 //! of parameters, inputs, states and outputs; the state layout; user code;
-//! constraints, motions and what assembly solves; the linear states.
+//! constraints, motions and what assembly solves; the linear states; the
+//! discrete variables and events.
 
-use autosim_core::mech::ConstraintKind;
+use autosim_core::mech::{ConstraintKind, EventDirection};
 use autosim_core::opt::{Interface, Quantity, StateVar};
 use serde_json::{Value, json};
 
@@ -49,6 +50,24 @@ pub fn to_json(interface: &Interface) -> String {
         .iter()
         .map(|m| json!({"name": m.name, "coordinate": m.coordinate, "doc": docs(&m.docs)}))
         .collect();
+    let events: Vec<Value> = interface
+        .model
+        .events
+        .iter()
+        .map(|e| {
+            json!({
+                "name": e.name,
+                "direction": match e.direction {
+                    EventDirection::Rising => "rising",
+                    EventDirection::Falling => "falling",
+                    EventDirection::Either => "either",
+                },
+                "stop": e.stop,
+                "unit": e.unit,
+                "doc": docs(&e.docs),
+            })
+        })
+        .collect();
     let value = json!({
         "name": interface.model.name,
         "doc": docs(&interface.model.docs),
@@ -62,6 +81,8 @@ pub fn to_json(interface: &Interface) -> String {
         "motions": motions,
         "dependent_coordinates": interface.closures.iter().map(|c| c.slot).collect::<Vec<_>>(),
         "linear_states": interface.linear_states,
+        "discrete": quantities(&interface.model.discrete),
+        "events": events,
         "cautions": interface.model.cautions,
     });
     value.to_string()

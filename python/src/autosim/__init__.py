@@ -20,12 +20,22 @@ from pathlib import Path
 from typing import Any
 
 from ._build import cache_dir, find_cargo
-from ._interface import Constraint, Interface, Quantity
+from ._interface import Constraint, Event, Interface, Quantity
 from ._linear import LinearModel
 from ._model import Model, TrimResult
-from ._simulation import METHODS, Simulation
-from ._study import STUDY_METHODS, Cases, Distribution, Keep, Study, StudyResults, StudySummary, normal, uniform
-from .errors import AutosimError, BuildError, CompileError, SimulationError
+from ._simulation import METHODS, EventLog, Simulation
+from ._study import (
+    STUDY_METHODS,
+    Cases,
+    Distribution,
+    Keep,
+    Study,
+    StudyResults,
+    StudySummary,
+    normal,
+    uniform,
+)
+from .errors import AutosimError, BuildError, CompileError, SimulationError, ZenoError
 
 __version__ = "0.1.0"
 
@@ -36,6 +46,8 @@ __all__ = [
     "CompileError",
     "Constraint",
     "Distribution",
+    "Event",
+    "EventLog",
     "Interface",
     "Keep",
     "LinearModel",
@@ -49,6 +61,7 @@ __all__ = [
     "StudyResults",
     "StudySummary",
     "TrimResult",
+    "ZenoError",
     "cache_dir",
     "find_cargo",
     "load",

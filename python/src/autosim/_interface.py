@@ -1,5 +1,6 @@
 """A model's interface as the compiler describes it (names, units, defaults
-and docs of its states, parameters, inputs and outputs; its constraints)."""
+and docs of its states, parameters, inputs, outputs and discrete variables;
+its constraints and events)."""
 
 from __future__ import annotations
 
@@ -17,18 +18,19 @@ class Quantity:
     name: str
     #: Unit text (empty when the model gives none).
     unit: str
-    #: Default value (parameters and inputs; 0 for states and outputs).
+    #: Default value (parameters and inputs), initial value (discrete
+    #: variables); 0 for states and outputs.
     default: float = 0.0
     #: The model's doc comment for it (empty when none).
     doc: str = ""
-    #: ``"parameter"``, ``"input"``, ``"output"``, or for states
-    #: ``"coordinate"``, ``"speed"`` or ``"extra"``.
+    #: ``"parameter"``, ``"input"``, ``"output"``, ``"discrete"``, or for
+    #: states ``"coordinate"``, ``"speed"`` or ``"extra"``.
     kind: str = ""
 
     def describe(self) -> str:
         """One line: name, unit, default and doc."""
         unit = f" [{self.unit}]" if self.unit else ""
-        default = f" = {self.default:g}" if self.kind in ("parameter", "input") else ""
+        default = f" = {self.default:g}" if self.kind in ("parameter", "input", "discrete") else ""
         doc = f"  {self.doc.splitlines()[0]}" if self.doc else ""
         return f"{self.name}{default}{unit}{doc}"
 
@@ -42,6 +44,26 @@ class Constraint:
     dependent_speed: str
     dependent_coordinate: str | None
     doc: str = ""
+
+
+@dataclass(frozen=True)
+class Event:
+    """An event of a model: its indicator's sign change in ``direction``
+    (``"rising"``, ``"falling"`` or ``"either"``) fires its actions."""
+
+    name: str
+    direction: str
+    #: The run ends at the event (a terminal event).
+    stop: bool
+    #: Unit of the indicator (empty when the model gives none).
+    unit: str = ""
+    doc: str = ""
+
+    def describe(self) -> str:
+        """One line: name, direction, whether it stops the run, and doc."""
+        stop = ", stops the run" if self.stop else ""
+        doc = f"  {self.doc.splitlines()[0]}" if self.doc else ""
+        return f"{self.name} ({self.direction}{stop}){doc}"
 
 
 @dataclass(frozen=True)
@@ -60,6 +82,8 @@ class Interface:
     dependent_coordinates: tuple[int, ...]
     linear_states: tuple[int, ...] | None
     cautions: tuple[str, ...]
+    discrete: tuple[Quantity, ...] = ()
+    events: tuple[Event, ...] = ()
 
     @staticmethod
     def from_json(text: str) -> Interface:
@@ -82,6 +106,10 @@ class Interface:
             )
             for c in data["constraints"]
         )
+        events = tuple(
+            Event(e["name"], e["direction"], bool(e["stop"]), e.get("unit", ""), e.get("doc", ""))
+            for e in data.get("events", [])
+        )
         linear = data.get("linear_states")
         return Interface(
             name=data["name"],
@@ -96,4 +124,6 @@ class Interface:
             dependent_coordinates=tuple(data.get("dependent_coordinates", [])),
             linear_states=None if linear is None else tuple(linear),
             cautions=tuple(data.get("cautions", [])),
+            discrete=quantities(data.get("discrete", []), "discrete"),
+            events=events,
         )

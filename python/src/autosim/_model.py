@@ -9,7 +9,7 @@ from typing import Any, Callable, NamedTuple, Union
 
 import numpy as np
 
-from ._interface import Interface, Quantity
+from ._interface import Event, Interface, Quantity
 from ._linear import LinearModel
 from ._simulation import Simulation, simulate
 from ._values import ArrayLike, NamedValues, as_vector, unknown_name
@@ -37,8 +37,10 @@ class Model:
     """A compiled autosim model (from :func:`autosim.load` or
     :func:`autosim.loads`).
 
-    States, parameters, inputs and outputs are named, with units
-    (:attr:`states`, :attr:`parameters`, :attr:`inputs`, :attr:`outputs`).
+    States, parameters, inputs, outputs and discrete variables are named,
+    with units (:attr:`states`, :attr:`parameters`, :attr:`inputs`,
+    :attr:`outputs_info`, :attr:`discrete`); :attr:`events` lists the
+    model's events.
     Every method takes NumPy arrays (or sequences) of float64; states are
     ordered as :attr:`state_names` says: the generalized coordinates, then
     the independent speeds, then the model's extra states.
@@ -148,6 +150,47 @@ class Model:
     def n_speeds(self) -> int:
         """Number of independent generalized speeds (the mass matrix's size)."""
         return self.interface.n_speeds
+
+    @property
+    def discrete(self) -> tuple[Quantity, ...]:
+        """The discrete variables (name, unit, initial value as ``default``,
+        doc), in declaration order: the modes event actions set."""
+        return self.interface.discrete
+
+    @property
+    def discrete_names(self) -> tuple[str, ...]:
+        """Names of the discrete variables, in declaration order."""
+        return tuple(d.name for d in self.interface.discrete)
+
+    @property
+    def discrete_units(self) -> tuple[str, ...]:
+        """Units of the discrete variables."""
+        return tuple(d.unit for d in self.interface.discrete)
+
+    @property
+    def events(self) -> tuple[Event, ...]:
+        """The events (name, direction, whether they stop the run, doc), in
+        declaration order."""
+        return self.interface.events
+
+    def initial_discrete(self) -> np.ndarray:
+        """The discrete variables' initial values written in the model (what
+        :meth:`derivatives` and :meth:`outputs` read, and where
+        :meth:`simulate` starts them unless told otherwise)."""
+        return np.array(self._native.discrete())
+
+    def discrete_vector(self, values: Mapping[str, float] | ArrayLike) -> np.ndarray:
+        """A vector of discrete values: a mapping by name (the others at
+        their initial values) or a vector in declaration order."""
+        if isinstance(values, Mapping):
+            d = self.initial_discrete()
+            names = self.discrete_names
+            for name, value in values.items():
+                if name not in names:
+                    raise unknown_name("discrete variable", name, names)
+                d[names.index(name)] = float(value)
+            return d
+        return as_vector(values, len(self.interface.discrete), "discrete0")
 
     def state_index(self, name: str) -> int:
         """Position of state ``name`` in the state vector."""
@@ -366,6 +409,11 @@ class Model:
         t_eval: ArrayLike | None = None,
         inputs: Inputs = None,
         max_steps: int = 10_000_000,
+        discrete0: Mapping[str, float] | ArrayLike | None = None,
+        event_tolerance: float = 0.0,
+        event_samples: int = 4,
+        zeno_events: int = 100,
+        zeno_interval: float = 0.0,
     ) -> Simulation:
         """Integrates from ``x0`` (default: the initial state) at ``t0`` to
         ``t_end`` with the Rust integrators, the GIL released.
@@ -386,10 +434,33 @@ class Model:
         at every integrator stage). Models with position constraints are
         assembled first and projected after every step.
 
+        Events (models with ``event`` items) are located in every method, as
+        the Rust run driver does: after each step the indicators are
+        sampled on the step's interpolant (``event_samples`` interior
+        points and the end), a crossing is located to ``event_tolerance``
+        seconds (0: to the rounding of the time), the state moves there,
+        the action runs and the integrator restarts. ``discrete0`` (a
+        mapping by name or a vector) sets the discrete variables' initial
+        values (default: the model's). The result lists the events
+        (:attr:`Simulation.events`), the discrete variables at the output
+        times, and the terminal event that ended the run
+        (:attr:`Simulation.stopped_by`; the last output is at its instant).
+        More than ``zeno_events`` events in a chain, each within
+        ``zeno_interval`` seconds of the one before (0: a thousandth of the
+        run), raise :class:`autosim.errors.ZenoError` naming the event.
+
         Raises :class:`autosim.errors.SimulationError` when the model or the
         integrator fails (the message names the time and the state).
         """
-        return simulate(self, t_end, x0, t0, method, rtol, atol, h, t_eval, inputs, max_steps)
+        for name, value in (("event_tolerance", event_tolerance), ("zeno_interval", zeno_interval)):
+            if not (value >= 0 and np.isfinite(value)):
+                raise ValueError(f"{name} must be finite and not negative, not {value}")
+        if not 0 <= event_samples <= 1000 or zeno_events < 1:
+            raise ValueError("event_samples must be in 0..=1000 and zeno_events at least 1")
+        events = (float(event_tolerance), int(event_samples), int(zeno_events), float(zeno_interval))
+        return simulate(
+            self, t_end, x0, t0, method, rtol, atol, h, t_eval, inputs, max_steps, discrete0, events
+        )
 
     def study(self, cases: Any, keep: Any, t_end: float, **settings: Any) -> Any:
         """A :class:`autosim.Study` of this model (its parameters and inputs
@@ -436,15 +507,18 @@ def _rebuild(
 
 def _model_doc(interface: Interface) -> str:
     """The docstring ``help(model)`` shows: the model's docs and its states,
-    parameters, inputs and outputs with units."""
+    parameters, inputs, outputs and discrete variables with units, and its
+    events."""
     lines = [f"autosim model {interface.name}."]
     if interface.doc:
         lines += ["", interface.doc]
-    sections = [
+    sections: list[tuple[str, Sequence[Quantity | Event]]] = [
         ("States", interface.states),
         ("Parameters", interface.parameters),
         ("Inputs", interface.inputs),
         ("Outputs", interface.outputs),
+        ("Discrete variables", interface.discrete),
+        ("Events", interface.events),
     ]
     for title, items in sections:
         if items:

@@ -1,5 +1,6 @@
-"""Simulation results: the time history as NumPy arrays with names, and a
-pandas DataFrame when pandas is installed."""
+"""Simulation results: the time history as NumPy arrays with names (states,
+outputs, inputs, discrete variables), the events that fired, and a pandas
+DataFrame when pandas is installed."""
 
 from __future__ import annotations
 
@@ -18,11 +19,42 @@ METHODS = ("dopri", "rk4", "sdirk3", "abm4", "abm2", "heun", "euler")
 
 
 @dataclass(frozen=True)
+class EventLog:
+    """The events of one run in the order they fired: ``t`` (k,), ``name``
+    (k names), the state just before and just after each event's action
+    (``x_before``, ``x_after``, (k, n_states)) and the discrete variables
+    (``d_before``, ``d_after``, (k, n_discrete))."""
+
+    t: np.ndarray
+    name: tuple[str, ...]
+    x_before: np.ndarray
+    x_after: np.ndarray
+    d_before: np.ndarray
+    d_after: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.name)
+
+    def only(self, name: str) -> EventLog:
+        """The events named ``name`` (in the order they fired)."""
+        keep = np.array([n == name for n in self.name], dtype=bool).reshape(-1)
+        return EventLog(
+            self.t[keep],
+            tuple(n for n in self.name if n == name),
+            self.x_before[keep],
+            self.x_after[keep],
+            self.d_before[keep],
+            self.d_after[keep],
+        )
+
+
+@dataclass(frozen=True)
 class Simulation:
     """The time history of one run: ``t`` (n,), states ``x`` (n, n_states),
-    outputs ``y`` (n, n_outputs) and inputs ``u`` (n, n_inputs), plus the
-    integrator's counts. ``sim["name"]`` is the column of a state, output or
-    input by name."""
+    outputs ``y`` (n, n_outputs), inputs ``u`` (n, n_inputs) and discrete
+    variables ``d`` (n, n_discrete), the events that fired (:attr:`events`)
+    and the integrator's counts. ``sim["name"]`` is the column of a state,
+    output, input or discrete variable by name."""
 
     t: np.ndarray
     x: np.ndarray
@@ -38,16 +70,28 @@ class Simulation:
     rejected_steps: int
     #: Derivative evaluations.
     evaluations: int
+    #: Discrete variables at the output times (n, n_discrete).
+    d: np.ndarray
+    discrete_names: tuple[str, ...]
+    #: The events that fired, in order.
+    events: EventLog
+    #: The terminal event that ended the run before ``t_end`` (its name),
+    #: or ``None``; the last output is then at its instant.
+    stopped_by: str | None = None
 
-    def __getitem__(self, name: str) -> np.ndarray:
-        for names, values in (
+    def _columns(self) -> tuple[tuple[tuple[str, ...], np.ndarray], ...]:
+        return (
             (self.state_names, self.x),
             (self.output_names, self.y),
             (self.input_names, self.u),
-        ):
+            (self.discrete_names, self.d),
+        )
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        for names, values in self._columns():
             if name in names:
                 return values[:, names.index(name)]
-        known = list(self.state_names + self.output_names + self.input_names)
+        known = list(self.state_names + self.output_names + self.input_names + self.discrete_names)
         from ._values import unknown_name
 
         raise unknown_name("column", name, known)
@@ -59,17 +103,13 @@ class Simulation:
 
     def to_pandas(self) -> Any:
         """A pandas DataFrame indexed by time ``t`` with a column per state,
-        output and input (needs pandas)."""
+        output, input and discrete variable (needs pandas)."""
         try:
             import pandas as pd
         except ImportError:
             raise ImportError("to_pandas needs pandas: pip install pandas") from None
         columns: dict[str, np.ndarray] = {}
-        for names, values in (
-            (self.state_names, self.x),
-            (self.output_names, self.y),
-            (self.input_names, self.u),
-        ):
+        for names, values in self._columns():
             for k, n in enumerate(names):
                 columns.setdefault(n, values[:, k])
         return pd.DataFrame(columns, index=pd.Index(self.t, name="t"))
@@ -98,6 +138,8 @@ def simulate(
     t_eval: Any,
     inputs: Inputs,
     max_steps: int,
+    discrete0: Any = None,
+    events: tuple[float, int, int, float] = (0.0, 4, 100, 0.0),
 ) -> Simulation:
     """:meth:`Model.simulate` (see there)."""
     if method not in METHODS:
@@ -115,6 +157,7 @@ def simulate(
         bad = [n for n, v in zip(model.state_names, xv) if not np.isfinite(v)]
         raise ValueError(f"x0 is not finite in {', '.join(bad)}")
     times = _output_times(t0, t_end, t_eval)
+    d0 = None if discrete0 is None else model.discrete_vector(discrete0)
     table = None
     function = None
     native = model._native
@@ -131,7 +174,19 @@ def simulate(
         model.set_inputs(inputs if isinstance(inputs, Mapping) else np.atleast_1d(inputs))
     try:
         run = native.simulate(
-            method, t0, t_end, step, float(rtol), float(atol), times, xv, int(max_steps), table, function
+            method,
+            t0,
+            t_end,
+            step,
+            float(rtol),
+            float(atol),
+            times,
+            xv,
+            int(max_steps),
+            table,
+            function,
+            d0,
+            events,
         )
     finally:
         if inputs is not None:
@@ -151,4 +206,13 @@ def simulate(
         steps=int(run["steps"]),
         rejected_steps=int(run["rejected_steps"]),
         evaluations=int(run["evaluations"]),
+        d=run["d"],
+        discrete_names=model.discrete_names,
+        events=_event_log(run["events"], model),
+        stopped_by=None if run["terminal_event"] is None else model.events[run["terminal_event"]].name,
     )
+
+
+def _event_log(log: Mapping[str, Any], model: Model) -> EventLog:
+    names = tuple(model.events[k].name for k in log["index"])
+    return EventLog(log["t"], names, log["x_before"], log["x_after"], log["d_before"], log["d_after"])

@@ -32,3 +32,21 @@ class SimulationError(AutosimError, RuntimeError):
     or constraint matrix (naming the speed or constraint), a non-finite
     state (naming it and the time), a step-size underflow, failed assembly.
     """
+
+
+class ZenoError(SimulationError):
+    """Events chattered (Zeno behaviour): more than ``zeno_events`` events
+    followed each other, each within ``zeno_interval`` of the one before,
+    as a bouncing ball without a minimum rebound speed does before it
+    comes to rest. Fix the model (e.g. a mode that ends the bouncing below
+    a minimum rebound speed) or, if the events are real, raise
+    ``zeno_events`` in :meth:`autosim.Model.simulate`."""
+
+    def __init__(self, message: str, event: str, t: float, events: int) -> None:
+        super().__init__(message)
+        #: The name of the event that fired last.
+        self.event = event
+        #: Its time.
+        self.t = t
+        #: Events in the chain.
+        self.events = events

@@ -4,7 +4,8 @@
 //! its directional derivatives compared with central finite differences,
 //! its `ModelStructure` with the dependencies found numerically; for the
 //! reference models (satellite with user code, a chain, the four-bar, the
-//! quarter car with its road input) both runs are compared with autosim's
+//! quarter car with its road input, the model of every language feature
+//! with its user code and an input) both runs are compared with autosim's
 //! own run; and on the quarter car two interleaved instances, forbidden
 //! call sequences and serialized FMU states (`tests/fmi/check_fmus.py`).
 //!
@@ -15,6 +16,7 @@
 
 use autosim::runtime::integrate::DormandPrince;
 use autosim::runtime::{Model, ModelError, Stepper};
+use autosim_test_support::features_user;
 use autosim_test_support::python::{python_env, skip, target_dir, workspace_root};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -57,6 +59,22 @@ autosim::model!(file = "examples/models/chain_spatial_3.sim");
 autosim::model!(file = "examples/models/satellite.sim");
 #[path = "../examples/fmu_satellite/src/control.rs"]
 mod control;
+// The model of every language feature with the user code of its FMU's
+// crate (`tests/fmi/user/features`).
+autosim::model!(file = "examples/models/features.sim");
+
+/// `features.sim`'s user code as the tests run it.
+struct FeaturesUser;
+
+impl features::Externs for FeaturesUser {
+    fn friction(&mut self, speed: f64, normal: f64) -> f64 {
+        features_user::friction(speed, normal)
+    }
+
+    fn sensor(&mut self, t: f64, x: f64) -> [f64; 2] {
+        features_user::sensor(t, x)
+    }
+}
 
 /// A model whose inputs are piecewise constant in time: the value of
 /// `input` at `held`, the start of the current step.
@@ -182,7 +200,21 @@ const CURB: f64 = 0.205;
 const ROAD: [(f64, f64); 4] = [(0.0, 0.0), (CURB, 0.0), (CURB, 0.05), (1.0, 0.05)];
 
 fn road(t: f64) -> Vec<f64> {
-    vec![if t < CURB { 0.0 } else { 0.05 }]
+    vec![step(t, CURB, 0.05)]
+}
+
+/// The features model's actuator command: 5 N from 0.305 s (between
+/// output times, for the same reason as the road's step).
+const PUSH_AT: f64 = 0.305;
+const PUSH: [(f64, f64); 4] = [(0.0, 0.0), (PUSH_AT, 0.0), (PUSH_AT, 5.0), (1.0, 5.0)];
+
+fn push(t: f64) -> Vec<f64> {
+    vec![step(t, PUSH_AT, 5.0)]
+}
+
+/// 0 before `at`, `height` from `at` on.
+fn step(t: f64, at: f64, height: f64) -> f64 {
+    if t < at { 0.0 } else { height }
 }
 
 fn no_input(_: f64) -> Vec<f64> {
@@ -291,6 +323,32 @@ fn invariant(model: &str) -> Value {
     }
 }
 
+/// The features model's gyro (`Gyro`, inertia diag(0.1, 0.2, 0.3), its
+/// mass centre at its fixed point) carries a massless hinge turning freely
+/// about the gyro's axis 2: nothing exerts a moment about that axis on the
+/// gyro, so Euler's equation for it is the torque-free one,
+/// `I2 der(u5) = (I3 - I1) u4 u6`, whatever the hinge's and arm's angles
+/// and rates. The equations read the gyro's and the arm's coordinates
+/// (the coupled mass matrix and forcing the accelerations are solved
+/// from), the value does not: [`gyro_spin_identity`] checks the identity
+/// itself at random states.
+fn gyro_spin_invariant() -> Value {
+    json!(["q5", "q6", "q7", "q8", "u5", "u7", "u8"].map(|k| ["der(u5)", k]))
+}
+
+/// `der(u5) = (I3 - I1)/I2 u4 u6` (see [`gyro_spin_invariant`]), checked
+/// with the bead's small variables small (the model keeps their first
+/// order only: the spring's length, 0.7 - 0.8 s m at theta = 0, reaches
+/// zero at s = 0.875 and its direction divides by it).
+fn gyro_spin_identity() -> Value {
+    json!({
+        "unknown": "der(u5)",
+        "coefficient": (0.3 - 0.1) / 0.2,
+        "factors": ["u4", "u6"],
+        "small": ["s", "sdot"],
+    })
+}
+
 /// Adds `fields` to a JSON object.
 fn merge(mut a: Value, fields: Value) -> Value {
     if let (Some(a), Value::Object(b)) = (a.as_object_mut(), fields) {
@@ -321,11 +379,8 @@ fn ball_events(model: Value) -> Value {
 }
 
 /// The other models with user code, each built from its crate in
-/// `tests/fmi/user/<model>` (not yet `features`: its `ModelStructure`
-/// lists seven dependencies of `der(u5)` on the gyro's coordinates that
-/// the numerical check finds zero, and a model with user code has no
-/// exact derivatives to show that they cancel).
-const USER_CODE: [&str; 2] = ["satellite_sampled", "satellite_small"];
+/// `tests/fmi/user/<model>`.
+const USER_CODE: [&str; 3] = ["features", "satellite_sampled", "satellite_small"];
 
 /// The largest models, whose libraries are built at `opt-level` 0 here:
 /// the same numbers as a release build (no optimization level changes a
@@ -402,6 +457,11 @@ fn fmpy_validates_simulates_and_differentiates_every_exported_fmu() {
     let quarter_names = ["zu", "zs", "vu", "vs", "deflection", "body_acceleration"];
     let four_names = ["q1", "u1", "q2", "q3", "energy", "loop_n2", "loop_n3"];
     let chain_names = chain_spatial3::ChainSpatial3::STATE_NAMES;
+    let features_names: Vec<&str> = features::Features::<FeaturesUser>::STATE_NAMES
+        .iter()
+        .chain(features::Features::<FeaturesUser>::OUTPUT_NAMES)
+        .copied()
+        .collect();
     let sat_names = [
         "roll",
         "pitch",
@@ -460,6 +520,21 @@ fn fmpy_validates_simulates_and_differentiates_every_exported_fmu() {
             // components in D's axes do) but a rotation keeps a vector's
             // length: numerically it does not depend on q8.
             json!({ "name": "Satellite", "invariant": [["camera_rate", "q8"]] }),
+        ),
+        merge(
+            references(
+                features::Features::new(FeaturesUser),
+                &features_names,
+                1.0,
+                &[("u4", 1.0), ("u6", -2.0), ("u8", 0.5)],
+                (&push, &[PUSH_AT]),
+            ),
+            json!({
+                "name": "Features",
+                "input": { "time": PUSH.map(|r| r.0), "push": PUSH.map(|r| r.1) },
+                "invariant": gyro_spin_invariant(),
+                "identities": [gyro_spin_identity()],
+            }),
         ),
     ];
     // The bouncing ball of `tests/fmi/ball_fmu` (its `RESTITUTION` and

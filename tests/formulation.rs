@@ -9,7 +9,7 @@
 //! accelerations instead (chain-spatial-20, at the end).
 
 use autosim::runtime::Model;
-use autosim_test_support::{Rng, floats, load, rel_err, worst_of};
+use autosim_test_support::{Rng, features_user, floats, load, rel_err, worst_of};
 
 macro_rules! both {
     ($module:ident, $file:literal) => {
@@ -70,10 +70,10 @@ user!(satellite_sampled::matrix::Externs, satellite_sampled::recursive::Externs 
 });
 user!(features::matrix::Externs, features::recursive::Externs => {
     fn friction(&mut self, speed: f64, normal: f64) -> f64 {
-        -0.1 * speed * normal.abs()
+        features_user::friction(speed, normal)
     }
     fn sensor(&mut self, t: f64, x: f64) -> [f64; 2] {
-        [x + 0.01 * t, 0.5 * x]
+        features_user::sensor(t, x)
     }
 });
 

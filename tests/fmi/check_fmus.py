@@ -11,7 +11,12 @@ manifest:
 - the directional derivatives equal central finite differences through
   FMPy's low-level `FMU2Model` calls;
 - the `ModelStructure` dependencies of derivatives and outputs equal the
-  ones found numerically (perturbing each state and input);
+  ones found numerically (perturbing each state and input), except the
+  manifest's `invariant` pairs, read by the equations but cancelled by
+  the mathematics (the manifest's `identities` check the formula that
+  shows it where there is one);
+- an FMU that declares no directional derivatives answers
+  `fmi2GetDirectionalDerivative` with fmi2Error;
 
 and, once, for the FMU named `sequence_checks`: two instances interleaved
 with different parameters give their separate answers, a call the
@@ -247,6 +252,8 @@ def check_jacobian(name: str, fmu: str, unzipdir: str, spec: dict[str, Any]) -> 
            f"{int(declared.sum())} dependencies of {declared.size} pairs"
            + (f", {len(allowed)} declared and invariant {allowed}" if allowed else "")
            + (f"; differ at {wrong}" if wrong else ""))
+    for identity in spec.get("identities", []):
+        check_identity(name, m, identity)
     if m.md.modelExchange.providesDirectionalDerivative:
         dd = np.zeros_like(fd)
         unknown_refs = [v.valueReference for v in unknown_vars]
@@ -255,9 +262,37 @@ def check_jacobian(name: str, fmu: str, unzipdir: str, spec: dict[str, Any]) -> 
         err = float(np.max(np.abs(dd - fd) / (1.0 + np.abs(fd)))) if fd.size else 0.0
         report(name, "directional derivative vs FD", err <= 1e-7,
                f"max error {err:.2e} over {fd.size} entries, bound 1e-7")
+        m.free()
     else:
-        report(name, "directional derivative", True, "not provided (declared false)")
-    m.free()
+        refs = [unknown_vars[0].valueReference], [knowns[0][0].valueReference]
+        got = expect_error(m.fmu.getDirectionalDerivative, *refs, [1.0])
+        report(name, "directional derivative", got == "error",
+               f"declared false; fmi2GetDirectionalDerivative answers {got}")
+        # The error leaves the instance in the Error state, which only
+        # fmi2Reset and fmi2FreeInstance may leave.
+        m.fmu.freeInstance()
+
+
+def check_identity(name: str, m: Model, identity: dict[str, Any]) -> None:
+    """An unknown equal to a coefficient times a product of states, the
+    reason a declared dependency does not move (the manifest's
+    `invariant`): checked at 200 random states, entries uniform in [-2, 2]
+    (the model's small variables, `small`, in [-2e-3, 2e-3]), random
+    inputs."""
+    rng = np.random.default_rng(11)
+    state = {v.name: k for k, v in enumerate(m.states)}
+    row = [v.name for v in m.derivs + m.outputs].index(identity["unknown"])
+    scale = np.array([1e-3 if v.name in identity.get("small", []) else 1.0 for v in m.states])
+    worst = 0.0
+    for _ in range(200):
+        x = scale * rng.uniform(-2.0, 2.0, m.nx)
+        w = rng.uniform(-1.0, 1.0, len(m.inputs))
+        want = identity["coefficient"] * np.prod([x[state[f]] for f in identity["factors"]])
+        got = m.unknowns(x, w)[row]
+        worst = max(worst, abs(got - want) / (1.0 + abs(want)))
+    formula = f"{identity['coefficient']:g} " + " ".join(identity["factors"])
+    report(name, f"{identity['unknown']} = {formula}", worst <= 1e-12,
+           f"max error {worst:.1e} at 200 random states, bound 1e-12")
 
 
 def pointer(a: np.ndarray):

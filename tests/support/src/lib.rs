@@ -14,10 +14,13 @@
 //! - [`alloc_count`]: a global allocator that counts allocations per
 //!   thread, for the tests that prove code does not allocate;
 //! - [`python`]: the one Python virtual environment of the tests that run
-//!   Python (`SKIPPED: ...` when it cannot be had).
+//!   Python (`SKIPPED: ...` when it cannot be had);
+//! - [`features_user`]: the user code `examples/models/features.sim` is
+//!   tested with.
 
 pub mod alloc_count;
 pub mod api;
+pub mod features_user;
 pub mod python;
 pub mod quaternion;
 pub mod reference;

@@ -5,6 +5,7 @@ use std::prelude::rust_2024::*;
 
 /// `name [unit]`, or the bare name when it has no unit (a column or an
 /// axis of a dimensionless quantity is not headed `h []`).
+#[cfg(any(feature = "csv", feature = "plot"))]
 pub(crate) fn labelled(name: &str, unit: &str) -> String {
     match unit.trim() {
         "" => name.to_string(),

@@ -19,7 +19,7 @@ use crate::opt::lower::events::{self, LoweredEvents};
 use crate::opt::lower::{Given, Lowering, constrained, tree_model};
 use crate::opt::schedule::naming::Naming;
 use crate::opt::schedule::{Block, Guard, Options, Task, common, cost, schedule};
-use crate::opt::solve::Solver;
+use crate::opt::solve::{Solver, ldlt_order, ldlt_varying_products};
 use crate::opt::split::Split;
 use rustc_hash::{FxHashMap, FxHashSet};
 
@@ -204,15 +204,40 @@ pub fn build(mut input: Input) -> Result<Program, ProgramError> {
             build_route(&mut input, &split, Route::MassMatrix)
         }
         Formulation::Auto => {
-            let matrix = build_route(&mut input, &split, Route::MassMatrix)?;
-            let recursive = build_route(&mut input, &split, Route::Recursive)?;
+            let (recursive, matrix_bound) = build_recursive(&mut input, &split)?;
             let cost = |p: &Program| cost::estimated_cycles(&p.ir, p.block(BlockKind::Derivatives));
-            Ok(match cost(&recursive) < cost(&matrix) {
+            let recursive_cost = cost(&recursive);
+            if matrix_bound > MATRIX_BOUND_MARGIN * recursive_cost {
+                return Ok(recursive);
+            }
+            let matrix = build_route(&mut input, &split, Route::MassMatrix)?;
+            Ok(match recursive_cost < cost(&matrix) {
                 true => recursive,
                 false => matrix,
             })
         }
     }
+}
+
+/// How far a lower bound on the mass matrix's cost must exceed the
+/// recursion's whole cost for `auto` to take the recursion without
+/// building the mass matrix's route: the bound counts products that are
+/// distinct operations unless two entries of the factor coincide as
+/// expressions; the margin keeps the choice certain even if half of them
+/// did.
+const MATRIX_BOUND_MARGIN: usize = 2;
+
+/// The recursive route's program, with a lower bound on the estimated
+/// cycles of the mass matrix route's `derivatives`
+/// (`ldlt_varying_products` of its factorization, from the mass matrix
+/// this route lowers too).
+fn build_recursive(input: &mut Input, split: &Split) -> Result<(Program, usize), ProgramError> {
+    let mut bound = 0;
+    let program = build_route_with(input, split, Route::Recursive, |ir, lowered| {
+        let perm = ldlt_order(lowered.mass.len());
+        bound = ldlt_varying_products(ir, &lowered.mass, &perm);
+    })?;
+    Ok((program, bound))
 }
 
 /// How the program solves for the accelerations.
@@ -228,6 +253,17 @@ enum Route {
 
 /// The program of one route.
 fn build_route(input: &mut Input, split: &Split, route: Route) -> Result<Program, ProgramError> {
+    build_route_with(input, split, route, |_, _| {})
+}
+
+/// The program of one route, showing `inspect` what was lowered before it
+/// is scheduled.
+fn build_route_with(
+    input: &mut Input,
+    split: &Split,
+    route: Route,
+    inspect: impl FnOnce(&Ir, &Lowered),
+) -> Result<Program, ProgramError> {
     let interface = Interface::new(input, split);
     let given = Given {
         eqs: &input.equations,
@@ -241,6 +277,7 @@ fn build_route(input: &mut Input, split: &Split, route: Route) -> Result<Program
     };
     let events = events::lower(&mut lw)?;
     let mut ir = lw.into_ir();
+    inspect(&ir, &lowered);
     let linear = input
         .options
         .linearize

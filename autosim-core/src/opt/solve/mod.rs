@@ -8,6 +8,9 @@
 pub(super) mod articulated;
 pub(super) mod axis_rotation;
 pub(super) mod elim;
+mod pattern;
+
+pub use pattern::ldlt_varying_products;
 
 use crate::opt::ir::{Ir, Nid};
 use crate::opt::solve::articulated::{Articulated, TreeBody};
@@ -107,30 +110,23 @@ impl Factor {
     }
 }
 
+/// The order `ldlt_solve` eliminates `n` speeds in: the reverse of the
+/// speed order (leaves first).
+pub fn ldlt_order(n: usize) -> Vec<usize> {
+    (0..n).rev().collect()
+}
+
 /// Factors `m` (lower triangle used; `None` = structurally zero) and solves
 /// for `f`.
 pub fn ldlt_solve(ir: &mut Ir, m: &[Vec<Option<Nid>>], f: &[Nid]) -> Solve {
     let n = f.len();
-    // Elimination order: reverse of the speed order.
-    let perm: Vec<usize> = (0..n).rev().collect();
+    let perm = ldlt_order(n);
     let entry = |i: usize, j: usize| -> Option<Nid> {
         let (a, b) = (perm[i], perm[j]);
         m[a.max(b)][a.min(b)]
     };
     // Symbolic factorization: nonzero pattern of L with fill-in.
-    let mut nz = vec![vec![false; n]; n];
-    for i in 0..n {
-        for j in 0..i {
-            nz[i][j] = entry(i, j).is_some();
-        }
-    }
-    for j in 0..n {
-        for i in j + 1..n {
-            if !nz[i][j] {
-                nz[i][j] = (0..j).any(|k| nz[i][k] && nz[j][k]);
-            }
-        }
-    }
+    let nz = pattern::fill(n, |i, j| entry(i, j).is_some());
     let mut l: Vec<Vec<Option<Nid>>> = vec![vec![None; n]; n];
     let mut ld: Vec<Vec<Option<Nid>>> = vec![vec![None; n]; n];
     let mut d_inv: Vec<Nid> = Vec::with_capacity(n);
@@ -148,7 +144,7 @@ pub fn ldlt_solve(ir: &mut Ir, m: &[Vec<Option<Nid>>], f: &[Nid]) -> Solve {
         hints.push((format!("d{}_inv", perm[j] + 1), di));
         d_inv.push(di);
         for i in j + 1..n {
-            if !nz[i][j] {
+            if !nz.get(i, j) {
                 continue;
             }
             let neg = products(ir, &l[i][..j], &ld[j][..j]);

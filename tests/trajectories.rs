@@ -15,7 +15,7 @@ use autosim::runtime::Model;
 use autosim_core::diag::SourceFile;
 use autosim_core::opt::{At, Interpreter, UserCalls};
 use autosim_core::pipeline::{Compiled, compile_source};
-use autosim_test_support::{floats, load, tight_run, worst_of};
+use autosim_test_support::{floats, load, program_parameters, tight_run, worst_of};
 use serde_json::Value;
 
 mod planar {
@@ -46,13 +46,7 @@ fn energy_model(file: &str, data: &Value) -> (Compiled, Vec<f64>) {
         + "output energy [J] = kinetic_energy() + potential_energy() + k*(q1^2 + q2^2 + q3^2)/2;\n";
     let source = SourceFile::new(file, text);
     let compiled = compile_source(&source).unwrap_or_else(|d| panic!("{}", d.render(&source)));
-    let params = compiled
-        .program
-        .interface
-        .parameters
-        .iter()
-        .map(|p| data["parameters"][&p.name].as_f64().expect("parameter"))
-        .collect();
+    let params = program_parameters(&compiled.program, data);
     (compiled, params)
 }
 

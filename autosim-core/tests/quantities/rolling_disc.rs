@@ -8,7 +8,7 @@
 //! acceleration (`du_x`, `du_y`: the translation speeds are `dq/dt` in N).
 
 use super::support::{compile_text, model_text, outputs_with};
-use autosim_test_support::{floats, load, max_diff, worst_of};
+use autosim_test_support::{floats, load, max_diff, program_parameters, worst_of};
 
 #[test]
 fn rolling_disc_friction_matches_newton() {
@@ -18,13 +18,7 @@ fn rolling_disc_friction_matches_newton() {
     text.push_str("output friction_n1 [N] = constraint_force(roll_n1);\n");
     text.push_str("output friction_n2 [N] = constraint_force(roll_n2);\n");
     let c = compile_text("rolling_disc.sim", &text);
-    let params: Vec<f64> = c
-        .program
-        .interface
-        .parameters
-        .iter()
-        .map(|p| data["parameters"][&p.name].as_f64().expect("parameter"))
-        .collect();
+    let params = program_parameters(&c.program, &data);
     let mut worst = 0.0f64;
     let samples = data["samples"].as_array().expect("samples");
     for s in samples {
@@ -94,13 +88,7 @@ fn rolling_disc_contact_force_matches_newton_euler() {
     let c = compile_text("rolling_disc.sim", &disc_with_contact_point(outputs));
     let names = super::support::output_names(&c);
     let at = |name: &str| names.iter().position(|n| n == name).expect(name);
-    let params: Vec<f64> = c
-        .program
-        .interface
-        .parameters
-        .iter()
-        .map(|p| data["parameters"][&p.name].as_f64().expect("parameter"))
-        .collect();
+    let params = program_parameters(&c.program, &data);
     let inertia = Matrix3::from_diagonal(&Vector3::new(
         m * r * r / 4.0,
         m * r * r / 2.0,

@@ -10,6 +10,12 @@
 use super::support::{compile_text, model_text, outputs_with};
 use autosim_test_support::{floats, load, max_diff, program_parameters, worst_of};
 
+/// The model's state at a reference sample: the coordinates, then the
+/// independent speeds (the reference's last three).
+fn state(q: &[f64], u: &[f64]) -> Vec<f64> {
+    q.iter().chain(&u[3..]).copied().collect()
+}
+
 #[test]
 fn rolling_disc_friction_matches_newton() {
     let data = load("rolling-disc");
@@ -23,9 +29,7 @@ fn rolling_disc_friction_matches_newton() {
     let samples = data["samples"].as_array().expect("samples");
     for s in samples {
         let (q, u, du) = (floats(&s["q"]), floats(&s["u"]), floats(&s["du"]));
-        let mut x = q.clone();
-        x.extend(&u[3..]);
-        let y = outputs_with(&c, &params, &x, 0.0);
+        let y = outputs_with(&c, &params, &state(&q, &u), 0.0);
         // The model's outputs (energy, yaw_rate, speed), then ours.
         let got = [y[3], y[4]];
         let want = [m * du[0], m * du[1]];
@@ -98,9 +102,7 @@ fn rolling_disc_contact_force_matches_newton_euler() {
     let samples = data["samples"].as_array().expect("samples");
     for s in samples {
         let (q, u, du) = (floats(&s["q"]), floats(&s["u"]), floats(&s["du"]));
-        let mut x = q.clone();
-        x.extend(&u[3..]);
-        let y = outputs_with(&c, &params, &x, 0.0);
+        let y = outputs_with(&c, &params, &state(&q, &u), 0.0);
         let f = Vector3::new(y[at("lambda_n1")], y[at("lambda_n2")], y[at("lambda_n3")]);
         let scale = m * g;
         let newton = Vector3::new(du[0], du[1], du[2]) * m - f - Vector3::new(0.0, 0.0, -m * g);

@@ -16,7 +16,7 @@
 //! formed.
 
 use super::error::ModelError;
-use super::system::{PointId, System};
+use super::system::{BodyId, PointId, System};
 use super::vector::Vector;
 use crate::expr::{ExprId, SymId, SymbolKind};
 
@@ -44,27 +44,19 @@ pub struct Constraint {
     /// The unit of the expression (a position constraint's residual is an
     /// output in this unit).
     pub unit: Option<String>,
-    /// Where its load acts, when its expression says so (joint reactions
-    /// need it).
-    pub load: Option<ConstraintLoad>,
 }
 
-/// Where a constraint's load acts, when its expression says so: a position
-/// constraint `dot(pos(P, Q), d) + c` with `d` fixed in N and `c` free of
-/// coordinates is held by the force
-/// `λ d` on `P` and `−λ d` on `Q` (`λ` its multiplier): their power is
-/// `λ d·(v_P − v_Q) = λ ġ`.
-#[derive(Clone, Debug)]
+/// Where a constraint's load acts, per unit of its multiplier `λ`: forces
+/// at points and moments on bodies whose generalized force is the
+/// constraint's row `A` (so `λ` times them does what `Aᵀ λ` does in
+/// Kane's equations). The language reads it from the constraint's
+/// expression when joint reactions need it.
+#[derive(Clone, Debug, Default)]
 pub struct ConstraintLoad {
-    /// The point the force `λ d` acts on.
-    pub on: PointId,
-    /// The point `−λ d` acts on (none: N's origin).
-    pub reaction: Option<PointId>,
-    /// `d`.
-    pub direction: Vector,
-    /// The term added to `dot(pos(P, Q), d)` in the expression (zero
-    /// without one); it must not depend on the coordinates.
-    pub offset: ExprId,
+    /// Forces per unit `λ`, each on the body of its point, at the point.
+    pub forces: Vec<(PointId, Vector)>,
+    /// Moments per unit `λ` on bodies.
+    pub moments: Vec<(BodyId, Vector)>,
 }
 
 /// A coordinate given as a function of time.

@@ -89,6 +89,18 @@ impl System {
         Ok(body.v0.add(&mut self.arena, &v))
     }
 
+    /// Velocity of the material point of `p`'s body where `p` is:
+    /// `v(B0) + w × r`, without the motion of `p` in its body (what a
+    /// force at `p` acts through).
+    pub fn material_velocity(&mut self, p: PointId) -> Vector {
+        let point = self.points[p.index()].clone();
+        let body = self.bodies[point.body.index()].clone();
+        let r = Fv::new(body.frame, point.coordinates);
+        let wxr = body.w.cross(&mut self.arena, &r);
+        let wxr = wxr.to_vector(&mut self.arena, &self.frames);
+        body.v0.add(&mut self.arena, &wxr)
+    }
+
     /// The paper's `vel`: `v(p1) - v(p2)` (with `p2 = None`, absolute).
     pub fn vel(&mut self, p1: PointId, p2: Option<PointId>) -> Result<Vector, ModelError> {
         let v1 = self.velocity(p1)?;

@@ -11,10 +11,10 @@ use crate::syntax::ast::{self, Item, StateKey};
 
 /// Resolves every item that uses expressions; `outputs` limits the
 /// outputs generated (the others are still checked).
-pub(super) fn resolve_items(
-    r: &mut Resolver<'_>,
+pub(super) fn resolve_items<'a>(
+    r: &mut Resolver<'a>,
     out: &mut ResolvedModel,
-    model: &ast::Model,
+    model: &'a ast::Model,
     outputs: Option<&[ast::Name]>,
 ) {
     let mut gravity_seen = false;
@@ -203,7 +203,7 @@ fn symbol_named(r: &mut Resolver<'_>, e: &ast::Expr, what: &str) -> Option<crate
     }
 }
 
-fn constraint(r: &mut Resolver<'_>, out: &mut ResolvedModel, c: &ast::Constraint) {
+fn constraint<'a>(r: &mut Resolver<'a>, out: &mut ResolvedModel, c: &'a ast::Constraint) {
     use crate::mech::ConstraintKind;
     use crate::syntax::ast::ConstraintKey;
     if !r.declare(&c.name, Named::Load) {
@@ -251,20 +251,16 @@ fn constraint(r: &mut Resolver<'_>, out: &mut ResolvedModel, c: &ast::Constraint
     let (Some(value), Some(dependent)) = (value, dependent) else {
         return;
     };
-    let load = match kind {
-        ConstraintKind::Position => super::constraint_load::where_load_acts(r, value_ast),
-        ConstraintKind::Speed => None,
-    };
     let constraint = crate::mech::Constraint {
         name: c.name.text.clone(),
         kind,
         value,
         dependent,
         unit: c.unit.as_ref().map(|u| u.text.clone()),
-        load,
     };
-    if let Err(e) = r.sys.add_constraint(constraint) {
-        report(r, c, e);
+    match r.sys.add_constraint(constraint) {
+        Ok(()) => r.constraint_exprs.push(value_ast),
+        Err(e) => report(r, c, e),
     }
     out.item_docs.insert(c.name.text.clone(), c.docs.clone());
 }

@@ -7,6 +7,7 @@
 
 mod bodies;
 mod body_options;
+mod constraint_check;
 mod constraint_load;
 mod declare;
 mod events;

@@ -15,7 +15,7 @@ use super::scope::{Named, Resolver};
 use super::value::Value;
 use crate::diag::{Diagnostic, Span};
 use crate::expr::{ExprId, SymId, SymbolKind};
-use crate::mech::{Axis, BodyId, PointId, Vector};
+use crate::mech::{Axis, BodyId, ConstraintLoad, PointId, Vector};
 use crate::syntax::ast::Expr;
 use rustc_hash::FxHashMap;
 
@@ -376,8 +376,8 @@ pub(super) fn finish(r: &mut Resolver<'_>) {
                     let what = describe_quantity(&d.quantity, &r.sys);
                     r.push(
                         Diagnostic::error(d.span, format!("`{what}` cannot be computed: {says}"))
-                            .note("a joint's reaction includes the loads the constraints carry; a position constraint written `dot(pos(P, Q), d)` (plus or minus a term without coordinates), with `d` fixed in N, is held by a force along `d` at `P` and `Q`, but another expression (or a speed constraint) does not say on which bodies and points its load acts")
-                            .help("write each position constraint as `dot(pos(P, Q), d)` with `d` fixed in N (one per direction a loop's joint closes), or ask for reactions in a model without such constraints (motions are fine)"),
+                            .note("a joint's reaction includes the loads the constraints carry; a constraint written through the velocities of the points and bodies its load acts on (`dot(vel(P), d)`, `dot(vel(P, Q), d)`, `dot(rot(B), e)`, sums of them, through `let`s and `cross`; a position constraint the same with `pos`) is held by the force `λ d` at `P` (`−λ d` at `Q`) and the moment `λ e` on `B`, when that load does exactly what the constraint does (checked); this one is not written so, or its load does not match it")
+                            .help("write the constraint through the point where its load acts, e.g. a wheel's contact `dot(vel(W) + cross(rot(W), contact), n1)`, a loop closed at a pin `dot(pos(E, T), n2)`, a ground contact `dot(pos(C), n3)` with `C` the contact point (a `point` of the wheel at `contact`); or ask for reactions in a model without such constraints (motions are fine)"),
                     );
                 }
                 return;
@@ -436,33 +436,35 @@ pub(super) fn finish(r: &mut Resolver<'_>) {
     r.sys.substitute_in_outputs(&map);
 }
 
-/// The loads every constraint carries, `λ d` at its points (each `λ` a
-/// symbol the constrained lowering gives its value), or the names of the
-/// constraints that do not say where their load acts.
-fn constraint_loads(r: &mut Resolver<'_>) -> Result<Vec<(PointId, Vector)>, String> {
-    let mut extra = Vec::new();
+/// The loads every constraint carries (each read from its expression and
+/// checked, [`super::constraint_load`], times a symbol for its multiplier
+/// that the constrained lowering gives its value), or the names of the
+/// constraints whose load is not known.
+fn constraint_loads(r: &mut Resolver<'_>) -> Result<ConstraintLoad, String> {
+    let mut all = ConstraintLoad::default();
     let mut unknown = Vec::new();
+    let exprs = r.constraint_exprs.clone();
     for (k, c) in r.sys.constraints.clone().into_iter().enumerate() {
-        let Some(load) = c.load.filter(|l| super::constraint_load::fixed_in_n(r, l)) else {
-            unknown.push(format!("`{}`", c.name));
-            continue;
-        };
+        let load = exprs
+            .get(k)
+            .and_then(|g| super::constraint_load::read(r, g, c.kind))
+            .filter(|load| super::constraint_check::holds(r, &c, load));
         let name = format!("constraint_force({}) #r{k}", c.name);
-        let Ok(s) = r.sys.arena.add_symbol(&name, SymbolKind::Free) else {
+        let (Some(load), Ok(s)) = (load, r.sys.arena.add_symbol(&name, SymbolKind::Free)) else {
             unknown.push(format!("`{}`", c.name));
             continue;
         };
         r.sys.constraint_forces.push((k, s));
         let lambda = r.sys.arena.sym(s);
-        let f = load.direction.scale(&mut r.sys.arena, lambda);
-        if let Some(q) = load.reaction {
-            let back = f.neg(&mut r.sys.arena);
-            extra.push((q, back));
+        for (p, f) in load.forces {
+            all.forces.push((p, f.scale(&mut r.sys.arena, lambda)));
         }
-        extra.push((load.on, f));
+        for (b, m) in load.moments {
+            all.moments.push((b, m.scale(&mut r.sys.arena, lambda)));
+        }
     }
     match unknown.is_empty() {
-        true => Ok(extra),
+        true => Ok(all),
         false => Err(unknown.join(", ")),
     }
 }

@@ -67,6 +67,9 @@ pub(crate) struct Resolver<'a> {
     /// Placeholders of the quantities known only once every item is
     /// resolved (reactions, potential energy, power).
     pub deferred: Vec<super::quantities::Deferred>,
+    /// The expression of each constraint added to the system, as written
+    /// (where its load acts is read from it when reactions need it).
+    pub constraint_exprs: Vec<&'a ast::Expr>,
 }
 
 pub(crate) use crate::limits::{MAX_NESTING, MAX_PENDING};
@@ -101,6 +104,7 @@ impl<'a> Resolver<'a> {
             implicit_parameters: Vec::new(),
             float: super::FloatType::F64,
             deferred: Vec::new(),
+            constraint_exprs: Vec::new(),
         }
     }
 

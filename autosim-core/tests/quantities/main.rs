@@ -6,7 +6,9 @@
 //! momenta against a Newton–Euler computation written here with the
 //! reference's accelerations (`satellite`); the four-bar's pin force
 //! and joint reactions against planar Newton–Euler (`four_bar`), the
-//! rolling disc's friction force against Newton's law (`rolling_disc`).
+//! rolling disc's friction and contact forces against Newton–Euler
+//! (`rolling_disc`); loads read from speed constraints with known static
+//! answers (`supports`).
 
 mod chains;
 mod four_bar;
@@ -14,3 +16,4 @@ mod newton_euler;
 mod rolling_disc;
 mod satellite;
 mod support;
+mod supports;

@@ -25,6 +25,22 @@ pub fn floats(v: &Value) -> Vec<f64> {
         .collect()
 }
 
+/// The values of a compiled program's parameters, in its order, from a
+/// reference file's `parameters` (each must be there).
+pub fn program_parameters(program: &autosim_core::opt::Program, data: &Value) -> Vec<f64> {
+    program
+        .interface
+        .model
+        .parameters
+        .iter()
+        .map(|p| {
+            data["parameters"][&p.name]
+                .as_f64()
+                .unwrap_or_else(|| panic!("parameter {} missing from the reference", p.name))
+        })
+        .collect()
+}
+
 /// One sample of the satellite's reference file (`satellite.json`): the
 /// time and state, the values its user code returned there, and the rates.
 #[derive(Clone, Debug)]

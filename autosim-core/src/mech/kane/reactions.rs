@@ -20,8 +20,9 @@
 
 use super::recursion::{Accelerations, Resultants};
 use crate::expr::ExprId;
+use crate::mech::constraint::ConstraintLoad;
 use crate::mech::framevec::Fv;
-use crate::mech::system::{BodyId, PointId, System};
+use crate::mech::system::{BodyId, System};
 use crate::mech::vector::Vector;
 
 /// The load a joint transmits from the parent to its body: the force and
@@ -39,16 +40,20 @@ impl System {
     /// using the symbols of the speeds' rates (`du/dt`) for the
     /// accelerations.
     pub fn joint_reactions(&mut self) -> Vec<JointReaction> {
-        self.joint_reactions_with(&[])
+        self.joint_reactions_with(&ConstraintLoad::default())
     }
 
-    /// The reactions with these forces added to the applied loads:
-    /// `(point, force)`, e.g. the loads constraints carry, `λ d` at their
-    /// points.
-    pub fn joint_reactions_with(&mut self, extra: &[(PointId, Vector)]) -> Vec<JointReaction> {
+    /// The reactions with these forces and moments added to the applied
+    /// loads: the loads the constraints carry (each constraint's load
+    /// times its multiplier).
+    pub fn joint_reactions_with(&mut self, extra: &ConstraintLoad) -> Vec<JointReaction> {
         let mut loads = self.applied_loads();
-        for (p, f) in extra {
+        for (p, f) in &extra.forces {
             self.add_point_force(&mut loads.force, &mut loads.moment, *p, f, false);
+        }
+        for (b, m) in &extra.moments {
+            let b = b.index();
+            loads.moment[b] = loads.moment[b].add(&mut self.arena, m);
         }
         let acc = self.accelerations();
         let acc = self.with_rates(acc);

@@ -11,7 +11,7 @@
 use autosim::runtime::integrate::{DopriSettings, DormandPrince, Rk4};
 use autosim::runtime::io::Recording;
 use autosim::runtime::{Model, RunSettings, Stepper, run};
-use autosim_test_support::{floats, load};
+use autosim_test_support::{floats, load, sample_error};
 use serde_json::Value;
 
 autosim::model!(file = "examples/models/quarter_car_bump_stop.sim");
@@ -45,19 +45,9 @@ fn quarter_car_errors<S: Stepper<QuarterCarBumpStop>>(stepper: &mut S, step: f64
             at_switches = at_switches.max((got - expected).abs());
         }
     }
-    let mut samples: f64 = 0.0;
-    for sample in reference["samples"].as_array().unwrap() {
-        let t = sample["t"].as_f64().unwrap();
-        let k = recording
-            .time()
-            .iter()
-            .position(|&r| (r - t).abs() < 1e-12)
-            .unwrap();
-        for (i, expected) in floats(&sample["state"]).iter().enumerate() {
-            let got = recording.columns()[i].values[k];
-            samples = samples.max((got - expected).abs());
-        }
-    }
+    let samples = sample_error(&reference["samples"], recording.time(), |i, k| {
+        recording.columns()[i].values[k]
+    });
     [times, at_switches, samples]
 }
 

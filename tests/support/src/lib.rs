@@ -24,7 +24,7 @@ pub mod reference;
 mod rng;
 mod run;
 
-pub use reference::{SatelliteSample, floats, load, satellite_samples};
+pub use reference::{SatelliteSample, floats, load, sample_error, satellite_samples};
 pub use rng::Rng;
 pub use run::{Outputs, tight_run};
 

@@ -27,7 +27,7 @@ const FMPY: &str = "fmpy==0.3.32";
 /// Models of `examples/models` exported as FMUs here: every model without
 /// user code; the satellite from its user crate `examples/fmu_satellite`
 /// and [`USER_CODE`] from theirs.
-const EXPORTED: [&str; 21] = [
+const EXPORTED: [&str; 23] = [
     "andrews",
     "bicycle",
     "bouncing_ball",
@@ -47,7 +47,9 @@ const EXPORTED: [&str; 21] = [
     "chain_spatial_7",
     "four_bar",
     "pendulum",
+    "pendulum_end_stop",
     "quarter_car",
+    "quarter_car_bump_stop",
     "rolling_disc",
 ];
 
@@ -380,7 +382,12 @@ fn ball_events(model: Value) -> Value {
 
 /// The other models with user code, each built from its crate in
 /// `tests/fmi/user/<model>`.
-const USER_CODE: [&str; 3] = ["features", "satellite_sampled", "satellite_small"];
+const USER_CODE: [&str; 4] = [
+    "features",
+    "satellite_events",
+    "satellite_sampled",
+    "satellite_small",
+];
 
 /// The largest models, whose libraries are built at `opt-level` 0 here:
 /// the same numbers as a release build (no optimization level changes a

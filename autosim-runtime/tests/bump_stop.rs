@@ -7,7 +7,7 @@
 use autosim_runtime::integrate::{DopriSettings, DormandPrince, Rk4};
 use autosim_runtime::io::Recording;
 use autosim_runtime::{EventIndicator, EventOutcome, Model, ModelError, RunSettings, Stepper, run};
-use autosim_test_support::{floats, load};
+use autosim_test_support::{floats, load, sample_error};
 use serde_json::Value;
 
 /// The quarter car of the reference script, its parameters read from the
@@ -107,19 +107,9 @@ fn errors<S: Stepper<QuarterCar>>(stepper: &mut S, step: f64) -> (f64, f64) {
         assert_eq!(event.name, switch["event"].as_str().unwrap());
         time_error = time_error.max((event.t - switch["t"].as_f64().unwrap()).abs());
     }
-    let mut state_error: f64 = 0.0;
-    for sample in reference["samples"].as_array().unwrap() {
-        let t = sample["t"].as_f64().unwrap();
-        let k = recording
-            .time()
-            .iter()
-            .position(|&r| (r - t).abs() < 1e-12)
-            .unwrap();
-        for (i, expected) in floats(&sample["state"]).iter().enumerate() {
-            let got = recording.columns()[i].values[k];
-            state_error = state_error.max((got - expected).abs());
-        }
-    }
+    let state_error = sample_error(&reference["samples"], recording.time(), |i, k| {
+        recording.columns()[i].values[k]
+    });
     (time_error, state_error)
 }
 

@@ -25,6 +25,8 @@ pub mod via_macro {
     autosim::model!(file = "../../examples/models/chain_spatial_7.sim");
     autosim::model!(file = "../../examples/models/features.sim");
     autosim::model!(file = "../../examples/models/four_bar.sim");
+    autosim::model!(file = "../../examples/models/pendulum_end_stop.sim");
+    autosim::model!(file = "../../examples/models/quarter_car_bump_stop.sim");
     autosim::model!(file = "../../examples/models/rolling_disc.sim");
     autosim::model!(file = "../../examples/models/satellite.sim");
     autosim::model!(file = "../../examples/models/satellite_events.sim");
@@ -63,6 +65,8 @@ pub mod via_build {
     autosim::include_model!(chain_spatial7);
     autosim::include_model!(features);
     autosim::include_model!(four_bar);
+    autosim::include_model!(pendulum_end_stop);
+    autosim::include_model!(quarter_car_bump_stop);
     autosim::include_model!(rolling_disc);
     autosim::include_model!(satellite);
     autosim::include_model!(satellite_events);

@@ -27,7 +27,9 @@ pub mod reference;
 mod rng;
 mod run;
 
-pub use reference::{SatelliteSample, floats, load, program_parameters, satellite_samples};
+pub use reference::{
+    SatelliteSample, floats, load, program_parameters, sample_error, satellite_samples,
+};
 pub use rng::Rng;
 pub use run::{Outputs, tight_run};
 

@@ -16,6 +16,25 @@ pub fn load(name: &str) -> Value {
     serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
+/// The largest difference of a run's states from a reference file's
+/// `samples` (each `{"t": ..., "state": [...]}`): `time` the recorded times
+/// (each sample's found among them to 1e-12), `state(i, k)` state `i` at
+/// recorded time `k`.
+pub fn sample_error(samples: &Value, time: &[f64], state: impl Fn(usize, usize) -> f64) -> f64 {
+    let mut worst: f64 = 0.0;
+    for sample in samples.as_array().expect("a JSON array of samples") {
+        let t = sample["t"].as_f64().expect("a sample's time");
+        let k = time
+            .iter()
+            .position(|&r| (r - t).abs() < 1e-12)
+            .unwrap_or_else(|| panic!("no recorded time {t}"));
+        for (i, expected) in floats(&sample["state"]).iter().enumerate() {
+            worst = worst.max((state(i, k) - expected).abs());
+        }
+    }
+    worst
+}
+
 /// A JSON array of numbers.
 pub fn floats(v: &Value) -> Vec<f64> {
     v.as_array()

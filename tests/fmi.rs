@@ -309,10 +309,13 @@ fn invariant(model: &str) -> Value {
         // As the satellite's (its spec): camera_rate = |rot(D)| reads the
         // camera's angle q8 through D's axes; a rotation keeps a length.
         "SatelliteSmall" => json!([["camera_rate", "q8"]]),
-        // With its thrusters as inputs (moments about the bus's own axes)
-        // and no gravity, no force depends on the bus's attitude q4..q6:
-        // the equations read it through the frames they are written in.
-        "SatelliteSampled" => {
+        // With its thrusters as inputs (SatelliteSampled) or discrete
+        // modes that only events change (SatelliteEvents: the attitude
+        // error enters the event indicators, not the equations), moments
+        // about the bus's own axes, and no gravity, no force depends on the
+        // bus's attitude q4..q6: the equations read it through the frames
+        // they are written in.
+        "SatelliteSampled" | "SatelliteEvents" => {
             let mut pairs = vec![json!(["camera_rate", "q8"]), json!(["der(u1)", "q4"])];
             for d in 4..=10 {
                 for q in ["q4", "q5", "q6"] {

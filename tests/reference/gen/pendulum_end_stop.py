@@ -28,11 +28,10 @@ Writes ../pendulum-end-stop.json (tests/reference/): the parameters, the
 initial state and the first ten strikes (time, rate before, rate after).
 Run: python3 pendulum_end_stop.py (mpmath 1.3).
 """
-import json
-import os
 import sys
 
 import mpmath as mp
+from reference_file import write_reference
 
 mp.mp.dps = 40
 
@@ -95,12 +94,7 @@ def main():
         "strikes": [{"t": float(t), "rate_before": float(r),
                      "rate_after": float(-P["e"] * r)} for t, r in exact],
     }
-    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..",
-                        "pendulum-end-stop.json")
-    with open(path, "w") as f:
-        json.dump(doc, f, indent=1)
-        f.write("\n")
-    print(f"wrote {path}", file=sys.stderr)
+    write_reference(doc, "pendulum-end-stop.json")
 
 
 if __name__ == "__main__":

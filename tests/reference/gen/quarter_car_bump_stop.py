@@ -27,11 +27,10 @@ Writes ../quarter-car-bump-stop.json (tests/reference/): the parameters,
 the initial state, every switch (time, event, state) and the state at the
 sample times. Run: python3 quarter_car_bump_stop.py (mpmath 1.3).
 """
-import json
-import os
 import sys
 
 import mpmath as mp
+from reference_file import write_reference
 
 mp.mp.dps = 40
 
@@ -134,12 +133,7 @@ def main():
         "switches": switches,
         "samples": [{"t": float(ts), "state": state_at(ts)} for ts in SAMPLES],
     }
-    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..",
-                        "quarter-car-bump-stop.json")
-    with open(path, "w") as f:
-        json.dump(doc, f, indent=1)
-        f.write("\n")
-    print(f"wrote {path}", file=sys.stderr)
+    write_reference(doc, "quarter-car-bump-stop.json")
 
 
 if __name__ == "__main__":

@@ -12,12 +12,13 @@ X = [E 0; -E rx E], E = parent->child coordinates; only the upper triangle of
 symmetric 6x6 inertias is computed, the articulated inertia's joint-axis row
 and column are set to exactly zero (I^a S = 0 holds identically).
 """
+
 import casadi as ca
 
 # ---------------------------------------------------------------- parameters
-K_SPRING = 2.0   # N m / rad
-C_DAMP = 0.1     # N m s / rad
-G = 9.81         # m / s^2, along -n3
+K_SPRING = 2.0  # N m / rad
+C_DAMP = 0.1  # N m s / rad
+G = 9.81  # m / s^2, along -n3
 P_SPATIAL = 0.0005
 
 
@@ -35,7 +36,7 @@ def body_params(kind, i):
         izz = 0.002 + 0.0001 * i
         p = P_SPATIAL
         axis = ((i - 1) % 3) + 1
-    return dict(m=m, L=L, Ixx=ixx, Iyy=iyy, Izz=izz, P=p, axis=axis)
+    return {"m": m, "L": L, "Ixx": ixx, "Iyy": iyy, "Izz": izz, "P": p, "axis": axis}
 
 
 # ---------------------------------------------------------------- small helpers
@@ -99,8 +100,7 @@ def body_spatial_inertia(kind, i):
     c = [0.0, 0.0, -L / 2]
     Ic = [[bp["Ixx"], bp["P"], 0.0], [bp["P"], bp["Iyy"], 0.0], [0.0, 0.0, bp["Izz"]]]
     cx = skew(c)
-    A = [[Ic[j][k] - m * sum(cx[j][l] * cx[l][k] for l in range(3)) for k in range(3)]
-         for j in range(3)]
+    A = [[Ic[j][k] - m * sum(cx[j][l] * cx[l][k] for l in range(3)) for k in range(3)] for j in range(3)]
     B = [[m * cx[j][k] for k in range(3)] for j in range(3)]
     C = [[m if j == k else 0.0 for k in range(3)] for j in range(3)]
     I6 = [[0.0] * 6 for _ in range(6)]
@@ -119,8 +119,7 @@ def chain(kind, n):
     prevL = 0.0
     for i in range(1, n + 1):
         bp = body_params(kind, i)
-        out.append(dict(axis=bp["axis"] - 1, r=[0.0, 0.0, -prevL],
-                        I=body_spatial_inertia(kind, i)))
+        out.append({"axis": bp["axis"] - 1, "r": [0.0, 0.0, -prevL], "I": body_spatial_inertia(kind, i)})
         prevL = bp["L"]
     return out
 
@@ -166,8 +165,8 @@ def congruence(E, r, I):
     B1 = mtm(E, mm(B, E))
     C1 = mtm_sym(E, mm(C, E))
     rx = skew(r)
-    K = mm(rx, [[B1[k][j] for k in range(3)] for j in range(3)])   # rx B1^T
-    rC = mm(rx, C1)                                                   # rx C1
+    K = mm(rx, [[B1[k][j] for k in range(3)] for j in range(3)])  # rx B1^T
+    rC = mm(rx, C1)  # rx C1
     rCr = [[None] * 3 for _ in range(3)]
     for j in range(3):
         for k in range(j, 3):
@@ -249,4 +248,3 @@ def aba(kind, n, q, v):
         acc = ap
         qdd.append(qi)
     return qdd
-

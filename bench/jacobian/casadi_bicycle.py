@@ -34,6 +34,7 @@ consistent states: roll in [-0.3, 0.3], steer in [-0.5, 0.5], heading, wheel
 angles in [-pi, pi], x, y in [-1, 1], the pitch solved from h = 0 (Newton),
 u_phi, u_delta in [-1, 1], forward speed rR u_thetaR in [2, 8] m/s.
 """
+
 import math
 import os
 import sys
@@ -50,42 +51,56 @@ from casadi_jacobian import STATES, emit, write_states
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CHECK = os.path.join(HERE, "..", "..", "tests", "reference", "gen", "bicycle_check.py")
-MARKER = 'log("forming Kane\'s equations'
+MARKER = "log(\"forming Kane's equations"
 G_VALUE = 9.81
-THETA = 4                                   # the dependent coordinate's index in q
+THETA = 4  # the dependent coordinate's index in q
 LINEAR = [i for i in range(11) if i != THETA]
 
 # lambdify prints math.sin(...), sqrt(...): give it CasADi's functions under those names.
-CASADI = {"math": types.SimpleNamespace(sin=ca.sin, cos=ca.cos, tan=ca.tan, sqrt=ca.sqrt,
-                                        pi=math.pi), "sqrt": ca.sqrt}
+CASADI = {
+    "math": types.SimpleNamespace(sin=ca.sin, cos=ca.cos, tan=ca.tan, sqrt=ca.sqrt, pi=math.pi),
+    "sqrt": ca.sqrt,
+}
 
 
 def tree() -> dict:
     """bicycle_check.py's definitions (frames, points, bodies, gravity loads,
     constraints, coordinate and speed lists), executed up to MARKER."""
-    text = open(CHECK).read()
+    with open(CHECK) as fh:
+        text = fh.read()
     if MARKER not in text:
         sys.exit(f"{CHECK}: no line starting {MARKER!r}; update casadi_bicycle.py")
     ns: dict = {"__name__": "bicycle_check_tree"}
-    exec(compile(text[:text.index(MARKER)], CHECK, "exec"), ns)
+    exec(compile(text[: text.index(MARKER)], CHECK, "exec"), ns)  # noqa: S102 (our own script)
     return ns
 
 
-def equations(ns: dict, w: sm.Matrix):
+def equations(ns: dict, w: sm.Matrix) -> tuple[me.KanesMethod, sm.Matrix, sm.Matrix]:
     """Kane's mass matrix and forcing (in KanesMethod's speed order) with the inputs' loads."""
     Rf, Bf, Hf, Yf = ns["Rf"], ns["Bf"], ns["Hf"], ns["Yf"]
     t_phi, t_delta = w
     axis = ns["steer_axis"]
-    loads = ns["loads"] + [(Bf, t_phi * Rf.x), (Yf, -t_phi * Rf.x),
-                           (Hf, t_delta * axis), (Bf, -t_delta * axis)]
-    kane = me.KanesMethod(ns["N"], q_ind=ns["q_ind"], u_ind=ns["u_ind"], kd_eqs=ns["kd"],
-                          q_dependent=ns["q_dep"], configuration_constraints=[ns["hol"]],
-                          u_dependent=ns["u_dep"], velocity_constraints=ns["vel_cons"])
+    loads = ns["loads"] + [
+        (Bf, t_phi * Rf.x),
+        (Yf, -t_phi * Rf.x),
+        (Hf, t_delta * axis),
+        (Bf, -t_delta * axis),
+    ]
+    kane = me.KanesMethod(
+        ns["N"],
+        q_ind=ns["q_ind"],
+        u_ind=ns["u_ind"],
+        kd_eqs=ns["kd"],
+        q_dependent=ns["q_dep"],
+        configuration_constraints=[ns["hol"]],
+        u_dependent=ns["u_dep"],
+        velocity_constraints=ns["vel_cons"],
+    )
     kane.kanes_equations(ns["bodies"], loads)
     return kane, kane.mass_matrix, kane.forcing
 
 
-def lu_solve(a, rhs):
+def lu_solve(a: list[list], rhs: list[list]) -> list[list]:
     """Solves a z = rhs (lists of SX rows) by Gaussian elimination without pivoting."""
     n = len(a)
     a = [row[:] for row in a]
@@ -112,7 +127,7 @@ def build(gen_dir: str, states_dir: str) -> dict:
     w = sm.Matrix(sm.symbols("T_phi T_delta"))
     kane, mm, ff = equations(ns, w)
     ku = list(kane.u)
-    ind = [ku.index(s) for s in ns["u_ind"]]      # Kane columns of the independent speeds
+    ind = [ku.index(s) for s in ns["u_ind"]]  # Kane columns of the independent speeds
     dep = [ku.index(s) for s in ns["u_dep"]]
     assert ind == [0, 1, 2], ind
     assert not mm[3:, :].has(*u), "the velocity constraint matrix depends on the speeds"
@@ -130,7 +145,7 @@ def build(gen_dir: str, states_dir: str) -> dict:
     wx = ca.SX.sym("w", 2)
     qx = [x[i] for i in range(8)]
     ui = [x[8 + i] for i in range(3)]
-    our_ind = [u.index(s) for s in ns["u_ind"]]   # positions in q / u order
+    our_ind = [u.index(s) for s in ns["u_ind"]]  # positions in q / u order
     our_dep = [u.index(s) for s in ns["u_dep"]]
     # the constraint matrix first (no speeds in it): dependent speeds
     at_rest = fn(*qx, *([0.0] * 8), G_VALUE, wx[0], wx[1])
@@ -154,9 +169,8 @@ def build(gen_dir: str, states_dir: str) -> dict:
     bmat = mmx[3:8]
     bi = [[r[c] for c in ind] for r in bmat]
     bd = [[r[c] for c in dep] for r in bmat]
-    zz = lu_solve(bd, [bi[r] + [ffx[3 + r]] for r in range(5)])   # B_d^-1 [B_i f_nh]
-    kr = [[kin[r][c] - sum(kd[r][k] * zz[k][c] for k in range(5)) for c in range(3)]
-          for r in range(3)]
+    zz = lu_solve(bd, [bi[r] + [ffx[3 + r]] for r in range(5)])  # B_d^-1 [B_i f_nh]
+    kr = [[kin[r][c] - sum(kd[r][k] * zz[k][c] for k in range(5)) for c in range(3)] for r in range(3)]
     fr = [[ffx[r] - sum(kd[r][k] * zz[k][3] for k in range(5))] for r in range(3)]
     udot = [v[0] for v in lu_solve(kr, fr)]
     f = ca.vertcat(*ufull, *udot)
@@ -173,8 +187,14 @@ def build(gen_dir: str, states_dir: str) -> dict:
     c = ca.mtimes(ca.jacobian(yv, x), t_map)
     d = ca.jacobian(yv, wx)
     t_sx = time.perf_counter() - t0 - t_sympy
-    info = emit("bicycle", [x, wx], [a, b, c, d], dict(nx=11, nw=2, nlin=10, ny=2), gen_dir,
-                dict(t_sympy_s=t_sympy, t_build_sx_s=t_sx, sympy=sm.__version__))
+    info = emit(
+        "bicycle",
+        [x, wx],
+        [a, b, c, d],
+        {"nx": 11, "nw": 2, "nlin": 10, "ny": 2},
+        gen_dir,
+        {"t_sympy_s": t_sympy, "t_build_sx_s": t_sx, "sympy": sm.__version__},
+    )
     states(ns, args, states_dir)
     return info
 
@@ -188,9 +208,18 @@ def states(ns: dict, args: list, states_dir: str) -> None:
     r_rear = float(ns["p"]["rR"])
     rows = []
     for _ in range(STATES):
-        qq = np.array([rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-np.pi, np.pi),
-                       rng.uniform(-0.3, 0.3), 0.0, rng.uniform(-np.pi, np.pi),
-                       rng.uniform(-0.5, 0.5), rng.uniform(-np.pi, np.pi)])
+        qq = np.array(
+            [
+                rng.uniform(-1, 1),
+                rng.uniform(-1, 1),
+                rng.uniform(-np.pi, np.pi),
+                rng.uniform(-0.3, 0.3),
+                0.0,
+                rng.uniform(-np.pi, np.pi),
+                rng.uniform(-0.5, 0.5),
+                rng.uniform(-np.pi, np.pi),
+            ]
+        )
         for _ in range(50):
             a = list(qq) + [0.0] * 8 + [G_VALUE, 0.0, 0.0]
             step = float(hol(*a)) / float(dhol(*a))
@@ -206,9 +235,12 @@ def states(ns: dict, args: list, states_dir: str) -> None:
 def main() -> None:
     gen_dir, states_dir = sys.argv[1:3]
     info = build(gen_dir, states_dir)
-    print(f"bicycle: SymPy {info['t_sympy_s']:.1f} s, SX + jacobian {info['t_build_sx_s']:.2f} s, "
-          f"Function + cse {info['t_function_cse_s']:.2f} s, codegen {info['t_codegen_s']:.2f} s, "
-          f"{info['casadi_ops']} operations", flush=True)
+    print(
+        f"bicycle: SymPy {info['t_sympy_s']:.1f} s, SX + jacobian {info['t_build_sx_s']:.2f} s, "
+        f"Function + cse {info['t_function_cse_s']:.2f} s, codegen {info['t_codegen_s']:.2f} s, "
+        f"{info['casadi_ops']} operations",
+        flush=True,
+    )
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@ Usage: python report.py OUT_DIR RESULTS_MD RESULTS_JSONL
 The environment gives the header's facts: BENCH_GIT, ROUNDS, BENCH_LOAD,
 AUTOSIM_RUSTFLAGS, TOL, RUST_S.
 """
+
 import datetime
 import json
 import os
@@ -17,6 +18,11 @@ import sys
 def jsonl(path: str) -> list[dict]:
     with open(path) as fh:
         return [json.loads(line) for line in fh if line.strip()]
+
+
+def load(path: str) -> dict:
+    with open(path) as fh:
+        return json.load(fh)
 
 
 def main() -> None:
@@ -33,19 +39,29 @@ def main() -> None:
         for line in fh:
             f = line.split()
             ours_ops[f[0]] = int(f[5])
-    gen = {m: json.load(open(os.path.join(out, "gen", m + ".json"))) for m in ours_ops
-           if os.path.exists(os.path.join(out, "gen", m + ".json"))}
+    gen = {
+        m: load(os.path.join(out, "gen", m + ".json"))
+        for m in ours_ops
+        if os.path.exists(os.path.join(out, "gen", m + ".json"))
+    }
     gcc = {g["model"]: g["gcc_s"] for g in jsonl(os.path.join(out, "gcc.jsonl"))}
-    errs = {r["model"]: r.get("max_rel_err") for r in
-            json.load(open(os.path.join(out, "compare.json")))["results"]}
+    errs = {r["model"]: r.get("max_rel_err") for r in load(os.path.join(out, "compare.json"))["results"]}
 
     def order(m: str) -> tuple:
         parts = m.split("_")
-        return (m == "bicycle", parts[1] if len(parts) > 2 else m, int(parts[-1]) if parts[-1].isdigit() else 0)
+        return (
+            m == "bicycle",
+            parts[1] if len(parts) > 2 else m,
+            int(parts[-1]) if parts[-1].isdigit() else 0,
+        )
 
-    table = ["| model | matrices | autosim ns | CasADi ns | autosim / CasADi | same, fastest rounds "
-             "| autosim ops | CasADi ops | gcc s | max rel. difference |",
-             "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    table = [
+        (
+            "| model | matrices | autosim ns | CasADi ns | autosim / CasADi | same, fastest rounds "
+            "| autosim ops | CasADi ops | gcc s | max rel. difference |"
+        ),
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
     summary = []
     for m in sorted(ours_ops, key=order):
         if (m, "autosim") not in med or (m, "casadi") not in med:
@@ -54,19 +70,36 @@ def main() -> None:
         fast = best_round[(m, "autosim")] / best_round[(m, "casadi")]
         g = gen[m]
         mats = "A" if g["nw"] == 0 and g["ny"] == 0 else "A, B, C, D"
-        dims = f"{mats} ({g['nlin']} states" + (f", {g['nw']} inputs, {g['ny']} outputs)" if g["ny"] or g["nw"] else ")")
+        dims = f"{mats} ({g['nlin']} states" + (
+            f", {g['nw']} inputs, {g['ny']} outputs)" if g["ny"] or g["nw"] else ")"
+        )
         name = m.replace("_", "-")
-        table.append(f"| {name} | {dims} | {a:.1f} | {c:.1f} | {a / c:.2f} | {fast:.2f} | "
-                     f"{ours_ops[m]} | {g['casadi_ops']} | {gcc.get(m, float('nan')):.1f} | {errs.get(m, float('nan')):.1e} |")
-        summary.append(dict(model=name, autosim_ns=a, casadi_ns=c, ratio=a / c, ratio_fastest_rounds=fast,
-                            autosim_ops=ours_ops[m], casadi_ops=g["casadi_ops"], gcc_s=gcc.get(m),
-                            max_rel_difference=errs.get(m), nlin=g["nlin"], nw=g["nw"], ny=g["ny"]))
+        table.append(
+            f"| {name} | {dims} | {a:.1f} | {c:.1f} | {a / c:.2f} | {fast:.2f} | "
+            f"{ours_ops[m]} | {g['casadi_ops']} | {gcc.get(m, float('nan')):.1f} | {errs.get(m, float('nan')):.1e} |"
+        )
+        summary.append(
+            {
+                "model": name,
+                "autosim_ns": a,
+                "casadi_ns": c,
+                "ratio": a / c,
+                "ratio_fastest_rounds": fast,
+                "autosim_ops": ours_ops[m],
+                "casadi_ops": g["casadi_ops"],
+                "gcc_s": gcc.get(m),
+                "max_rel_difference": errs.get(m),
+                "nlin": g["nlin"],
+                "nw": g["nw"],
+                "ny": g["ny"],
+            }
+        )
     env = os.environ.get
     rustflags = env("AUTOSIM_RUSTFLAGS", "-C target-cpu=native")
     flags = f"`RUSTFLAGS={rustflags}`" if rustflags else "default flags (no `RUSTFLAGS`)"
     text = f"""# autosim's `linearize()` against CasADi's `jacobian`, generated C
 
-`bash bench/jacobian/run.sh`, {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC,
+`bash bench/jacobian/run.sh`, {datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC,
 autosim at {env("BENCH_GIT", "an unknown commit")}, {env("ROUNDS", "?")} rounds,
 {os.cpu_count()} CPUs, load average at the start of the rounds {env("BENCH_LOAD", "?")}.
 
@@ -93,8 +126,7 @@ max|autosim − CasADi| / max|CasADi|; the script fails above {env("TOL", "?")})
     with open(md_path, "w") as fh:
         fh.write(text)
     with open(jsonl_path, "w") as fh:
-        for s in summary:
-            fh.write(json.dumps(s) + "\n")
+        fh.writelines(json.dumps(s) + "\n" for s in summary)
     print(text)
 
 

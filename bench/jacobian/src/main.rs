@@ -34,7 +34,10 @@ fn read_states<const N: usize>(path: &str) -> Vec<[f64; N]> {
         .map(|line| {
             let values: Vec<f64> = line
                 .split_whitespace()
-                .map(|v| v.parse().unwrap_or_else(|_| fail(&format!("{path}: not a number: {v}"))))
+                .map(|v| {
+                    v.parse()
+                        .unwrap_or_else(|_| fail(&format!("{path}: not a number: {v}")))
+                })
                 .collect();
             values
                 .try_into()
@@ -111,7 +114,11 @@ fn run<M, const N: usize>(
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
-    let arg = |i: usize| args.get(i).cloned().unwrap_or_else(|| fail("missing arguments"));
+    let arg = |i: usize| {
+        args.get(i)
+            .cloned()
+            .unwrap_or_else(|| fail("missing arguments"))
+    };
     match args.get(1).map(String::as_str) {
         Some("list") => MODELS.iter().for_each(|m| {
             dispatch(m, &Mode::List);
@@ -131,6 +138,8 @@ fn main() {
                 dispatch(m, &mode);
             });
         }
-        _ => fail("usage: autosim_jacobian_bench bench ROUNDS STATES_DIR | dump MODEL STATES_FILE | list"),
+        _ => fail(
+            "usage: autosim_jacobian_bench bench ROUNDS STATES_DIR | dump MODEL STATES_FILE | list",
+        ),
     }
 }

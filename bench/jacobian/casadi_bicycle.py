@@ -14,8 +14,11 @@ frame H (reaction on B) about the steer axis. g = 9.81.
 
 autosim's state x (11): q = (x, y, psi, phi, theta, thetaR, delta, thetaF)
 and the independent speeds (u_phi, u_thetaR, u_delta); inputs
-w = (T_phi, T_delta); outputs y = (speed, potential):
-speed = rR (u_theta + u_thetaR), potential = sum of m g z of the mass centres.
+w = (T_phi, T_delta); outputs y = (speed, potential, ground):
+speed = rR (u_theta + u_thetaR), potential = sum of m g z of the mass centres,
+ground = h(q), the holonomic constraint's residual (autosim adds the residual
+of each position constraint to the outputs; its row of C vanishes on the
+constraint, up to rounding).
 From SymPy's mass matrix and forcing (rows 0..2: the dynamic equations
 K_i du_i/dt + K_d du_d/dt = f_d; rows 3..7: the velocity constraints'
 derivatives B_i du_i/dt + B_d du_d/dt = f_nh, B = [B_i B_d] the velocity
@@ -139,7 +142,7 @@ def build(gen_dir: str, states_dir: str) -> dict:
     t_sympy = time.perf_counter() - t0
 
     args = list(q) + list(u) + [g] + list(w)
-    exprs = list(mm) + list(ff) + [speed, potential] + dhol
+    exprs = list(mm) + list(ff) + [speed, potential, hol] + dhol
     fn = sm.lambdify(args, exprs, modules=[CASADI], printer=LambdaPrinter, cse=True)
     x = ca.SX.sym("x", 11)
     wx = ca.SX.sym("w", 2)
@@ -161,8 +164,8 @@ def build(gen_dir: str, states_dir: str) -> dict:
         ufull[pos] = z[k][0]
     e = fn(*qx, *ufull, G_VALUE, wx[0], wx[1])
     mmx, ffx = rows(e, 0, 8), e[64:72]
-    y = e[72:74]
-    h_q = e[74:82]
+    y = e[72:75]
+    h_q = e[75:83]
     # independent accelerations
     kin = [[mmx[r][c] for c in ind] for r in range(3)]
     kd = [[mmx[r][c] for c in dep] for r in range(3)]
@@ -191,7 +194,7 @@ def build(gen_dir: str, states_dir: str) -> dict:
         "bicycle",
         [x, wx],
         [a, b, c, d],
-        {"nx": 11, "nw": 2, "nlin": 10, "ny": 2},
+        {"nx": 11, "nw": 2, "nlin": 10, "ny": 3},
         gen_dir,
         {"t_sympy_s": t_sympy, "t_build_sx_s": t_sx, "sympy": sm.__version__},
     )

@@ -34,10 +34,18 @@ VPY="$VENV/bin/python"
 "$VPY" -c "import casadi, sympy, numpy; print('casadi', casadi.__version__, 'sympy', sympy.__version__, 'numpy', numpy.__version__)"
 
 echo "== 2. models (n = $NS; bicycle: $BICYCLE)"
-rm -rf "$HERE/models" "$OUT" && mkdir -p "$HERE/models" "$OUT/gen" "$OUT/states"
+rm -rf "$OUT" && mkdir -p "$HERE/models" "$OUT/gen" "$OUT/states" "$OUT/models"
 # shellcheck disable=SC2086
-(cd "$REPO" && cargo run -q --release --example gen_chains -- "$HERE/models" $NS)
-[ "$BICYCLE" = 1 ] && cp "$REPO/examples/models/bicycle.sim" "$HERE/models/"
+(cd "$REPO" && cargo run -q --release --example gen_chains -- "$OUT/models" $NS)
+[ "$BICYCLE" = 1 ] && cp "$REPO/examples/models/bicycle.sim" "$OUT/models/"
+# models/ changes only where a model changed: the bench crate (minutes of
+# rustc for the 20-link chains) is rebuilt only then.
+for f in "$HERE"/models/*.sim; do
+  [ -e "$f" ] && { [ -e "$OUT/models/$(basename "$f")" ] || rm "$f"; }
+done
+for f in "$OUT"/models/*.sim; do
+  cmp -s "$f" "$HERE/models/$(basename "$f")" || cp "$f" "$HERE/models/"
+done
 
 echo "== 3. CasADi: Jacobians as C"
 (cd "$HERE" && $NICE "$VPY" casadi_jacobian.py "$OUT/gen" "$OUT/states" --ns "$(echo $NS | tr ' ' ,)")

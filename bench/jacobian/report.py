@@ -25,6 +25,20 @@ def load(path: str) -> dict:
         return json.load(fh)
 
 
+def cpu_model() -> str:
+    with open("/proc/cpuinfo") as fh:
+        names = [line.split(":", 1)[1].strip() for line in fh if line.startswith("model name")]
+    return names[0] if names else "an unknown CPU"
+
+
+def build_text() -> str:
+    """What run.sh's cargo build cost (RUST_S seconds), in words."""
+    secs = float(os.environ.get("RUST_S", "nan"))
+    if secs < 10:
+        return "already built when this run started (nothing changed)"
+    return f"built in {secs:.0f} s of release build (the autosim crates included when they changed)"
+
+
 def main() -> None:
     out, md_path, jsonl_path = sys.argv[1:4]
     batches: dict[tuple[str, str], list[float]] = {}
@@ -101,7 +115,7 @@ def main() -> None:
 
 `bash bench/jacobian/run.sh`, {datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC,
 autosim at {env("BENCH_GIT", "an unknown commit")}, {env("ROUNDS", "?")} rounds,
-{os.cpu_count()} CPUs, load average at the start of the rounds {env("BENCH_LOAD", "?")}.
+{cpu_model()} ({os.cpu_count()} CPUs), {env("BENCH_RUSTC", "rustc ?")}, {env("BENCH_GCC", "gcc ?")}, load average at the start of the rounds {env("BENCH_LOAD", "?")}.
 
 Median ns per call over every batch (1000 calls, one at each of 1000 states
 shared by both programs) of every round; the rounds interleave the two
@@ -112,8 +126,7 @@ CasADi: `jacobian` of its SX expression graph, `Function(..., {{"cse": True}})`,
 in the table); its operations are CasADi's arithmetic instructions (no
 inputs, outputs, constants). autosim: the generated `linearize(t, &x)`
 (operations: `LINEARIZE_OPS.total()`), compiled with {flags}; the bench
-crate with every model built in {env("RUST_S", "?")} s (release, the
-dependencies included when they changed). Chains: their state Jacobian A
+crate with every model {build_text()}. Chains: their state Jacobian A
 only (autosim with `outputs = []`; CasADi differentiates its
 articulated-body algorithm, `casadi_aba.py`), at q uniform in [-π, π], speeds
 in [-1, 1]. Bicycle (if present): A, B, C, D on its constraints (see

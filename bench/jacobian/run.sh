@@ -90,5 +90,6 @@ done
 
 echo "== 8. tables"
 BENCH_GIT="$(bench_git)" ROUNDS="$ROUNDS" BENCH_LOAD="$LOAD" AUTOSIM_RUSTFLAGS="$RUSTFLAGS_BENCH" \
-  TOL="$TOL" RUST_S="$RUST_S" \
+  TOL="$TOL" RUST_S="$RUST_S" BENCH_RUSTC="$(cd "$REPO" && rustc --version)" \
+  BENCH_GCC="$(gcc --version | head -n 1)" \
   "$VPY" "$HERE/report.py" "$OUT" "$HERE/results.md" "$HERE/results.jsonl"

@@ -1,7 +1,8 @@
 """Forward dynamics of chain-planar-n / chain-spatial-n (shared/reference-models.md)
 as Featherstone's articulated-body algorithm written in CasADi SX: the
 hand-structured `aba` of the CasADi peer in ../shared/bench/casadi/cas_aba.py
-(copied here unchanged with its helpers and ../shared/bench/perf/params.py, so
+(copied here with its helpers and ../shared/bench/perf/params.py, the 6x6
+assembly of two of them shared as `symmetric6`, so
 this benchmark runs from the repository alone; that ABA is cross-checked there
 against Pinocchio to 1e-10). `casadi_jacobian.py` differentiates it.
 
@@ -93,6 +94,18 @@ def rotE(axis, c, s):
     return [[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]]
 
 
+def symmetric6(A, B, C):
+    """The symmetric 6x6 matrix [A B; B^T C] from its 3x3 blocks."""
+    out = [[None] * 6 for _ in range(6)]
+    for j in range(3):
+        for k in range(3):
+            out[j][k] = A[j][k]
+            out[j][k + 3] = B[j][k]
+            out[j + 3][k] = B[k][j]
+            out[j + 3][k + 3] = C[j][k]
+    return out
+
+
 def body_spatial_inertia(kind, i):
     """6x6 spatial inertia of body i about its origin, in its axes (Featherstone mcI)."""
     bp = body_params(kind, i)
@@ -103,14 +116,7 @@ def body_spatial_inertia(kind, i):
     A = [[Ic[j][k] - m * sum(cx[j][l] * cx[l][k] for l in range(3)) for k in range(3)] for j in range(3)]
     B = [[m * cx[j][k] for k in range(3)] for j in range(3)]
     C = [[m if j == k else 0.0 for k in range(3)] for j in range(3)]
-    I6 = [[0.0] * 6 for _ in range(6)]
-    for j in range(3):
-        for k in range(3):
-            I6[j][k] = A[j][k]
-            I6[j][k + 3] = B[j][k]
-            I6[j + 3][k] = B[k][j]
-            I6[j + 3][k + 3] = C[j][k]
-    return I6
+    return symmetric6(A, B, C)
 
 
 def chain(kind, n):
@@ -178,14 +184,7 @@ def congruence(E, r, I):
         for k in range(j, 3):
             A2[j][k] = A1[j][k] + K[j][k] + K[k][j] - rCr[j][k]
             A2[k][j] = A2[j][k]
-    out = [[None] * 6 for _ in range(6)]
-    for j in range(3):
-        for k in range(3):
-            out[j][k] = A2[j][k]
-            out[j][k + 3] = B2[j][k]
-            out[j + 3][k] = B2[k][j]
-            out[j + 3][k + 3] = C1[j][k]
-    return out
+    return symmetric6(A2, B2, C1)
 
 
 # ---------------------------------------------------------------- ABA (hand-structured)

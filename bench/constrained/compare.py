@@ -7,6 +7,7 @@ size, not with itself). Fails (exit 1) above TOLERANCE.
     python compare.py OUTDIR SUFFIX...   (autosim dumps dx_autosim_SUFFIX.bin)
 
 Writes OUTDIR/compare.json."""
+
 import json
 import os
 import sys
@@ -16,7 +17,7 @@ import numpy as np
 TOLERANCE = 1e-12
 
 
-def main():
+def main() -> None:
     out, suffixes = sys.argv[1], sys.argv[2:]
     result, failed = {}, []
     for model in ("four_bar", "rolling_disc", "bicycle"):
@@ -31,11 +32,17 @@ def main():
             diff = np.max(np.abs(dx - ref), axis=1)
             rel = diff / scale
             worst = int(np.argmax(rel))
-            result[f"{model}/{suffix}"] = dict(states=len(ref), max_rel=float(rel.max()),
-                                              median_rel=float(np.median(rel)),
-                                              max_abs=float(diff.max()), worst_state=worst)
-            print(f"{model} (autosim {suffix}): max relative difference {rel.max():.2e} "
-                  f"(state {worst}), median {np.median(rel):.2e}, max absolute {diff.max():.2e}")
+            result[f"{model}/{suffix}"] = dict(
+                states=len(ref),
+                max_rel=float(rel.max()),
+                median_rel=float(np.median(rel)),
+                max_abs=float(diff.max()),
+                worst_state=worst,
+            )
+            print(
+                f"{model} (autosim {suffix}): max relative difference {rel.max():.2e} "
+                f"(state {worst}), median {np.median(rel):.2e}, max absolute {diff.max():.2e}"
+            )
             if not rel.max() <= TOLERANCE:
                 failed.append(f"{model}/{suffix}: {rel.max():.2e} > {TOLERANCE:g} at state {worst}")
     json.dump(result | {"tolerance": TOLERANCE}, open(os.path.join(out, "compare.json"), "w"), indent=1)

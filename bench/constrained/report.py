@@ -6,6 +6,7 @@ C, with the operation counts, the agreement and the generation times.
 
 The environment gives BENCH_GIT, ROUNDS, BENCH_LOAD, GCC, BENCH_RUSTC and
 BENCH_CPU for the header."""
+
 import datetime
 import json
 import os
@@ -15,7 +16,7 @@ import sys
 MODELS = ("four_bar", "rolling_disc", "bicycle")
 
 
-def main():
+def main() -> None:
     out, md_path, jsonl_path = sys.argv[1:4]
     batches = {}
     for line in open(os.path.join(out, "rounds.jsonl")):
@@ -25,12 +26,16 @@ def main():
     ops = {o["kind"]: o for o in map(json.loads, open(os.path.join(out, "autosim_ops.jsonl")))}
     agree = json.load(open(os.path.join(out, "compare.json")))
     info = {m: json.load(open(os.path.join(out, m, "derive.json"))) for m in MODELS}
-    time_rows = ["| model | state (coordinates + independent speeds; all speeds) | SymPy C (ns) "
-                 "| autosim, default flags (ns) | ratio | autosim, native (ns) | ratio "
-                 "| SymPy ops (cse'd + LU) | autosim ops | largest difference |",
-                 "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
-    gen_rows = ["| model | KanesMethod (s) | cse (s) | states (s) | whole script (s) | C lines | ops before cse | pow calls |",
-                "|---|---:|---:|---:|---:|---:|---:|---:|"]
+    time_rows = [
+        "| model | state (coordinates + independent speeds; all speeds) | SymPy C (ns) "
+        "| autosim, default flags (ns) | ratio | autosim, native (ns) | ratio "
+        "| SymPy ops (cse'd + LU) | autosim ops | largest difference |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    gen_rows = [
+        "| model | KanesMethod (s) | cse (s) | states (s) | whole script (s) | C lines | ops before cse | pow calls |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|",
+    ]
     summary = []
     for m in MODELS:
         d = info[m]
@@ -41,13 +46,28 @@ def main():
         state = f"{len(d['state_names']) - n_ind} + {n_ind}; {d['n_speeds']}"
         time_rows.append(
             f"| {m} | {state} | {s:.1f} | {a:.1f} | {a / s:.2f} | {n:.1f} | {n / s:.2f} "
-            f"| {so['after_cse']} + {so['lu_solve']} = {so['total']} | {ao['total']} | {worst:.1e} |")
+            f"| {so['after_cse']} + {so['lu_solve']} = {so['total']} | {ao['total']} | {worst:.1e} |"
+        )
         t = d["times"]
-        gen_rows.append(f"| {m} | {t['kanes_equations_s']:.1f} | {t['cse_s']:.1f} | {t['states_s']:.1f} "
-                        f"| {t['total_s']:.1f} | {d['c_lines']} | {so['before_cse']} | {so['pow_calls']} |")
-        summary.append(dict(model=m, sympy_ns=s, autosim_default_ns=a, autosim_native_ns=n,
-                            ratio_default=a / s, ratio_native=n / s, sympy_ops=so, autosim_ops=ao,
-                            max_rel_difference=worst, generation=t, nq_plus_nu=state))
+        gen_rows.append(
+            f"| {m} | {t['kanes_equations_s']:.1f} | {t['cse_s']:.1f} | {t['states_s']:.1f} "
+            f"| {t['total_s']:.1f} | {d['c_lines']} | {so['before_cse']} | {so['pow_calls']} |"
+        )
+        summary.append(
+            dict(
+                model=m,
+                sympy_ns=s,
+                autosim_default_ns=a,
+                autosim_native_ns=n,
+                ratio_default=a / s,
+                ratio_native=n / s,
+                sympy_ops=so,
+                autosim_ops=ao,
+                max_rel_difference=worst,
+                generation=t,
+                nq_plus_nu=state,
+            )
+        )
     sympy_version = info["bicycle"]["sympy"]
     numpy_version = info["bicycle"]["numpy"]
     text = f"""# autosim against SymPy's KanesMethod on the constrained models

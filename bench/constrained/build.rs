@@ -1,10 +1,12 @@
-//! Compiles the three constrained example models.
+//! Compiles the three constrained example models and this folder's variant
+//! of the rolling disc.
 
 fn main() {
-    let models: Vec<std::path::PathBuf> = ["four_bar", "rolling_disc", "bicycle"]
+    let mut models: Vec<std::path::PathBuf> = ["four_bar", "rolling_disc", "bicycle"]
         .iter()
         .map(|m| format!("../../examples/models/{m}.sim").into())
         .collect();
+    models.push("models/rolling_disc_lean.sim".into());
     for m in &models {
         println!("cargo::rerun-if-changed={}", m.display());
     }

@@ -26,13 +26,16 @@ def main() -> None:
         ref = np.fromfile(os.path.join(d, "dx_sympy.bin")).reshape(-1, nx)
         assert np.all(np.isfinite(ref)), f"{model}: SymPy's C gives non-finite dx"
         scale = np.max(np.abs(ref), axis=1)
-        for suffix in suffixes:
-            dx = np.fromfile(os.path.join(d, f"dx_autosim_{suffix}.bin")).reshape(-1, nx)
+        variants = [(model, s, f"dx_autosim_{s}.bin") for s in suffixes]
+        if model == "rolling_disc":  # and bench/constrained/models/rolling_disc_lean.sim
+            variants += [("rolling_disc_lean", s, f"dx_autosim_lean_{s}.bin") for s in suffixes]
+        for name, suffix, file in variants:
+            dx = np.fromfile(os.path.join(d, file)).reshape(-1, nx)
             assert dx.shape == ref.shape, f"{model}: {dx.shape} states vs {ref.shape}"
             diff = np.max(np.abs(dx - ref), axis=1)
             rel = diff / scale
             worst = int(np.argmax(rel))
-            result[f"{model}/{suffix}"] = dict(
+            result[f"{name}/{suffix}"] = dict(
                 states=len(ref),
                 max_rel=float(rel.max()),
                 median_rel=float(np.median(rel)),
@@ -40,11 +43,11 @@ def main() -> None:
                 worst_state=worst,
             )
             print(
-                f"{model} (autosim {suffix}): max relative difference {rel.max():.2e} "
+                f"{name} (autosim {suffix}): max relative difference {rel.max():.2e} "
                 f"(state {worst}), median {np.median(rel):.2e}, max absolute {diff.max():.2e}"
             )
             if not rel.max() <= TOLERANCE:
-                failed.append(f"{model}/{suffix}: {rel.max():.2e} > {TOLERANCE:g} at state {worst}")
+                failed.append(f"{name}/{suffix}: {rel.max():.2e} > {TOLERANCE:g} at state {worst}")
     json.dump(result | {"tolerance": TOLERANCE}, open(os.path.join(out, "compare.json"), "w"), indent=1)
     if failed:
         print("FAILED: autosim and SymPy differ:\n  " + "\n  ".join(failed), file=sys.stderr)

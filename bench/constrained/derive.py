@@ -7,6 +7,7 @@ and C printer, count its operations, and draw random consistent states.
 
 Writes, for each model, into OUTDIR/MODEL/:
   rhs.c        void MODEL_rhs(const double *x, const double *p, double *dx)
+               (and MODEL_eval, steps 1 and 2 below without the solve)
   derive.json  sizes, names, timings of each step, operation counts
   states.bin   NS random consistent states (float64, autosim's state order)
   params.bin   the parameter values, in the order of p
@@ -120,7 +121,8 @@ def ops(pairs: list[tuple[sm.Symbol, sm.Expr]], exprs: list[sm.Expr]) -> int:
 
 
 def emit_c(model: Model, eq: dict[str, Any], t0: float) -> tuple[str, dict[str, int], dict[str, float]]:
-    """The C source of MODEL_rhs and its operation counts."""
+    """The C source of MODEL_eval (steps 1 and 2: M, f and dq/dt) and
+    MODEL_rhs (MODEL_eval and step 3, the solve), and its operation counts."""
     n = eq["M"].shape[0]
     nq = len(model.state_q)
     ni = len(model.u_ind)
@@ -130,7 +132,7 @@ def emit_c(model: Model, eq: dict[str, Any], t0: float) -> tuple[str, dict[str, 
         "#include <math.h>",
         '#include "lu.h"',
         "",
-        f"void {model.name}_rhs(const double *x, const double *p, double *dx) {{",
+        f"void {model.name}_eval(const double *x, const double *p, double *M, double *f, double *dx) {{",
     ]
     for i, s in enumerate(model.state_q + model.u_ind):
         lines.append(f"  const double s_{c_name(s)} = x[{i}];")
@@ -145,14 +147,20 @@ def emit_c(model: Model, eq: dict[str, Any], t0: float) -> tuple[str, dict[str, 
     rep, red = sm.cse(exprs, symbols=sm.numbered_symbols("a"))
     times["cse_s"] = time.perf_counter() - t
     log(t0, f"{model.name}: cse {times['cse_s']:.1f} s")
-    lines.append(f"  double M[{n * n}], f[{n}], du[{n}];")
     for s, e in rep:
         lines.append(f"  const double {s} = {sm.ccode(e, standard='C99')};")
     for k, e in enumerate(red):
         target = f"M[{k}]" if k < n * n else f"f[{k - n * n}]" if k < n * n + n else f"dx[{k - n * n - n}]"
         lines.append(f"  {target} = {sm.ccode(e, standard='C99')};")
     # 3. M du/dt = f; the independent speeds come first in KanesMethod's u
-    lines.append(f"  lu_solve({n}, M, f, du);")
+    lines += [
+        "}",
+        "",
+        f"void {model.name}_rhs(const double *x, const double *p, double *dx) {{",
+        f"  double M[{n * n}], f[{n}], du[{n}];",
+        f"  {model.name}_eval(x, p, M, f, dx);",
+        f"  lu_solve({n}, M, f, du);",
+    ]
     for i in range(ni):
         lines.append(f"  dx[{nq + i}] = du[{i}];")
     lines.append("}")

@@ -1,8 +1,11 @@
 /* Times or dumps a model's SymPy C (rhs.c, written by derive.py) at the
  * states derive.py drew, as ../peers times its peers: 1000 states, batches
  * of 1000 calls, about 0.04 s of batches per model and round.
- * Compile with -DMODEL=<name> -DRHS=<name>_rhs -DNX=<states> -DNPAR=<parameters>.
- *   harness bench DIR   prints one JSON line (ns per call of every batch)
+ * Compile with -DMODEL=<name> -DRHS=<name>_rhs -DEVAL=<name>_eval -DNX=<states>
+ * -DNPAR=<parameters> -DNU=<all speeds>.
+ *   harness bench DIR   prints two JSON lines (ns per call of every batch):
+ *                       method sympy_lu, the whole state derivative (RHS),
+ *                       and sympy_eval, M, f and dq/dt without the solve (EVAL)
  *   harness dump DIR    writes DIR/dx_sympy.bin (dx at every state) */
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,6 +17,7 @@
 #define STR(x) STR2(x)
 
 void RHS(const double *x, const double *p, double *dx);
+void EVAL(const double *x, const double *p, double *M, double *f, double *dx);
 
 static double X[NS][NX], DX[NS][NX], PAR[NPAR];
 volatile double g_sink;
@@ -32,10 +36,34 @@ static void read_all(const char *dir, const char *name, double *to, size_t n) {
   fclose(f);
 }
 
-static double pass(void) {
+static double pass_rhs(void) {
   double acc = 0, dx[NX];
   for (int s = 0; s < NS; ++s) { RHS(X[s], PAR, dx); acc += dx[NX - 1]; }
   return acc;
+}
+
+static double pass_eval(void) {
+  double acc = 0, dx[NX], M[NU * NU], f[NU];
+  for (int s = 0; s < NS; ++s) { EVAL(X[s], PAR, M, f, dx); acc += M[NU * NU - 1] + f[NU - 1]; }
+  return acc;
+}
+
+static void bench(const char *method, double (*pass)(void)) {
+  double acc = pass();
+  double t0 = now_ns();
+  acc += pass();
+  double one = now_ns() - t0;
+  int R = (int)(0.04e9 / (one > 1 ? one : 1));
+  if (R < 7) R = 7;
+  if (R > 601) R = 601;
+  printf("{\"kind\": \"%s\", \"tool\": \"sympy\", \"method\": \"%s\", \"calls_per_batch\": %d, \"batches_ns\": [", STR(MODEL), method, NS);
+  for (int r = 0; r < R; ++r) {
+    t0 = now_ns();
+    acc += pass();
+    printf("%s%.3f", r ? ", " : "", (now_ns() - t0) / NS);
+  }
+  printf("]}\n");
+  g_sink = acc;
 }
 
 int main(int argc, char **argv) {
@@ -51,20 +79,7 @@ int main(int argc, char **argv) {
     fclose(f);
     return 0;
   }
-  double acc = pass();
-  double t0 = now_ns();
-  acc += pass();
-  double one = now_ns() - t0;
-  int R = (int)(0.04e9 / (one > 1 ? one : 1));
-  if (R < 7) R = 7;
-  if (R > 601) R = 601;
-  printf("{\"kind\": \"%s\", \"tool\": \"sympy\", \"method\": \"sympy_lu\", \"calls_per_batch\": %d, \"batches_ns\": [", STR(MODEL), NS);
-  for (int r = 0; r < R; ++r) {
-    t0 = now_ns();
-    acc += pass();
-    printf("%s%.3f", r ? ", " : "", (now_ns() - t0) / NS);
-  }
-  printf("]}\n");
-  g_sink = acc;
+  bench("sympy_lu", pass_rhs);
+  bench("sympy_eval", pass_eval);
   return 0;
 }

@@ -36,8 +36,9 @@ done
 
 echo "== 2. gcc -O3 -march=native"
 for m in "${MODELS[@]}"; do
-  read -r nx npar < <("$PY" -c 'import json,sys; d=json.load(open(sys.argv[1])); print(len(d["state_names"]), len(d["parameters"]))' "$OUT/$m/derive.json")
-  $NICE gcc -O3 -march=native -I"$HERE" -DMODEL="$m" -DRHS="${m}_rhs" -DNX="$nx" -DNPAR="$npar" \
+  read -r nx npar nu < <("$PY" -c 'import json,sys; d=json.load(open(sys.argv[1])); print(len(d["state_names"]), len(d["parameters"]), d["n_speeds"])' "$OUT/$m/derive.json")
+  $NICE gcc -O3 -march=native -I"$HERE" -DMODEL="$m" -DRHS="${m}_rhs" -DEVAL="${m}_eval" \
+    -DNX="$nx" -DNPAR="$npar" -DNU="$nu" \
     -o "$OUT/$m/sympy_bench" "$HERE/harness.c" "$OUT/$m/rhs.c" -lm
 done
 

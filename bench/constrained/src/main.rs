@@ -2,10 +2,13 @@
 //! `derivatives()` of the four-bar, the rolling disc and the bicycle at the
 //! states `derive.py` drew (DIR/MODEL/states.bin), timed as ../peers times
 //! the chains (batches of 1000 calls, about 0.04 s of batches per model and
-//! round).
+//! round). With them `rolling_disc_lean` (models/rolling_disc_lean.sim: the
+//! disc with its contact vector written along the lean axis, as SymPy's
+//! model has it) at the rolling disc's states.
 //!
 //! - `bench DIR ROUNDS`: one JSON line per model, method `autosim`
 //! - `dump DIR SUFFIX`: writes DIR/MODEL/dx_autosim_SUFFIX.bin
+//!   (DIR/rolling_disc/dx_autosim_lean_SUFFIX.bin for the variant)
 //! - `ops DIR`: one JSON line per model with `DERIVATIVE_OPS`
 
 use autosim::runtime::{Model, OpCount};
@@ -16,6 +19,7 @@ use std::time::Instant;
 autosim::include_model!(four_bar);
 autosim::include_model!(rolling_disc);
 autosim::include_model!(bicycle);
+autosim::include_model!(rolling_disc_lean);
 
 /// The states in DIR/MODEL/states.bin (float64, native endianness, as numpy
 /// writes them).
@@ -48,12 +52,12 @@ fn time<M: Model<Float = f64, State = [f64; N]>, const N: usize>(
     (0..rounds * batches).map(|_| pass(&mut model)).collect()
 }
 
-/// dx at every state, written next to the states.
+/// dx at every state of DIR/NAME, written next to them as FILE.
 fn dump<M: Model<Float = f64, State = [f64; N]>, const N: usize>(
     mut model: M,
     dir: &Path,
     name: &str,
-    suffix: &str,
+    file: &str,
 ) {
     let mut out = Vec::new();
     for x in states::<N>(dir, name) {
@@ -64,7 +68,7 @@ fn dump<M: Model<Float = f64, State = [f64; N]>, const N: usize>(
         }
         out.extend(dx.iter().flat_map(|v| v.to_ne_bytes()));
     }
-    let path = dir.join(name).join(format!("dx_autosim_{suffix}.bin"));
+    let path = dir.join(name).join(file);
     std::fs::write(&path, out).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
 }
 
@@ -86,22 +90,29 @@ fn main() {
         std::process::exit(2);
     };
     let dir = Path::new(dir);
-    let (four_bar, disc, bicycle) = (
+    let (four_bar, disc, bicycle, lean) = (
         four_bar::FourBar::new(),
         rolling_disc::RollingDisc::new(),
         bicycle::Bicycle::new(),
+        rolling_disc_lean::RollingDiscLean::new(),
     );
     match mode.as_str() {
         "ops" => {
             ops_line("four_bar", four_bar::FourBar::DERIVATIVE_OPS);
             ops_line("rolling_disc", rolling_disc::RollingDisc::DERIVATIVE_OPS);
             ops_line("bicycle", bicycle::Bicycle::DERIVATIVE_OPS);
+            ops_line(
+                "rolling_disc_lean",
+                rolling_disc_lean::RollingDiscLean::DERIVATIVE_OPS,
+            );
         }
         "dump" => {
             let suffix = args.get(3).map_or("default", String::as_str);
-            dump(four_bar, dir, "four_bar", suffix);
-            dump(disc, dir, "rolling_disc", suffix);
-            dump(bicycle, dir, "bicycle", suffix);
+            let file = format!("dx_autosim_{suffix}.bin");
+            dump(four_bar, dir, "four_bar", &file);
+            dump(disc, dir, "rolling_disc", &file);
+            dump(bicycle, dir, "bicycle", &file);
+            dump(lean, dir, "rolling_disc", &format!("dx_autosim_lean_{suffix}.bin"));
         }
         "bench" => {
             let rounds: usize = args.get(3).and_then(|r| r.parse().ok()).unwrap_or(1);
@@ -109,6 +120,10 @@ fn main() {
                 ("four_bar", time(four_bar, &states(dir, "four_bar"), rounds)),
                 ("rolling_disc", time(disc, &states(dir, "rolling_disc"), rounds)),
                 ("bicycle", time(bicycle, &states(dir, "bicycle"), rounds)),
+                (
+                    "rolling_disc_lean",
+                    time(lean, &states(dir, "rolling_disc"), rounds),
+                ),
             ];
             for (kind, batches) in out {
                 let list: Vec<String> = batches.iter().map(|b| format!("{b:.3}")).collect();

@@ -26,10 +26,17 @@ autosim::include_model!(rolling_disc_lean);
 fn states<const N: usize>(dir: &Path, model: &str) -> Vec<[f64; N]> {
     let path = dir.join(model).join("states.bin");
     let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    assert_eq!(bytes.len() % (8 * N), 0, "{}: not states of {N}", path.display());
+    assert_eq!(
+        bytes.len() % (8 * N),
+        0,
+        "{}: not states of {N}",
+        path.display()
+    );
     bytes
         .chunks_exact(8 * N)
-        .map(|s| std::array::from_fn(|i| f64::from_ne_bytes(s[8 * i..8 * i + 8].try_into().unwrap())))
+        .map(|s| {
+            std::array::from_fn(|i| f64::from_ne_bytes(s[8 * i..8 * i + 8].try_into().unwrap()))
+        })
         .collect()
 }
 
@@ -112,13 +119,21 @@ fn main() {
             dump(four_bar, dir, "four_bar", &file);
             dump(disc, dir, "rolling_disc", &file);
             dump(bicycle, dir, "bicycle", &file);
-            dump(lean, dir, "rolling_disc", &format!("dx_autosim_lean_{suffix}.bin"));
+            dump(
+                lean,
+                dir,
+                "rolling_disc",
+                &format!("dx_autosim_lean_{suffix}.bin"),
+            );
         }
         "bench" => {
             let rounds: usize = args.get(3).and_then(|r| r.parse().ok()).unwrap_or(1);
             let out = [
                 ("four_bar", time(four_bar, &states(dir, "four_bar"), rounds)),
-                ("rolling_disc", time(disc, &states(dir, "rolling_disc"), rounds)),
+                (
+                    "rolling_disc",
+                    time(disc, &states(dir, "rolling_disc"), rounds),
+                ),
                 ("bicycle", time(bicycle, &states(dir, "bicycle"), rounds)),
                 (
                     "rolling_disc_lean",

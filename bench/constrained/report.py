@@ -80,7 +80,7 @@ def main() -> None:
     numpy_version = info["bicycle"]["numpy"]
     text = f"""# autosim against SymPy's KanesMethod on the constrained models
 
-`flock /tmp/cargo.lock bash bench/constrained/run.sh`,
+`bash bench/constrained/run.sh`,
 {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, autosim at
 {os.environ.get("BENCH_GIT", "an unknown commit")}; {os.environ.get("ROUNDS", "?")} interleaved rounds
 pinned to one CPU; {os.environ.get("BENCH_CPU", "?")}, {os.cpu_count()} CPUs, load average at the

@@ -3,7 +3,7 @@
 # that builds the dependencies), each build timed, then FMPy's Model
 # Exchange and Co-Simulation runs of the three timed, interleaved
 # (opt_level.py). Guide chapter 9 quotes the numbers for chain_spatial_10:
-#   flock /tmp/cargo.lock bash bench/fmu/opt_level.sh chain_spatial_10 ChainSpatial10
+#   bash bench/fmu/opt_level.sh chain_spatial_10 ChainSpatial10
 # Needs a Python with fmpy==0.3.32 and numpy as $PYTHON (default python3).
 set -euo pipefail
 MODEL=${1:-chain_spatial_10}

@@ -5,7 +5,7 @@ else running, from the repository root with the package and PyDy installed
 (the shared environment of `cargo test --test python` has them, plus
 `pip install pydy cython sympy`):
 
-    flock /tmp/cargo.lock target/python-env/bin/python bench/python/bench.py
+    target/python-env/bin/python bench/python/bench.py
 
 Models: PyDy's `n_link_pendulum_on_cart` n = 1, 3, 5 (PyDy builds its own;
 autosim loads `python/tests/models/n_link_pendulum_on_cart_<n>.sim`, the

@@ -1,7 +1,7 @@
 """Throughput of a study from Python and through Dask, beside the Rust
 numbers of `cargo run --release --example study_throughput`.
 
-    flock /tmp/cargo.lock target/python-env/bin/python bench/python/study.py [ROUNDS [CASES]]
+    target/python-env/bin/python bench/python/study.py [ROUNDS [CASES]]
 
 The study is the Rust example's: the pendulum, CASES (default 10^4)
 random draws of angle and mass, RK4 for 2 s at h = 1 ms, keeping the

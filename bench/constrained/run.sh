@@ -9,7 +9,7 @@
 # more than 1e-12 (relative); then ROUNDS (default 5) interleaved rounds,
 # pinned to one CPU when taskset exists, and the tables in results.md.
 #
-#   flock /tmp/cargo.lock bash bench/constrained/run.sh   (from the repository root)
+#   bash bench/constrained/run.sh   (from the repository root)
 #
 # Makes a virtual environment with sympy and numpy under target/ on its first
 # run (PYTHON: the interpreter that makes it, default python3). The SymPy

@@ -1,7 +1,7 @@
 //! A block too big for one function, cut into parts of bounded size.
 //!
 //! LLVM's time on one function grows faster than its size: the Whipple
-//! bicycle's `linearize`, 24 404 operations in one function, took 18 s of
+//! bicycle's `linearize`, 24 404 operations in one function, took 19 s of
 //! release build; cut into functions of at most [`MAX_OPS_PER_PART`]
 //! operations it takes a fraction of that (README, "Compile cost"). The
 //! parts run in order; every value a block binds lives in one array `z`

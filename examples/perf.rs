@@ -167,13 +167,14 @@ fn median_ns<S>(states: &[S], mut f: impl FnMut(&S)) -> f64 {
 }
 
 /// `linearize` against central differences of `derivatives` (2 evaluations
-/// per state).
+/// per state), at random states (the bicycle: at states along a run, which
+/// satisfy its constraints).
 fn linearization(rng: &mut Rng) {
     use models::*;
     macro_rules! compare {
-        ($name:literal, $model:expr, $ty:ty, $n:literal) => {{
+        ($name:literal, $model:expr, $ty:ty, $n:literal, $states:expr) => {{
             let mut m = $model;
-            let xs = states::<$n>(rng, 64, None);
+            let xs: Vec<[f64; $n]> = $states(&mut m);
             let lin = median_ns(&xs, |x| {
                 let _ = black_box(m.linearize(0.0, x));
             });
@@ -195,13 +196,28 @@ fn linearization(rng: &mut Rng) {
         "chain-spatial-10",
         chain_spatial10_linear::ChainSpatial10Linear::new(),
         chain_spatial10_linear::ChainSpatial10Linear,
-        20
+        20,
+        |_: &mut _| states::<20>(rng, 64, None)
     );
     compare!(
         "satellite",
         satellite_linear::SatelliteLinear::new(Quiet),
         satellite_linear::SatelliteLinear<Quiet>,
-        20
+        20,
+        |_: &mut _| states::<20>(rng, 64, None)
+    );
+    compare!(
+        "bicycle",
+        bicycle_linear::BicycleLinear::new(),
+        bicycle_linear::BicycleLinear,
+        11,
+        |m: &mut bicycle_linear::BicycleLinear| {
+            let mut x0 = m.initial_state();
+            // Rolling at 5 m/s with a roll perturbation (as `constrained`).
+            x0[3] = 0.05;
+            x0[9] = 5.0 / 0.3;
+            along_run(m, x0, 5.0).into_iter().step_by(8).collect()
+        }
     );
 }
 

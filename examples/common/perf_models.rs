@@ -26,6 +26,11 @@ pub mod models {
         name = SatelliteLinear,
         linearize = true
     );
+    autosim::model!(
+        file = "examples/models/bicycle.sim",
+        name = BicycleLinear,
+        linearize = true
+    );
 }
 
 include!("quiet.rs");

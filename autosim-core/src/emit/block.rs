@@ -39,6 +39,11 @@ fn array_slots(block: &Block) -> FxHashMap<Nid, usize> {
     if block.names.len() <= MAX_LETS_IN_FUNCTION {
         return FxHashMap::default();
     }
+    all_slots(block)
+}
+
+/// The array index of every bound value of a block, in statement order.
+pub fn all_slots(block: &Block) -> FxHashMap<Nid, usize> {
     let mut slots = FxHashMap::default();
     for st in &block.stmts {
         let bound: &[Nid] = match st {
@@ -89,14 +94,30 @@ pub struct BlockEmitter<'a> {
 impl BlockEmitter<'_> {
     /// The statements of `block` (with `hoisted`: constants read from `c`).
     pub fn emit(&self, block: &Block, hoisted: bool, target: Target<'_>) -> TokenStream {
-        self.statements(block, hoisted, target, false)
+        let array = array_slots(block);
+        let declare = !array.is_empty();
+        self.statements(block, hoisted, target, false, (&array, declare))
+    }
+
+    /// The statements of one part of a block cut into parts
+    /// (`parts.rs`): every bound value in the array its caller declared,
+    /// at `array`'s index.
+    pub fn emit_part(
+        &self,
+        part: &Block,
+        array: &FxHashMap<Nid, usize>,
+        target: Target<'_>,
+    ) -> TokenStream {
+        self.statements(part, true, target, false, (array, false))
     }
 
     /// [`BlockEmitter::emit`] for a function that returns `Result<_,
     /// ModelError>`: every result of user code is checked, and NaN or
     /// infinity returns `NonFiniteUserResult` naming the function.
     pub fn emit_checked(&self, block: &Block, hoisted: bool, target: Target<'_>) -> TokenStream {
-        self.statements(block, hoisted, target, true)
+        let array = array_slots(block);
+        let declare = !array.is_empty();
+        self.statements(block, hoisted, target, true, (&array, declare))
     }
 
     fn statements(
@@ -105,8 +126,8 @@ impl BlockEmitter<'_> {
         hoisted: bool,
         target: Target<'_>,
         check_user_results: bool,
+        (array, declare): (&FxHashMap<Nid, usize>, bool),
     ) -> TokenStream {
-        let array = array_slots(block);
         let none = FxHashMap::default();
         let printer = ExprPrinter {
             common_slot: match block.common.is_empty() {
@@ -120,13 +141,13 @@ impl BlockEmitter<'_> {
             constant_slot: self.constant_slot,
             math: self.math.clone(),
             locals: self.locals,
-            array: &array,
+            array,
             timing: Default::default(),
             user_check: check_user_results.then(|| self.rt.clone()),
         };
         let mut out = self.reads(block, hoisted, &target);
         out.extend(self.shared_terms_call(block));
-        if !array.is_empty() {
+        if declare {
             let (z, len) = (&self.locals.z, Literal::usize_unsuffixed(array.len()));
             out.extend(quote!(let mut #z = [0.0; #len];));
         }

@@ -7,6 +7,7 @@ mod file;
 mod markdown;
 mod model;
 mod pack;
+mod parts;
 mod placeholder;
 mod sines;
 

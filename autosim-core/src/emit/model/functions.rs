@@ -199,14 +199,8 @@ pub(super) fn linear_sizes(prog: &Program) -> (usize, usize, usize) {
 /// The body of `linearize`: the matrices start at zero, the block writes
 /// the others.
 fn linearize_body(be: &BlockEmitter<'_>, block: &Block) -> TokenStream {
-    let (nl, nw, ny) = linear_sizes(be.prog);
     let lin = &be.locals.lin;
-    let list = [
-        (quote!(#lin.a), nl, nl),
-        (quote!(#lin.b), nl, nw),
-        (quote!(#lin.c), ny, nl),
-        (quote!(#lin.d), ny, nw),
-    ];
+    let list = linear_matrices(be);
     let rt = &be.rt;
     let body = be.emit(block, true, Target::Matrices(&list));
     quote! {
@@ -214,6 +208,19 @@ fn linearize_body(be: &BlockEmitter<'_>, block: &Block) -> TokenStream {
         #body
         Ok(#lin)
     }
+}
+
+/// Where the linear model's slots go: `lin.a`, `lin.b`, `lin.c`, `lin.d`
+/// with their sizes.
+pub(super) fn linear_matrices(be: &BlockEmitter<'_>) -> [(TokenStream, usize, usize); 4] {
+    let (nl, nw, ny) = linear_sizes(be.prog);
+    let lin = &be.locals.lin;
+    [
+        (quote!(#lin.a), nl, nl),
+        (quote!(#lin.b), nl, nw),
+        (quote!(#lin.c), ny, nl),
+        (quote!(#lin.d), ny, nw),
+    ]
 }
 
 /// The initial state: only its nonzero entries are computed.

@@ -38,9 +38,8 @@ pub fn in_lanes<M, const L: usize, const N: usize>(
     let mut soa_dx = [Lanes::<L>::ZERO; N];
     for g in 0..groups {
         let range = g * L..(g + 1) * L;
-        let soa_x: [Lanes<L>; N] = core::array::from_fn(|i| {
-            Lanes(core::array::from_fn(|l| x[range.start + l][i]))
-        });
+        let soa_x: [Lanes<L>; N] =
+            core::array::from_fn(|i| Lanes(core::array::from_fn(|l| x[range.start + l][i])));
         match lanes(model, t, &soa_x, &mut soa_dx) {
             Ok(()) => {
                 for (l, (d, s)) in dx[range.clone()]
@@ -52,11 +51,23 @@ pub fn in_lanes<M, const L: usize, const N: usize>(
                     *s = Ok(());
                 }
             }
-            Err(_) => one_by_one(model, t, &x[range.clone()], &mut dx[range.clone()], &mut status[range]),
+            Err(_) => one_by_one(
+                model,
+                t,
+                &x[range.clone()],
+                &mut dx[range.clone()],
+                &mut status[range],
+            ),
         }
     }
     let rest = groups * L..count;
-    one_by_one(model, t, &x[rest.clone()], &mut dx[rest.clone()], &mut status[rest]);
+    one_by_one(
+        model,
+        t,
+        &x[rest.clone()],
+        &mut dx[rest.clone()],
+        &mut status[rest],
+    );
 }
 
 /// One [`Model::derivatives`] call per state: the default

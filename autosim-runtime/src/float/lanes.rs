@@ -149,7 +149,10 @@ pub fn check_user_results_lanes<const K: usize, const L: usize>(
     values: [Lanes<L>; K],
     function: &'static str,
 ) -> Result<[Lanes<L>; K], ModelError> {
-    match values.iter().fold(true, |all, v| all & v.all(f64::is_finite)) {
+    match values
+        .iter()
+        .fold(true, |all, v| all & v.all(f64::is_finite))
+    {
         true => Ok(values),
         false => Err(ModelError::NonFiniteUserResult { function }),
     }
@@ -167,10 +170,7 @@ pub fn check_derivatives_lanes<M: Model + ?Sized, const L: usize>(
     if finite {
         return Ok(());
     }
-    let index = dx
-        .iter()
-        .position(|d| !d.all(f64::is_finite))
-        .unwrap_or(0);
+    let index = dx.iter().position(|d| !d.all(f64::is_finite)).unwrap_or(0);
     let name = M::STATE_NAMES.get(index).copied().unwrap_or("?");
     Err(ModelError::NonFiniteDerivative { index, name })
 }

@@ -20,7 +20,9 @@ pub const LANES: usize = 4;
 /// the states left over after the last full group, one call each.
 ///
 /// Processes as many states as the shortest of `x`, `dx`, `status` holds.
-#[doc(hidden)]
+/// Public for other lane counts than [`LANES`]: with a generated model
+/// `m`, `in_lanes::<_, 8, N>(&mut m, t, &x, &mut dx, &mut status, |m, t,
+/// x, dx| m.derivatives_lanes(t, x, dx))` evaluates eight states per call.
 #[inline]
 pub fn in_lanes<M, const L: usize, const N: usize>(
     model: &mut M,

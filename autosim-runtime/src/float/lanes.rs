@@ -40,8 +40,8 @@ impl<const L: usize> Lanes<L> {
     #[inline(always)]
     pub fn map(self, mut f: impl FnMut(f64) -> f64) -> Self {
         let mut out = self;
-        for v in &mut out.0 {
-            *v = f(*v);
+        for l in 0..L {
+            out.0[l] = f(self.0[l]);
         }
         out
     }
@@ -50,8 +50,8 @@ impl<const L: usize> Lanes<L> {
     #[inline(always)]
     pub fn zip(self, other: Self, mut f: impl FnMut(f64, f64) -> f64) -> Self {
         let mut out = self;
-        for (v, w) in out.0.iter_mut().zip(other.0) {
-            *v = f(*v, w);
+        for l in 0..L {
+            out.0[l] = f(self.0[l], other.0[l]);
         }
         out
     }
@@ -60,7 +60,11 @@ impl<const L: usize> Lanes<L> {
     /// AND).
     #[inline(always)]
     pub fn all(self, mut test: impl FnMut(f64) -> bool) -> bool {
-        self.0.iter().fold(true, |all, &v| all & test(v))
+        let mut all = true;
+        for l in 0..L {
+            all &= test(self.0[l]);
+        }
+        all
     }
 }
 
@@ -93,16 +97,16 @@ impl<const L: usize> MulAdd for Lanes<L> {
     #[inline(always)]
     fn add_mul(self, a: Self, b: Self) -> Self {
         let mut out = self;
-        for ((v, a), b) in out.0.iter_mut().zip(a.0).zip(b.0) {
-            *v = v.add_mul(a, b);
+        for l in 0..L {
+            out.0[l] = self.0[l].add_mul(a.0[l], b.0[l]);
         }
         out
     }
     #[inline(always)]
     fn sub_mul(self, a: Self, b: Self) -> Self {
         let mut out = self;
-        for ((v, a), b) in out.0.iter_mut().zip(a.0).zip(b.0) {
-            *v = v.sub_mul(a, b);
+        for l in 0..L {
+            out.0[l] = self.0[l].sub_mul(a.0[l], b.0[l]);
         }
         out
     }

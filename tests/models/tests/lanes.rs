@@ -11,7 +11,7 @@
 //! inputs and discrete variables, and an `f32` model (the default batch).
 
 use autosim::runtime::{Float, Model, ModelError, StateArray};
-use autosim_models_check::{via_build, via_macro};
+use autosim_models_check::lanes as models;
 use autosim_test_support::Rng;
 
 /// What `derivatives` gives at `x`: the error, or the derivatives' bits.
@@ -89,7 +89,7 @@ fn both_copies<M: Model>(mut model: M, seed: u64) -> (usize, usize) {
 /// some states fail with `NonFiniteUserResult`), fixed commands.
 struct Thrusters;
 
-impl via_macro::satellite::Externs for Thrusters {
+impl models::satellite::Externs for Thrusters {
     fn thrust(&mut self, _t: f64, axis: f64, error: f64) -> f64 {
         match error {
             e if e.abs() > 2.5 => f64::NAN,
@@ -121,19 +121,16 @@ fn batch_gives_the_bits_and_errors_of_single_calls() {
 
 fn batch_matches_single_calls() {
     let runs = [
-        both_copies(via_macro::chain_spatial7::ChainSpatial7::new(), 1),
-        both_copies(via_build::chain_spatial10::ChainSpatial10::new(), 2),
-        both_copies(via_build::chain_spatial20::ChainSpatial20::new(), 3),
-        both_copies(via_macro::chain_planar10::ChainPlanar10::new(), 4),
-        both_copies(via_macro::four_bar::FourBar::new(), 5),
-        both_copies(via_macro::rolling_disc::RollingDisc::new(), 6),
-        both_copies(via_macro::bicycle::Bicycle::new(), 7),
-        both_copies(via_macro::satellite::Satellite::new(Thrusters), 8),
-        both_copies(
-            via_macro::quarter_car_bump_stop::QuarterCarBumpStop::new(),
-            9,
-        ),
-        both_copies(via_macro::chain_planar2_f32::ChainPlanar2F32::new(), 10),
+        both_copies(models::chain_spatial7::ChainSpatial7::new(), 1),
+        both_copies(models::chain_spatial10::ChainSpatial10::new(), 2),
+        both_copies(models::chain_spatial20::ChainSpatial20::new(), 3),
+        both_copies(models::chain_planar10::ChainPlanar10::new(), 4),
+        both_copies(models::four_bar::FourBar::new(), 5),
+        both_copies(models::rolling_disc::RollingDisc::new(), 6),
+        both_copies(models::bicycle::Bicycle::new(), 7),
+        both_copies(models::satellite::Satellite::new(Thrusters), 8),
+        both_copies(models::quarter_car_bump_stop::QuarterCarBumpStop::new(), 9),
+        both_copies(models::chain_planar2_f32::ChainPlanar2F32::new(), 10),
     ];
     for (k, (states, errors)) in runs.iter().enumerate() {
         assert_eq!(*states, 406, "model #{k}");
@@ -149,7 +146,7 @@ fn eight_lanes_give_the_bits_of_single_calls() {
 }
 
 fn eight_lanes() {
-    let mut model = via_build::chain_spatial10::ChainSpatial10::new();
+    let mut model = models::chain_spatial10::ChainSpatial10::new();
     let mut rng = Rng::new(12);
     let xs = states(&model, &mut rng, 8);
     let x8: [autosim::runtime::Lanes<8>; 20] =

@@ -11,9 +11,11 @@ use crate::opt::{BlockKind, FloatType, Program};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
 
-/// Whether the model gets a lanes function: `f64`, with states.
+/// Whether the model gets a lanes function: asked for (the `lanes`
+/// option), `f64`, with states.
 pub(super) fn has_lanes(prog: &Program) -> bool {
-    prog.interface.float == FloatType::F64 && !prog.states().is_empty()
+    let i = &prog.interface;
+    i.lanes && i.float == FloatType::F64 && !prog.states().is_empty()
 }
 
 /// The inherent items: `derivatives_lanes` (public), its two copies, and

@@ -1,10 +1,12 @@
 //! Speed of generated code: median nanoseconds per `derivatives()` call at
-//! random states, one JSON object per line.
+//! random states, one JSON object per line; at the end, many states per
+//! call (`derivatives_lanes`, 4 and 8 lanes) against one call per state.
 //!
 //! `cargo run --release --example perf`
 
+use autosim::runtime::batch::in_lanes;
 use autosim::runtime::integrate::Rk4;
-use autosim::runtime::{Model, OpCount, RunSettings, run};
+use autosim::runtime::{Lanes, Model, ModelError, OpCount, RunSettings, run};
 use autosim_test_support::Rng;
 use std::hint::black_box;
 use std::time::Instant;
@@ -146,6 +148,80 @@ fn main() {
     );
     constrained();
     linearization(&mut rng);
+    many_states(&mut rng);
+}
+
+/// Median ns per state of `derivatives_batch`-style evaluation of `xs`
+/// with `L` lanes per call (`in_lanes`), after checking that it gives the
+/// bits of single calls.
+fn batch_ns<M, const L: usize, const N: usize>(
+    model: &mut M,
+    xs: &[[f64; N]],
+    lanes: impl Fn(&mut M, f64, &[Lanes<L>; N], &mut [Lanes<L>; N]) -> Result<(), ModelError> + Copy,
+) -> f64
+where
+    M: Model<Float = f64, State = [f64; N]>,
+{
+    let mut dx = vec![[0.0; N]; xs.len()];
+    let mut status = vec![Ok(()); xs.len()];
+    in_lanes(model, 0.0, xs, &mut dx, &mut status, lanes);
+    for (x, (d, s)) in xs.iter().zip(dx.iter().zip(&status)) {
+        let mut one = [0.0; N];
+        assert_eq!(model.derivatives(0.0, x, &mut one), *s);
+        assert_eq!(one.map(f64::to_bits), d.map(f64::to_bits), "lanes differ");
+    }
+    let rounds = 201;
+    let mut per_state: Vec<f64> = Vec::with_capacity(rounds);
+    for _ in 0..rounds {
+        let start = Instant::now();
+        in_lanes(model, 0.0, black_box(xs), &mut dx, &mut status, lanes);
+        black_box((&mut dx, &mut status));
+        per_state.push(start.elapsed().as_nanos() as f64 / xs.len() as f64);
+    }
+    per_state.sort_by(f64::total_cmp);
+    per_state[rounds / 2]
+}
+
+/// Many states per call: ns per state and states per second of one call
+/// per state, of `derivatives_batch` (4 lanes) and of 8 lanes, for
+/// chain-spatial-10 and the satellite, with the floating-point operations
+/// per second those rates mean (`DERIVATIVE_OPS`' adds, multiplies and
+/// divides, the functions not counted).
+fn many_states(rng: &mut Rng) {
+    use models::*;
+    macro_rules! lanes {
+        ($name:literal, $model:expr, $ty:ty, $n:literal) => {{
+            let mut m = $model;
+            let xs = states::<$n>(rng, 512, None);
+            let single = measure(&mut m, &xs);
+            let four = batch_ns::<_, 4, $n>(&mut m, &xs, |m, t, x, dx| m.derivatives_lanes(t, x, dx));
+            let eight = batch_ns::<_, 8, $n>(&mut m, &xs, |m, t, x, dx| m.derivatives_lanes(t, x, dx));
+            let ops = <$ty>::DERIVATIVE_OPS;
+            let flop = (ops.adds + ops.muls + ops.divs) as f64;
+            println!(
+                "{{\"model\": \"{}\", \"flop_per_state\": {flop}, \"single_ns\": {single:.1}, \"lanes4_ns\": {four:.1}, \"lanes8_ns\": {eight:.1}, \"single_states_per_s\": {:.3e}, \"lanes4_states_per_s\": {:.3e}, \"lanes8_states_per_s\": {:.3e}, \"single_gflops\": {:.2}, \"lanes4_gflops\": {:.2}, \"lanes8_gflops\": {:.2}}}",
+                $name,
+                1e9 / single,
+                1e9 / four,
+                1e9 / eight,
+                flop / single,
+                flop / four,
+                flop / eight,
+            );
+        }};
+    }
+    lanes!(
+        "chain-spatial-10",
+        chain_spatial10_lanes::ChainSpatial10Lanes::new(),
+        chain_spatial10_lanes::ChainSpatial10Lanes,
+        20
+    );
+    lanes!(
+        "satellite",
+        satellite_lanes::SatelliteLanes::new(Quiet),
+        satellite_lanes::SatelliteLanes<Quiet>,
+        20
+    );
 }
 
 /// Median ns of `f` over rounds of `states`.

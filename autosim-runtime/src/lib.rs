@@ -114,6 +114,7 @@ extern crate std;
 #[cfg(feature = "analysis")]
 pub mod analysis;
 pub mod assembly;
+pub mod batch;
 mod error;
 pub mod event;
 mod float;
@@ -129,6 +130,7 @@ pub mod study;
 pub use error::{IntegrationError, check_finite};
 pub use event::{Direction, EventIndicator, EventOutcome, EventRecord};
 pub use float::Float;
+pub use float::lanes::Lanes;
 pub use integrate::{StepInfo, Stepper};
 pub use linear::{Linear, Linearize};
 pub use model::{
@@ -143,9 +145,14 @@ pub use run::{
 /// Items used by generated code. Not a public API: it may change without notice.
 #[doc(hidden)]
 pub mod __private {
+    pub use crate::batch::in_lanes;
     pub use crate::float::MulAdd;
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     pub use crate::float::dispatch::{allow_fast_path, has_v3};
+    pub use crate::float::lanes::{
+        Lanes, call_each, call_each_sub, check_derivatives_lanes, check_user_result_lanes,
+        check_user_results_lanes, math as lanes_math,
+    };
     pub use crate::float::math;
     pub use crate::{dispatch, fast_path};
 }

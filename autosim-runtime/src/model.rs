@@ -204,6 +204,48 @@ pub trait Model {
         dx: &mut Self::State,
     ) -> Result<(), ModelError>;
 
+    /// The derivatives at many states at one time `t`: `dx[k]` and
+    /// `status[k]` are what [`Model::derivatives`] gives for `x[k]` (up to
+    /// the shortest of the three slices; nothing is allocated). Generated
+    /// `f64` models evaluate [`LANES`](crate::batch::LANES) states per call
+    /// of their `derivatives_lanes` (vector instructions across states),
+    /// with the same bits as one call per state; the default (and `f32`
+    /// models) calls [`Model::derivatives`] once per state.
+    ///
+    /// ```
+    /// use autosim_runtime::{Model, ModelError};
+    ///
+    /// struct Decay;
+    /// impl Model for Decay {
+    ///     type Float = f64;
+    ///     type State = [f64; 1];
+    ///     type Outputs = [f64; 0];
+    ///     const NAME: &'static str = "Decay";
+    ///     const STATE_NAMES: &'static [&'static str] = &["x"];
+    ///     const STATE_UNITS: &'static [&'static str] = &["m"];
+    ///     fn derivatives(&mut self, _: f64, x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
+    ///         dx[0] = -2.0 * x[0];
+    ///         Ok(())
+    ///     }
+    /// }
+    ///
+    /// let x = [[1.0], [2.0], [3.0]];
+    /// let mut dx = [[0.0]; 3];
+    /// let mut status = [Ok(()); 3];
+    /// Decay.derivatives_batch(0.0, &x, &mut dx, &mut status);
+    /// assert_eq!(dx, [[-2.0], [-4.0], [-6.0]]);
+    /// assert!(status.iter().all(Result::is_ok));
+    /// ```
+    fn derivatives_batch(
+        &mut self,
+        t: Self::Float,
+        x: &[Self::State],
+        dx: &mut [Self::State],
+        status: &mut [Result<(), ModelError>],
+    ) {
+        crate::batch::one_by_one(self, t, x, dx, status);
+    }
+
     /// Writes the output variables at time `t` and state `x` into `y`. The
     /// default writes nothing: for models without outputs.
     fn outputs(

@@ -31,6 +31,16 @@ pub mod models {
         name = BicycleLinear,
         linearize = true
     );
+    autosim::model!(
+        file = "examples/models/chain_spatial_10.sim",
+        name = ChainSpatial10Lanes,
+        lanes = true
+    );
+    autosim::model!(
+        file = "examples/models/satellite.sim",
+        name = SatelliteLanes,
+        lanes = true
+    );
 }
 
 include!("quiet.rs");
@@ -38,5 +48,6 @@ include!("quiet.rs");
 quiet!(
     models::satellite::Externs,
     models::satellite_small::Externs,
-    models::satellite_linear::Externs
+    models::satellite_linear::Externs,
+    models::satellite_lanes::Externs
 );

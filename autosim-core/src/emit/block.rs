@@ -89,6 +89,9 @@ pub struct BlockEmitter<'a> {
     pub rt: TokenStream,
     /// The generated code's own locals.
     pub locals: &'a Locals,
+    /// Whether the block is printed for `derivatives_lanes`: every value a
+    /// `Lanes<L>` (see [`ExprPrinter::lanes`]).
+    pub lanes: bool,
 }
 
 impl BlockEmitter<'_> {
@@ -144,12 +147,14 @@ impl BlockEmitter<'_> {
             array,
             timing: Default::default(),
             user_check: check_user_results.then(|| self.rt.clone()),
+            lanes: self.lanes.then(|| self.rt.clone()),
         };
-        let mut out = self.reads(block, hoisted, &target);
+        let mut out = self.reads(block, hoisted, &target, &printer);
         out.extend(self.shared_terms_call(block));
         if declare {
             let (z, len) = (&self.locals.z, Literal::usize_unsuffixed(array.len()));
-            out.extend(quote!(let mut #z = [0.0; #len];));
+            let zero = printer.splat(quote!(0.0));
+            out.extend(quote!(let mut #z = [#zero; #len];));
         }
         // The branch-free kernel computes in `f64`, which a single-precision
         // FPU (a Cortex-M4F's) does in software: `f32` models keep libm's
@@ -258,7 +263,13 @@ impl BlockEmitter<'_> {
 
     /// Bindings of the values the block reads: parameters, constants,
     /// states, inputs and accelerations.
-    fn reads(&self, block: &Block, hoisted: bool, target: &Target<'_>) -> TokenStream {
+    fn reads(
+        &self,
+        block: &Block,
+        hoisted: bool,
+        target: &Target<'_>,
+        printer: &ExprPrinter<'_>,
+    ) -> TokenStream {
         let in_constants = matches!(target, Target::Constants(_));
         let Locals { x, dx, p, c, .. } = self.locals;
         let mut out = TokenStream::new();
@@ -277,7 +288,8 @@ impl BlockEmitter<'_> {
                 }
                 Leaf::Input(i) => {
                     let id = ident(&self.prog.interface.model.inputs[i].name);
-                    out.extend(quote!(let #id = self.inputs.#id;));
+                    let value = printer.splat(quote!(self.inputs.#id));
+                    out.extend(quote!(let #id = #value;));
                 }
                 Leaf::Accel(i) => {
                     let id = ident(&self.prog.states().speed_rate_name(i));
@@ -286,7 +298,8 @@ impl BlockEmitter<'_> {
                 }
                 Leaf::Discrete(i) => {
                     let id = ident(&self.prog.interface.model.discrete[i].name);
-                    out.extend(quote!(let #id = self.discrete.#id;));
+                    let value = printer.splat(quote!(self.discrete.#id));
+                    out.extend(quote!(let #id = #value;));
                 }
                 Leaf::Param(_) | Leaf::Time | Leaf::SubOut(..) => {}
             }
@@ -307,6 +320,13 @@ impl BlockEmitter<'_> {
         let args = [t.then(|| quote!(t)), x.then(|| quote!(#lx))]
             .into_iter()
             .flatten();
+        if self.lanes {
+            let l = &self.locals.lanes;
+            return quote! {
+                let mut #s = [Lanes::<#l>::ZERO; #len];
+                self.shared_terms_lanes(#(#args,)* &mut #s);
+            };
+        }
         quote! {
             let mut #s = [0.0; #len];
             self.shared_terms(#(#args,)* &mut #s);
@@ -344,11 +364,23 @@ impl BlockEmitter<'_> {
             .iter()
             .map(|a| printer.expr(*a))
             .collect();
-        let call = quote!(self.externs.#f(#(#args),*));
+        let (call, check) = match self.lanes {
+            false => (
+                quote!(self.externs.#f(#(#args),*)),
+                quote!(check_user_results),
+            ),
+            true => {
+                let (rt, k) = (&self.rt, (0..args.len()).map(Literal::usize_unsuffixed));
+                (
+                    quote!(#rt::__private::call_each_sub([#(#args),*], |v| self.externs.#f(#(v[#k]),*))),
+                    quote!(__private::check_user_results_lanes),
+                )
+            }
+        };
         match &printer.user_check {
             Some(rt) => {
                 let name = &sub.name;
-                quote!(let [#(#pats),*] = #rt::check_user_results(#call, #name)?;)
+                quote!(let [#(#pats),*] = #rt::#check(#call, #name)?;)
             }
             None => quote!(let [#(#pats),*] = #call;),
         }

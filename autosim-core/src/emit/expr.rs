@@ -186,6 +186,8 @@ pub struct Locals {
     pub z: Ident,
     /// The values of the common block.
     pub s: Ident,
+    /// The number of lanes of `derivatives_lanes` (a const generic).
+    pub lanes: Ident,
 }
 
 impl Locals {
@@ -226,6 +228,7 @@ impl Locals {
             lin: pick("lin"),
             z: pick("z"),
             s: pick("s"),
+            lanes: pick("L"),
         }
     }
 }
@@ -257,6 +260,10 @@ pub struct ExprPrinter<'a> {
     /// The runtime's path where user functions' results are checked for
     /// NaN and infinity (in functions that return `Result`), else `None`.
     pub user_check: Option<TokenStream>,
+    /// The runtime's path in a lanes function (`derivatives_lanes`), where
+    /// every value is a `Lanes<L>`: literals, parameters and constants are
+    /// splat into every lane, user functions called lane by lane.
+    pub lanes: Option<TokenStream>,
 }
 
 impl ExprPrinter<'_> {
@@ -270,7 +277,7 @@ impl ExprPrinter<'_> {
         }
         match self.ir().op(n) {
             Op::Num(b) => {
-                if f64::from_bits(*b) < 0.0 {
+                if f64::from_bits(*b) < 0.0 && self.lanes.is_none() {
                     Prec::Unary
                 } else {
                     Prec::Atom
@@ -325,7 +332,7 @@ impl ExprPrinter<'_> {
             && let Some(k) = self.constant_slot.get(&n)
         {
             let (c, k) = (&self.locals.c, Literal::usize_unsuffixed(*k));
-            return quote!(#c.p[#k]);
+            return self.splat(quote!(#c.p[#k]));
         }
         self.definition(n)
     }
@@ -333,7 +340,7 @@ impl ExprPrinter<'_> {
     /// The expression of node `n`'s operation (even if `n` is bound).
     pub fn definition(&self, n: Nid) -> TokenStream {
         match self.ir().op(n).clone() {
-            Op::Num(b) => literal(f64::from_bits(b), self.float),
+            Op::Num(b) => self.splat(literal(f64::from_bits(b), self.float)),
             Op::Leaf(l) => self.leaf(l),
             Op::Sum { pos, neg } => self.sum(n, &pos, &neg),
             Op::Mul(a, b) => {
@@ -388,6 +395,9 @@ impl ExprPrinter<'_> {
                     Func::User(u) => {
                         let declared = &self.prog.interface.model.extern_fns[u.index()].name;
                         let name = ident(declared);
+                        if let Some(rt) = &self.lanes {
+                            return self.user_call_lanes(rt, &name, declared, &xs);
+                        }
                         let call = quote!(self.externs.#name(#(#xs),*));
                         match &self.user_check {
                             Some(rt) => quote!(#rt::check_user_result(#call, #declared)?),
@@ -404,13 +414,45 @@ impl ExprPrinter<'_> {
         }
     }
 
+    /// `value` in every lane in a lanes function (`Lanes::<L>::splat`),
+    /// else `value`.
+    pub fn splat(&self, value: TokenStream) -> TokenStream {
+        match self.lanes {
+            Some(_) => {
+                let l = &self.locals.lanes;
+                quote!(Lanes::<#l>::splat(#value))
+            }
+            None => value,
+        }
+    }
+
+    /// A user function called once per lane (its results checked where
+    /// the function returns `Result`): the arguments evaluated first, as
+    /// one call evaluates them.
+    fn user_call_lanes(
+        &self,
+        rt: &TokenStream,
+        name: &Ident,
+        declared: &str,
+        args: &[TokenStream],
+    ) -> TokenStream {
+        let k = (0..args.len()).map(Literal::usize_unsuffixed);
+        let call = quote! {
+            #rt::__private::call_each([#(#args),*], |v| self.externs.#name(#(v[#k]),*))
+        };
+        match &self.user_check {
+            Some(_) => quote!(#rt::__private::check_user_result_lanes(#call, #declared)?),
+            None => call,
+        }
+    }
+
     fn leaf(&self, l: Leaf) -> TokenStream {
         let i = &self.prog.interface;
         match l {
             Leaf::Param(k) => {
                 let id = ident(&i.model.parameters[k].name);
                 let p = &self.locals.p;
-                quote!(#p.#id)
+                self.splat(quote!(#p.#id))
             }
             Leaf::State(k) => {
                 let id = ident(&i.states.state(k).name);

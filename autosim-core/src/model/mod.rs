@@ -63,6 +63,9 @@ pub struct ResolvedModel {
     /// Generate the linearization (`settings { linearize: true }` or the
     /// scene's `linearize = true`).
     pub linearize: bool,
+    /// Generate `derivatives_lanes` (`settings { lanes: true }` or the
+    /// scene's `lanes = true`).
+    pub lanes: bool,
     /// How the accelerations are solved (`settings { formulation: ... }`
     /// or the scene's `formulation = ...`).
     pub formulation: Formulation,
@@ -94,6 +97,7 @@ pub fn resolve_scene(model: &ast::Model, scene: &Scene) -> Result<ResolvedModel,
         formal_params: FxHashMap::default(),
         spans: ItemSpans::new(model_name.span),
         linearize: false,
+        lanes: false,
         formulation: Formulation::Auto,
         inferred_units: FxHashMap::default(),
         user_code_units: FxHashMap::default(),

@@ -23,6 +23,8 @@ pub struct Scene {
     pub outputs: Option<Vec<ast::Name>>,
     /// Generate `linearize` (overrides the model's `linearize` setting).
     pub linearize: Option<bool>,
+    /// Generate `derivatives_lanes` (overrides the model's `lanes` setting).
+    pub lanes: Option<bool>,
     /// How the accelerations are solved (overrides the model's setting).
     pub formulation: Option<super::Formulation>,
     /// Bodies (all their degrees of freedom) or coordinates made small.

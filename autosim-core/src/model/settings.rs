@@ -27,6 +27,7 @@ pub(super) fn apply_settings(
                 SettingKey::Threshold => threshold(value).map(|k| r.sys.set_threshold(k)),
                 SettingKey::Outputs => outputs(value).map(|n| output_filter = Some(n)),
                 SettingKey::Linearize => linearize(value).map(|l| out.linearize = l),
+                SettingKey::Lanes => lanes(value).map(|l| out.lanes = l),
                 SettingKey::Formulation => formulation(value).map(|f| out.formulation = f),
                 SettingKey::Float => float_type(value).map(|f| out.float = f),
             };
@@ -44,6 +45,9 @@ pub(super) fn apply_settings(
     }
     if let Some(l) = scene.linearize {
         out.linearize = l;
+    }
+    if let Some(l) = scene.lanes {
+        out.lanes = l;
     }
     if let Some(f) = scene.formulation {
         out.formulation = f;
@@ -68,6 +72,7 @@ impl Scene {
                 SceneKey::Small => body_names(value, "small").map(|n| scene.small = n),
                 SceneKey::Lock => body_names(value, "lock").map(|n| scene.lock = n),
                 SceneKey::Linearize => linearize(value).map(|l| scene.linearize = Some(l)),
+                SceneKey::Lanes => lanes(value).map(|l| scene.lanes = Some(l)),
                 SceneKey::Formulation => formulation(value).map(|f| scene.formulation = Some(f)),
             };
             if let Err(d) = applied {
@@ -106,12 +111,30 @@ fn threshold(value: &Expr) -> Checked<i16> {
 
 /// `linearize`: `true` or `false`.
 fn linearize(value: &Expr) -> Checked<bool> {
+    boolean(
+        value,
+        "linearize",
+        "`true` also generates `linearize`, the model's A, B, C, D",
+    )
+}
+
+/// `lanes`: `true` or `false`.
+fn lanes(value: &Expr) -> Checked<bool> {
+    boolean(
+        value,
+        "lanes",
+        "`true` also generates `derivatives_lanes`, the derivatives at several states per call",
+    )
+}
+
+/// The option `key`: `true` or `false` (`help` says what `true` does).
+fn boolean(value: &Expr, key: &str, help: &str) -> Checked<bool> {
     match value {
         Expr::Name(n) if n.text == "true" => Ok(true),
         Expr::Name(n) if n.text == "false" => Ok(false),
         other => Err(Box::new(
-            Diagnostic::error(other.span(), "`linearize` is `true` or `false`")
-                .help("`true` also generates `linearize`, the model's A, B, C, D"),
+            Diagnostic::error(other.span(), format!("`{key}` is `true` or `false`"))
+                .help(help.to_string()),
         )),
     }
 }

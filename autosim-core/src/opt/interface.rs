@@ -108,6 +108,8 @@ pub struct Interface {
     pub model: Described,
     /// Float type of generated code.
     pub float: FloatType,
+    /// Whether generated code has `derivatives_lanes` (the `lanes` option).
+    pub lanes: bool,
     /// The state vector (`Leaf::State` indices).
     pub states: StateLayout,
     /// The position constraints and their dependent coordinates, in the
@@ -139,6 +141,7 @@ impl Interface {
         Interface {
             model: d.clone(),
             float: input.options.float,
+            lanes: input.options.lanes,
             states: StateLayout {
                 coordinates: split
                     .coordinates

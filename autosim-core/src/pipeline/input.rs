@@ -57,6 +57,7 @@ pub fn opt_input(model: &ResolvedModel, equations: &Equations) -> Input {
         options: Options {
             formulation: model.formulation,
             linearize: model.linearize,
+            lanes: model.lanes,
             float: model.float,
         },
     }

@@ -170,6 +170,8 @@ option_keys! {
         Linearize = "linearize",
         /// `formulation: auto` (or `mass_matrix`, `recursive`).
         Formulation = "formulation",
+        /// `lanes: true` — generate `derivatives_lanes` (many states per call).
+        Lanes = "lanes",
     }
 }
 
@@ -194,6 +196,8 @@ option_keys! {
         /// `formulation = recursive` — how the accelerations are solved
         /// (overrides the setting).
         Formulation = "formulation",
+        /// `lanes = true` — generate `derivatives_lanes` (overrides the setting).
+        Lanes = "lanes",
     }
 }
 

@@ -3,6 +3,7 @@
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 pub(crate) mod dispatch;
+pub(crate) mod lanes;
 mod straight_sin_cos;
 
 /// A float type a model can compute in: `f32` or `f64`.

@@ -44,6 +44,42 @@ pub mod scenes {
     models_from! { "../../examples/models/four_bar.sim": FourBarF32, float = f32; }
 }
 
+/// Models with `derivatives_lanes` (the `lanes = true` option): every kind
+/// of generated code, for `tests/lanes.rs`.
+pub mod lanes {
+    autosim::model!(
+        file = "../../examples/models/chain_spatial_7.sim",
+        lanes = true
+    );
+    autosim::model!(
+        file = "../../examples/models/chain_spatial_10.sim",
+        lanes = true
+    );
+    autosim::model!(
+        file = "../../examples/models/chain_spatial_20.sim",
+        lanes = true
+    );
+    autosim::model!(
+        file = "../../examples/models/chain_planar_10.sim",
+        lanes = true
+    );
+    autosim::model!(file = "../../examples/models/four_bar.sim", lanes = true);
+    autosim::model!(
+        file = "../../examples/models/rolling_disc.sim",
+        lanes = true
+    );
+    autosim::model!(file = "../../examples/models/bicycle.sim", lanes = true);
+    autosim::model!(file = "../../examples/models/satellite.sim", lanes = true);
+    autosim::model!(
+        file = "../../examples/models/quarter_car_bump_stop.sim",
+        lanes = true
+    );
+    autosim::model!(
+        file = "../../examples/models/chain_planar_2_f32.sim",
+        lanes = true
+    );
+}
+
 /// The models written by the build script.
 pub mod via_build {
     autosim::include_model!(andrews);

@@ -109,6 +109,7 @@ impl ExprPrinter<'_> {
     /// receives `add_mul` is typed (`0.5f64`): an untyped one is ambiguous.
     fn first_term(&self, negative: bool, node: Nid, receiver: bool) -> (TokenStream, Prec) {
         if receiver
+            && self.lanes.is_none()
             && !self.is_name(node)
             && let Some(x) = self.ir().as_num(node)
             && let Some(lit) = magnitude_literal(x, self.float, true)

@@ -5,6 +5,7 @@
 mod assembly;
 mod events;
 mod functions;
+mod lanes;
 mod linear;
 mod structs;
 mod versions;
@@ -111,6 +112,7 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
         math: quote!(math),
         rt: rt.clone(),
         locals: &locals,
+        lanes: false,
     };
     let parameters = structs::parameters(i);
     let inputs = structs::inputs(i);
@@ -410,6 +412,7 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
     let derivative_copies = &derivatives.copies;
     let assembly = assembly::inherent(be);
     let linear = linear::inherent(be);
+    let lanes = lanes::inherent(be);
     quote! {
         impl #generics #model_ty #struct_generics #where_clause {
             #new_fn
@@ -437,6 +440,8 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
             #shared
 
             #derivative_copies
+
+            #lanes
 
             #assembly
 
@@ -616,6 +621,7 @@ fn model_trait_impl(be: &BlockEmitter<'_>, derivatives: &TokenStream) -> TokenSt
     let init = functions::body(be, BlockKind::Initial);
     let assembly = assembly::trait_methods(be);
     let events = events::trait_items(be);
+    let batch = lanes::batch(be);
     let linearize = linear::trait_impl(
         be,
         &quote!(impl #generics #rt::Linearize for #model_ty #struct_generics #where_clause),
@@ -628,6 +634,8 @@ fn model_trait_impl(be: &BlockEmitter<'_>, derivatives: &TokenStream) -> TokenSt
             #names
 
             #derivatives
+
+            #batch
 
             fn outputs(&mut self, #out_t: #ty, #out_x: &[#ty; #n_states], #out_y: &mut [#ty; #n_out]) -> Result<(), #rt::ModelError> {
                 #outs

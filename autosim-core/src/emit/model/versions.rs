@@ -30,11 +30,19 @@ pub(super) struct Versions {
 /// `bench/peers/results-default.md`).
 pub(super) const MIN_OPS_FOR_TWO_COPIES: usize = 40;
 
+/// A multiversioned function's signature: its name, generic parameters
+/// (`<const L: usize>` or nothing), receiver (`&self`, `&mut self`),
+/// parameters and return type (`-> T` or nothing).
+pub(super) struct Signature<'a> {
+    pub name: &'a str,
+    pub generics: TokenStream,
+    pub receiver: TokenStream,
+    pub params: &'a [Param],
+    pub ret: TokenStream,
+}
+
 /// `name` with `receiver` (`&self`, `&mut self`), `params` and `ret` (`->
-/// T` or nothing), computing `body`: the body once, `#[inline(always)]`, in
-/// `<name>_baseline`; `<name>_fast` compiled for x86-64-v3 calling it, so
-/// both copies are the same operations in the same order; `name` calls one
-/// of them. With `two_copies` false, `name` computes `body` itself.
+/// T` or nothing), computing `body`: [`versions_of`] without generics.
 pub(super) fn versions(
     rt: &TokenStream,
     two_copies: bool,
@@ -44,6 +52,34 @@ pub(super) fn versions(
     ret: TokenStream,
     body: TokenStream,
 ) -> Versions {
+    let signature = Signature {
+        name,
+        generics: TokenStream::new(),
+        receiver,
+        params,
+        ret,
+    };
+    versions_of(rt, two_copies, &signature, body)
+}
+
+/// The function of `signature` computing `body`: the body once,
+/// `#[inline(always)]`, in `<name>_baseline`; `<name>_fast` compiled for
+/// x86-64-v3 calling it, so both copies are the same operations in the
+/// same order; `name` calls one of them. With `two_copies` false, `name`
+/// computes `body` itself.
+pub(super) fn versions_of(
+    rt: &TokenStream,
+    two_copies: bool,
+    signature: &Signature<'_>,
+    body: TokenStream,
+) -> Versions {
+    let Signature {
+        name,
+        generics,
+        receiver,
+        params,
+        ret,
+    } = signature;
     let (call, baseline, fast) = (
         format_ident!("{name}"),
         format_ident!("{name}_baseline"),
@@ -56,7 +92,7 @@ pub(super) fn versions(
         let patterns = params.iter().map(|p| &p.pattern);
         return Versions {
             caller: quote! {
-                fn #call(#receiver, #(#patterns: #types),*) #ret {
+                fn #call #generics(#receiver, #(#patterns: #types),*) #ret {
                     #body
                 }
             },
@@ -67,20 +103,20 @@ pub(super) fn versions(
     let fast_doc = format!(" `{name}` compiled for x86-64-v3 (AVX2, FMA): the same operations.");
     Versions {
         caller: quote! {
-            fn #call(#receiver, #(#names: #types),*) #ret {
+            fn #call #generics(#receiver, #(#names: #types),*) #ret {
                 #rt::__private::dispatch!(self.#fast(#(#names),*), self.#baseline(#(#names),*))
             }
         },
         copies: quote! {
             #[doc = #baseline_doc]
             #[inline(always)]
-            fn #baseline(#receiver, #(#patterns: #types),*) #ret {
+            fn #baseline #generics(#receiver, #(#patterns: #types),*) #ret {
                 #body
             }
 
             #rt::__private::fast_path! {
                 #[doc = #fast_doc]
-                fn #fast(#receiver, #(#names: #types),*) #ret {
+                fn #fast #generics(#receiver, #(#names: #types),*) #ret {
                     self.#baseline(#(#names),*)
                 }
             }

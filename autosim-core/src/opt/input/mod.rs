@@ -85,6 +85,8 @@ pub struct Options {
     pub formulation: Formulation,
     /// Generate the linearization.
     pub linearize: bool,
+    /// Generate `derivatives_lanes` (many states per call).
+    pub lanes: bool,
     /// The float type of generated code.
     pub float: FloatType,
 }

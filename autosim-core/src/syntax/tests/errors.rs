@@ -74,7 +74,7 @@ test.sim:3:12: error: unknown setting `treshold`
 3 | settings { treshold: 2 }
   |            ^^^^^^^^
   = help: did you mean `threshold`?
-  = note: the settings are: threshold, float, outputs, linearize, formulation
+  = note: the settings are: threshold, float, outputs, linearize, formulation, lanes
 test.sim:4:19: error: unknown moment option `abut`
   |
 4 | moment m { on: B, abut: e3 }

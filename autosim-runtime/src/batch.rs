@@ -1,0 +1,88 @@
+//! Derivatives at many states in one call ([`Model::derivatives_batch`]):
+//! generated `f64` models evaluate [`LANES`] states at a time through
+//! their `derivatives_lanes` (struct of arrays, vector instructions), the
+//! same bits as one call per state; every other model loops over single
+//! calls.
+
+use crate::float::lanes::Lanes;
+use crate::model::{Model, ModelError};
+
+/// States a generated model evaluates together in
+/// [`Model::derivatives_batch`]: four `f64`, one AVX2 register per value
+/// (eight measured slower on AVX2, `examples/perf.rs`).
+pub const LANES: usize = 4;
+
+/// [`Model::derivatives_batch`] through a model's lanes function `lanes`
+/// (generated models' override): states in groups of `L`, transposed to
+/// struct of arrays; a group in which any state fails (a singular pivot,
+/// a non-finite derivative or user result) is evaluated again state by
+/// state, so that each state gets exactly the result one call gives it;
+/// the states left over after the last full group, one call each.
+///
+/// Processes as many states as the shortest of `x`, `dx`, `status` holds.
+/// Public for other lane counts than [`LANES`]: with a generated model
+/// `m`, `in_lanes::<_, 8, N>(&mut m, t, &x, &mut dx, &mut status, |m, t,
+/// x, dx| m.derivatives_lanes(t, x, dx))` evaluates eight states per call.
+#[inline]
+pub fn in_lanes<M, const L: usize, const N: usize>(
+    model: &mut M,
+    t: f64,
+    x: &[[f64; N]],
+    dx: &mut [[f64; N]],
+    status: &mut [Result<(), ModelError>],
+    mut lanes: impl FnMut(&mut M, f64, &[Lanes<L>; N], &mut [Lanes<L>; N]) -> Result<(), ModelError>,
+) where
+    M: Model<Float = f64, State = [f64; N]> + ?Sized,
+{
+    let count = x.len().min(dx.len()).min(status.len());
+    let groups = count / L;
+    let (x, dx, status) = (&x[..count], &mut dx[..count], &mut status[..count]);
+    let mut soa_dx = [Lanes::<L>::ZERO; N];
+    for g in 0..groups {
+        let range = g * L..(g + 1) * L;
+        let soa_x: [Lanes<L>; N] =
+            core::array::from_fn(|i| Lanes(core::array::from_fn(|l| x[range.start + l][i])));
+        match lanes(model, t, &soa_x, &mut soa_dx) {
+            Ok(()) => {
+                for (l, (d, s)) in dx[range.clone()]
+                    .iter_mut()
+                    .zip(&mut status[range.clone()])
+                    .enumerate()
+                {
+                    *d = core::array::from_fn(|i| soa_dx[i].0[l]);
+                    *s = Ok(());
+                }
+            }
+            Err(_) => one_by_one(
+                model,
+                t,
+                &x[range.clone()],
+                &mut dx[range.clone()],
+                &mut status[range],
+            ),
+        }
+    }
+    let rest = groups * L..count;
+    one_by_one(
+        model,
+        t,
+        &x[rest.clone()],
+        &mut dx[rest.clone()],
+        &mut status[rest],
+    );
+}
+
+/// One [`Model::derivatives`] call per state: the default
+/// [`Model::derivatives_batch`].
+#[inline]
+pub fn one_by_one<M: Model + ?Sized>(
+    model: &mut M,
+    t: M::Float,
+    x: &[M::State],
+    dx: &mut [M::State],
+    status: &mut [Result<(), ModelError>],
+) {
+    for ((x, dx), s) in x.iter().zip(dx.iter_mut()).zip(status.iter_mut()) {
+        *s = model.derivatives(t, x, dx);
+    }
+}

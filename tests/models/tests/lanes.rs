@@ -1,0 +1,171 @@
+//! Many states per call give the same bits as one call per state:
+//! `Model::derivatives_batch` (generated models: `derivatives_lanes`, four
+//! states at a time) against `derivatives` at each state, every
+//! derivative's bits and every error, at random states (with states that
+//! make a derivative or a user result non-finite, and state counts that
+//! leave a partial group), on both instruction-set copies, for models
+//! that take each kind of generated code: sines in pairs (the chains),
+//! the articulated-body recursion, the mass matrix's LDLᵀ and constraint
+//! solves (the four-bar, the rolling disc), the common block
+//! (chain-spatial-20), user functions and subroutines (the satellite),
+//! inputs and discrete variables, and an `f32` model (the default batch).
+
+use autosim::runtime::{Float, Model, ModelError, StateArray};
+use autosim_models_check::lanes as models;
+use autosim_test_support::Rng;
+
+/// What `derivatives` gives at `x`: the error, or the derivatives' bits.
+type Outcome = Result<Vec<u64>, ModelError>;
+
+fn bits<F: Float>(dx: &[F]) -> Vec<u64> {
+    dx.iter().map(|v| v.to_f64().to_bits()).collect()
+}
+
+/// `count` states near the initial state (coordinates and speeds moved
+/// by up to ±3); every 37th has a NaN entry and every 41st a huge one, so
+/// that some groups fail and are evaluated again state by state.
+fn states<M: Model>(model: &M, rng: &mut Rng, count: usize) -> Vec<M::State> {
+    let x0 = model.initial_state();
+    (0..count)
+        .map(|k| {
+            let mut x = x0;
+            for v in x.as_mut() {
+                *v += M::Float::from_f64(rng.uniform(-3.0, 3.0));
+            }
+            let n = x.as_ref().len();
+            if k % 37 == 5 {
+                x.as_mut()[k % n] = M::Float::from_f64(f64::NAN);
+            }
+            if k % 41 == 7 {
+                x.as_mut()[(k + 1) % n] = M::Float::from_f64(1e300);
+            }
+            x
+        })
+        .collect()
+}
+
+/// Compares the batch with single calls on `model` at `count` states,
+/// with the fast copy allowed or not; returns (states, errors) compared.
+fn compare<M: Model>(model: &mut M, seed: u64, count: usize, fast: bool) -> (usize, usize) {
+    autosim::runtime::__private::allow_fast_path(fast);
+    let mut rng = Rng::new(seed);
+    let xs = states(model, &mut rng, count);
+    let t = M::Float::from_f64(0.3);
+    let single: Vec<Outcome> = xs
+        .iter()
+        .map(|x| {
+            let mut dx = M::State::zeros();
+            model.derivatives(t, x, &mut dx).map(|()| bits(dx.as_ref()))
+        })
+        .collect();
+    let mut dx = vec![M::State::zeros(); count];
+    let mut status = vec![Ok(()); count];
+    model.derivatives_batch(t, &xs, &mut dx, &mut status);
+    let batch: Vec<Outcome> = status
+        .iter()
+        .zip(&dx)
+        .map(|(s, d)| s.map(|()| bits(d.as_ref())))
+        .collect();
+    for (k, (one, many)) in single.iter().zip(&batch).enumerate() {
+        assert_eq!(one, many, "{} state {k} ({:?})", M::NAME, xs[k].as_ref());
+    }
+    let errors = single.iter().filter(|o| o.is_err()).count();
+    (count, errors)
+}
+
+/// [`compare`] on both copies and at two counts (a multiple of four and
+/// not); returns the states and errors compared.
+fn both_copies<M: Model>(mut model: M, seed: u64) -> (usize, usize) {
+    let mut total = (0, 0);
+    for (fast, count) in [(false, 200), (true, 203), (true, 3)] {
+        let (n, e) = compare(&mut model, seed, count, fast);
+        total = (total.0 + n, total.1 + e);
+    }
+    autosim::runtime::__private::allow_fast_path(true);
+    total
+}
+
+/// User code: a thruster on a dead band, NaN for a large error (so that
+/// some states fail with `NonFiniteUserResult`), fixed commands.
+struct Thrusters;
+
+impl models::satellite::Externs for Thrusters {
+    fn thrust(&mut self, _t: f64, axis: f64, error: f64) -> f64 {
+        match error {
+            e if e.abs() > 2.5 => f64::NAN,
+            e if e > 0.0025 => -axis,
+            e if e < -0.0025 => axis,
+            _ => 0.0,
+        }
+    }
+    fn cmd(&mut self, t: f64) -> [f64; 2] {
+        [0.8 + t, -0.45]
+    }
+}
+
+/// Runs `f` on a thread with a big stack: unoptimized (test) builds give
+/// every temporary of a big lanes function its own stack slot.
+fn big_stack(f: impl FnOnce() + Send + 'static) {
+    std::thread::Builder::new()
+        .stack_size(256 << 20)
+        .spawn(f)
+        .expect("a thread")
+        .join()
+        .expect("the test passes");
+}
+
+#[test]
+fn batch_gives_the_bits_and_errors_of_single_calls() {
+    big_stack(batch_matches_single_calls);
+}
+
+fn batch_matches_single_calls() {
+    let runs = [
+        both_copies(models::chain_spatial7::ChainSpatial7::new(), 1),
+        both_copies(models::chain_spatial10::ChainSpatial10::new(), 2),
+        both_copies(models::chain_spatial20::ChainSpatial20::new(), 3),
+        both_copies(models::chain_planar10::ChainPlanar10::new(), 4),
+        both_copies(models::four_bar::FourBar::new(), 5),
+        both_copies(models::rolling_disc::RollingDisc::new(), 6),
+        both_copies(models::bicycle::Bicycle::new(), 7),
+        both_copies(models::satellite::Satellite::new(Thrusters), 8),
+        both_copies(models::quarter_car_bump_stop::QuarterCarBumpStop::new(), 9),
+        both_copies(models::chain_planar2_f32::ChainPlanar2F32::new(), 10),
+    ];
+    for (k, (states, errors)) in runs.iter().enumerate() {
+        assert_eq!(*states, 406, "model #{k}");
+        // Every model meets the NaN and huge states: the error path is
+        // compared too, not only the finite one.
+        assert!(*errors >= 10, "model #{k}: only {errors} errors compared");
+    }
+}
+
+#[test]
+fn eight_lanes_give_the_bits_of_single_calls() {
+    big_stack(eight_lanes);
+}
+
+fn eight_lanes() {
+    let mut model = models::chain_spatial10::ChainSpatial10::new();
+    let mut rng = Rng::new(12);
+    let xs = states(&model, &mut rng, 8);
+    let x8: [autosim::runtime::Lanes<8>; 20] =
+        core::array::from_fn(|i| autosim::runtime::Lanes(core::array::from_fn(|k| xs[k][i])));
+    let mut d8 = [autosim::runtime::Lanes::<8>::ZERO; 20];
+    // States 5 and 7 are the NaN and the huge one: the call fails.
+    assert!(model.derivatives_lanes(0.1, &x8, &mut d8).is_err());
+    // Finite states only: Ok, and the same bits lane by lane.
+    let finite: Vec<[f64; 20]> = xs
+        .iter()
+        .map(|x| x.map(|v| if v.is_nan() { 0.0 } else { v.clamp(-3.0, 3.0) }))
+        .collect();
+    let x8: [autosim::runtime::Lanes<8>; 20] =
+        core::array::from_fn(|i| autosim::runtime::Lanes(core::array::from_fn(|k| finite[k][i])));
+    assert_eq!(model.derivatives_lanes(0.1, &x8, &mut d8), Ok(()));
+    for (k, x) in finite.iter().enumerate() {
+        let mut dx = [0.0; 20];
+        model.derivatives(0.1, x, &mut dx).expect("finite state");
+        let lane: Vec<u64> = d8.iter().map(|d| d.0[k].to_bits()).collect();
+        assert_eq!(lane, bits(&dx), "state {k}");
+    }
+}

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import pydoc
+from pathlib import Path
 from typing import Callable
 
 import autosim
@@ -80,6 +81,26 @@ def test_vectorized_derivatives_and_outputs_equal_single_calls(load_model: Load)
         assert np.array_equal(many[k], model.derivatives(0.0, xs[k], u=us[k]))
         assert np.array_equal(outs[k], model.outputs(0.0, xs[k]))
     assert many.shape == (50, model.n_states) and outs.shape == (50, 1)
+
+
+def test_vectorized_derivatives_through_lanes_equal_single_calls(load_model: Load, repo: Path) -> None:
+    """A model loaded with ``lanes=True`` takes the states of a 2-D call four at a
+    time (``derivatives_batch``); the bits and the first failing row are
+    those of one call per row."""
+    model = autosim.load(repo / "python/tests/models/n_link_pendulum_on_cart_3.sim", lanes=True, quiet=True)
+    plain = load_model("python/tests/models/n_link_pendulum_on_cart_3.sim")
+    xs = np.random.default_rng(3).uniform(-1, 1, (23, model.n_states))
+    many = model.derivatives(0.0, xs)
+    for k in range(23):
+        assert np.array_equal(many[k], model.derivatives(0.0, xs[k]))
+        assert np.array_equal(many[k], plain.derivatives(0.0, xs[k]))
+    xs[9, -1] = 1e200  # a speed whose square overflows: a non-finite derivative
+    xs[17, -1] = 1e200
+    with pytest.raises(autosim.SimulationError) as failed:
+        model.derivatives(0.0, xs)
+    with pytest.raises(autosim.SimulationError) as single:
+        model.derivatives(0.0, xs[9])
+    assert str(failed.value) == f"row 9: {single.value}"
 
 
 def test_mass_matrix_and_forcing_give_the_accelerations(load_model: Load) -> None:

@@ -100,6 +100,31 @@ pub trait Engine: Send + Sync {
     fn describe_study(&self, plan: &Plan) -> Result<(String, Vec<f64>, Layout), String>;
 }
 
+/// The derivatives at `rows` states (row-major in `x`) at one time with
+/// the current inputs, through the model's `Model::derivatives_batch` (a
+/// model generated with `lanes = true` evaluates four states per call);
+/// the first failing row's error, as one call per row would give.
+fn derivatives_batch<M: Model<Float = f64>>(
+    model: &mut M,
+    t: f64,
+    x: &[f64],
+    rows: usize,
+    out: &mut [f64],
+) -> Result<(), RowError> {
+    let ns = M::STATE_NAMES.len();
+    let states: Vec<M::State> = (0..rows)
+        .map(|k| state::<M>(&x[k * ns..(k + 1) * ns]))
+        .collect();
+    let mut rates = vec![M::State::zeros(); rows];
+    let mut status = vec![Ok(()); rows];
+    model.derivatives_batch(t, &states, &mut rates, &mut status);
+    for (k, (rate, done)) in rates.iter().zip(status).enumerate() {
+        done.map_err(|e| (k, e))?;
+        out[k * ns..(k + 1) * ns].copy_from_slice(rate.as_ref());
+    }
+    Ok(())
+}
+
 /// A generated model as an [`Engine`].
 #[derive(Clone)]
 pub struct Adapter<M>(pub M);
@@ -185,8 +210,11 @@ impl<M: Generated> Engine for Adapter<M> {
     ) -> Result<(), RowError> {
         let (ns, ni) = (M::STATE_NAMES.len(), M::INPUT_NAMES.len());
         let width = if outputs { M::OUTPUT_NAMES.len() } else { ns };
-        let saved = self.inputs();
         let rows = x.len().checked_div(ns).unwrap_or(0);
+        if !outputs && t.len() == 1 && u.is_none() {
+            return derivatives_batch(&mut self.0, t[0], x, rows, out);
+        }
+        let saved = self.inputs();
         let mut result = Ok(());
         for k in 0..rows {
             let tk = if t.len() == 1 { t[0] } else { t[k] };

@@ -40,6 +40,7 @@ fn sources() -> Vec<(&'static str, &'static str)> {
 struct Options {
     name: Option<String>,
     linearize: Option<bool>,
+    lanes: Option<bool>,
     formulation: Option<String>,
     small: Option<Vec<String>>,
     lock: Option<Vec<String>>,
@@ -50,9 +51,10 @@ struct Options {
 impl Options {
     /// Reads the options from keyword arguments, refusing unknown ones.
     fn from_dict(dict: &Bound<'_, pyo3::types::PyDict>) -> PyResult<Options> {
-        const KNOWN: [&str; 7] = [
+        const KNOWN: [&str; 8] = [
             "name",
             "linearize",
+            "lanes",
             "formulation",
             "small",
             "lock",
@@ -80,6 +82,7 @@ impl Options {
         Ok(Options {
             name: get(dict, "name")?,
             linearize: get(dict, "linearize")?,
+            lanes: get(dict, "lanes")?,
             formulation: get(dict, "formulation")?,
             small: get(dict, "small")?,
             lock: get(dict, "lock")?,
@@ -112,6 +115,7 @@ impl Options {
                 .outputs
                 .map(|o| o.iter().map(|n| Scene::name(n)).collect()),
             linearize: self.linearize,
+            lanes: self.lanes,
             formulation,
             small: names(self.small),
             lock: names(self.lock),
@@ -120,7 +124,7 @@ impl Options {
 }
 
 /// Compiles model `text` (shown in diagnostics as `path`) with the scene
-/// options `name`, `linearize`, `formulation`, `small`, `lock`, `outputs`,
+/// options `name`, `linearize`, `lanes`, `formulation`, `small`, `lock`, `outputs`,
 /// `threshold`; returns `(rust, interface_json)`: the generated module
 /// (runtime path `::autosim_runtime`) and its interface.
 ///

@@ -74,6 +74,7 @@ __all__ = [
 def _options(
     name: str | None,
     linearize: bool | None,
+    lanes: bool | None,
     formulation: str | None,
     small: Sequence[str] | None,
     lock: Sequence[str] | None,
@@ -84,6 +85,7 @@ def _options(
     for key, value in (
         ("name", name),
         ("linearize", linearize),
+        ("lanes", lanes),
         ("formulation", formulation),
         ("small", list(small) if small is not None else None),
         ("lock", list(lock) if lock is not None else None),
@@ -101,6 +103,7 @@ def loads(
     path: str = "<string>",
     name: str | None = None,
     linearize: bool | None = True,
+    lanes: bool | None = None,
     formulation: str | None = None,
     small: Sequence[str] | None = None,
     lock: Sequence[str] | None = None,
@@ -113,7 +116,10 @@ def loads(
 
     The options are the scene options of ``autosim::model!``: ``name`` (a
     new model name), ``linearize`` (generate :meth:`Model.linearize`; on by
-    default here, ``None`` keeps the model's own setting), ``formulation``
+    default here, ``None`` keeps the model's own setting), ``lanes``
+    (generate the derivatives at four states per call, which
+    :meth:`Model.derivatives` then uses for 2-D arrays of states; ``None``
+    keeps the model's own setting), ``formulation``
     (``"auto"``, ``"mass_matrix"``, ``"recursive"``), ``small`` and
     ``lock`` (bodies or coordinates), ``outputs`` (keep only these),
     ``threshold`` (small-term threshold). ``quiet`` silences the two
@@ -125,7 +131,7 @@ def loads(
     """
     from ._build import build
 
-    options = _options(name, linearize, formulation, small, lock, outputs, threshold)
+    options = _options(name, linearize, lanes, formulation, small, lock, outputs, threshold)
     module, _ = build(text, path, options, quiet=quiet)
     return Model._from_module(module, origin=("text", text, path, options))
 

@@ -5,7 +5,7 @@
     python -m autosim cache                      # print the cache folder
 
 Options of :func:`autosim.load`: ``--name``, ``--no-linearize``,
-``--formulation``, ``--small A,B``, ``--lock A,B``, ``--outputs a,b``,
+``--lanes``, ``--formulation``, ``--small A,B``, ``--lock A,B``, ``--outputs a,b``,
 ``--threshold N``.
 """
 
@@ -26,6 +26,7 @@ def _options(args: argparse.Namespace) -> dict[str, Any]:
     return _options(
         args.name,
         not args.no_linearize,
+        True if args.lanes else None,
         args.formulation,
         names(args.small),
         names(args.lock),
@@ -42,6 +43,7 @@ def main(argv: list[str] | None = None) -> int:
         sub.add_argument("model", type=Path)
         sub.add_argument("--name")
         sub.add_argument("--no-linearize", action="store_true")
+        sub.add_argument("--lanes", action="store_true")
         sub.add_argument("--formulation")
         sub.add_argument("--small")
         sub.add_argument("--lock")

@@ -250,7 +250,11 @@ class Model:
         released (``t`` then one time or one per row, ``u`` one input row
         for all or one per row). ``u`` (a vector, mapping or number) sets
         the model's inputs first and they stay set; rows of ``u`` apply to
-        their row only.
+        their row only. With one time and no rows of ``u`` the rows go
+        through the model's ``derivatives_batch``: a model whose settings
+        have ``lanes: true`` computes four rows per call in vector
+        instructions, with the same bits as one call per row. A failing
+        row raises :class:`SimulationError` naming the first such row.
         """
         xs = np.asarray(x, dtype=np.float64)
         if xs.ndim == 2:

@@ -24,6 +24,8 @@ use std::path::PathBuf;
 /// - `linearize = true`: also generate `linearize` (A, B, C, D).
 /// - `formulation = recursive`: how a tree's accelerations are solved
 ///   (`auto`, `mass_matrix` or `recursive`).
+/// - `lanes = true`: also generate `derivatives_lanes` (several states
+///   per call, which `Model::derivatives_batch` then uses; `f64` models).
 ///
 /// Either way the macro expands to `pub mod <model_name_in_snake_case> {
 /// ... }` holding the model type, its `Parameters`, `Inputs` and (if it

@@ -24,11 +24,16 @@ pub(super) struct Versions {
     pub copies: TokenStream,
 }
 
-/// Functions of fewer operations keep one copy: the instruction set has
-/// nothing to gain there (chain-spatial-1, 7 operations and a libm sine,
-/// measured 6.5 ns with two copies and 6.2 ns with one at default flags,
-/// `bench/peers/results-default.md`).
-pub(super) const MIN_OPS_FOR_TWO_COPIES: usize = 40;
+/// Functions of fewer operations keep one copy: there the instruction set
+/// gains less than the dispatch costs. Measured with the chains of
+/// `bench/peers` at default flags, both copies of one build, the baseline
+/// forced with `allow_fast_path(false)`, ns per call, two interleaved runs
+/// agreeing to 0.1 ns: chain-planar-2 16.9 on the baseline copy against
+/// 17.7 dispatched to the x86-64-v3 copy, chain-spatial-2 20.9 against 21.7,
+/// chain-spatial-3 (194 operations) 42.5 against 43.5; chain-planar-5
+/// (317) 79.6 against 78.6, and from there up the x86-64-v3 copy wins
+/// (chain-spatial-10, 2 046 operations: 329 against 287).
+pub(super) const MIN_OPS_FOR_TWO_COPIES: usize = 200;
 
 /// A multiversioned function's signature: its name, generic parameters
 /// (`<const L: usize>` or nothing), receiver (`&self`, `&mut self`),

@@ -9,8 +9,9 @@ import sys
 from pathlib import Path
 from typing import Callable
 
-import autosim
 import pytest
+
+import autosim
 
 HERE = Path(__file__).resolve().parent
 REPO = HERE.parent.parent

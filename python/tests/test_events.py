@@ -9,9 +9,10 @@ from __future__ import annotations
 
 from typing import Callable
 
-import autosim
 import numpy as np
 import pytest
+
+import autosim
 
 G = 9.81
 H0 = 1.0

@@ -9,10 +9,11 @@ import pydoc
 from pathlib import Path
 from typing import Callable
 
-import autosim
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
+
+import autosim
 
 PENDULUM = "examples/models/pendulum.sim"
 FOUR_BAR = "examples/models/four_bar.sim"

@@ -16,10 +16,11 @@ import json
 from pathlib import Path
 from typing import Callable
 
-import autosim
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
+
+import autosim
 
 CASES = {
     "n-link-pendulum-on-cart-1": "python/tests/models/n_link_pendulum_on_cart_1.sim",

@@ -18,10 +18,11 @@ import time
 from pathlib import Path
 from typing import Callable
 
-import autosim
 import numpy as np
 import pytest
 from conftest import install_model_wheel
+
+import autosim
 
 Load = Callable[..., autosim.Model]
 

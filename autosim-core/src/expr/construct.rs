@@ -242,11 +242,12 @@ impl Arena {
         if merged.is_empty() {
             return self.num(constant);
         }
-        // Sums of squared direction cosines (1), products of two rows (0).
+        // Sums of squared direction cosines (1), products of two rows (0),
+        // products in disguise (one term).
         if merged.len() + usize::from(!constant.is_zero()) >= 2
-            && let Some(n) = self.sum_identically(constant, &merged)
+            && let Some(e) = self.sum_collapsed(constant, &merged)
         {
-            return self.num(n);
+            return e;
         }
 
         // Pull out a symbolic factor common to every term.
@@ -473,8 +474,8 @@ impl Arena {
                 _ => merged.push((b, e)),
             }
         }
+        let mut reflatten = self.merge_abs_powers(&mut merged);
         let mut factors: Vec<ExprId> = Vec::with_capacity(merged.len());
-        let mut reflatten = false;
         for (b, e) in merged {
             let f = if e == self.one() { b } else { self.pow(b, e) };
             match self.node(f) {
@@ -509,6 +510,47 @@ impl Arena {
         }
     }
 
+    /// Combines `x^k` with `|x|^m` (integer `k`, `m`) among the merged
+    /// (base, exponent) pairs of a product: `x^k = |x|^k` for even `k`,
+    /// `sign(x) |x|^k` for odd `k`, so the pair is `|x|^(k+m)`, times
+    /// `sign(x)` for odd `k`. `x / |x|` (a direction's sign, left by the
+    /// length `|x|` of a vector `x w`) becomes `sign(x)`, `x^2 / |x|` is
+    /// `|x|`: no division left to differentiate. Equal wherever the product
+    /// was defined (it may add the value at `x = 0`). Returns `true` if a
+    /// pair was combined (the caller flattens the product again).
+    fn merge_abs_powers(&mut self, merged: &mut Vec<(ExprId, ExprId)>) -> bool {
+        let integer = |a: &Arena, e: ExprId| a.as_number(e).and_then(|n| n.as_integer());
+        let mut changed = false;
+        let mut i = 0;
+        while i < merged.len() {
+            let (b, m) = merged[i];
+            let inner = match self.node(b) {
+                Node::Func(Func::Abs, args) if args.len() == 1 => args[0],
+                _ => {
+                    i += 1;
+                    continue;
+                }
+            };
+            let Some(j) = merged.iter().position(|p| p.0 == inner) else {
+                i += 1;
+                continue;
+            };
+            let (Some(_), Some(k)) = (integer(self, m), integer(self, merged[j].1)) else {
+                i += 1;
+                continue;
+            };
+            merged[i].1 = self.sum(&[m, merged[j].1]);
+            if k % 2 == 0 {
+                merged.remove(j);
+            } else {
+                merged[j] = (self.func(Func::Sign, &[inner]), self.one());
+            }
+            changed = true;
+            i = 0;
+        }
+        changed
+    }
+
     fn collect_factor(&mut self, e: ExprId, coef: &mut Number, powers: &mut Vec<(ExprId, ExprId)>) {
         match self.node(e).clone() {
             Node::Num(n) => *coef = *coef * n,
@@ -534,6 +576,24 @@ impl Arena {
             Node::Pow(b, _) => (*b, *f),
             _ => (*f, *f),
         });
+    }
+
+    /// `(c fs)^e` for a fractional `e` as `(x^2k)^e = |x|^(2k e)` for each
+    /// factor of `fs` that is an even power, times `(c rest)^e`: the square
+    /// root of a perfect square `c^2 x^2` (a squared length that simplified
+    /// to one) is `|c x|`, whose derivative has no division. `None` if no
+    /// factor is an even power. (The rest is not negative wherever the
+    /// power was real.)
+    fn pow_even_factors(&mut self, c: Number, fs: &[ExprId], e: ExprId) -> Option<ExprId> {
+        if !fs.iter().any(|f| self.is_even_power(*f)) {
+            return None;
+        }
+        let (squares, rest): (Vec<ExprId>, Vec<ExprId>) =
+            fs.iter().partition(|f| self.is_even_power(**f));
+        let rest = self.product_with(c, &rest);
+        let mut parts: Vec<ExprId> = squares.iter().map(|f| self.pow(*f, e)).collect();
+        parts.push(self.pow(rest, e));
+        Some(self.product(&parts))
     }
 
     /// `base ^ exponent`.
@@ -602,6 +662,11 @@ impl Arena {
                 }
                 Node::Func(Func::Abs, args) if integer.is_some_and(|k| k % 2 == 0) => {
                     return self.pow(args[0], exponent);
+                }
+                Node::Prod(c, fs) => {
+                    if let Some(p) = self.pow_even_factors(c, &fs, exponent) {
+                        return p;
+                    }
                 }
                 _ => {}
             }

@@ -208,7 +208,8 @@ impl Arena {
         }
     }
 
-    fn is_even_power(&self, e: ExprId) -> bool {
+    /// `true` if `e` is `x^k` for an even integer `k`.
+    pub(super) fn is_even_power(&self, e: ExprId) -> bool {
         match self.node(e) {
             Node::Pow(_, x) => self
                 .as_number(*x)

@@ -27,13 +27,35 @@ type Monomial = Vec<(ExprId, u32)>;
 pub(crate) type Poly = Vec<(Monomial, Number)>;
 
 impl Arena {
-    /// The number a sum of `constant` and `terms` (`c · monomial`) is
-    /// identically, if its trigonometric normal form is a number.
-    pub(crate) fn sum_identically(
+    /// The number or single term a sum of `constant` and `terms`
+    /// (`c · monomial`, at least two of them) is identically, if its
+    /// trigonometric normal form is one: `1 - sin(a)^2 cos(b)^2 - ...` of
+    /// squared direction cosines to `1`, and a sum that is a product in
+    /// disguise, `x + y sin(a) - sin(a) (x sin(a) + y)` (a component of
+    /// `w - (w·e) e`), to `x cos(a)^2`.
+    pub(crate) fn sum_collapsed(
         &mut self,
         constant: Number,
         terms: &[(ExprId, Number)],
-    ) -> Option<Number> {
+    ) -> Option<ExprId> {
+        let poly = self.sum_normal_form(constant, terms)?;
+        match poly.as_slice() {
+            [] => Some(self.zero()),
+            [(mono, c)] if mono.is_empty() => Some(self.num(*c)),
+            [(mono, c)] => {
+                let factors: Vec<ExprId> = mono
+                    .iter()
+                    .map(|&(a, k)| self.powi(a, i64::from(k)))
+                    .collect();
+                Some(self.product_with(*c, &factors))
+            }
+            _ => None,
+        }
+    }
+
+    /// The trigonometric normal form of a sum of `constant` and `terms`,
+    /// `None` if it has no sine or cosine or is too big to expand.
+    fn sum_normal_form(&mut self, constant: Number, terms: &[(ExprId, Number)]) -> Option<Poly> {
         if !terms.iter().any(|t| self.has_trig(t.0)) {
             return None;
         }
@@ -45,11 +67,7 @@ impl Arena {
                 return None;
             }
         }
-        match acc.as_slice() {
-            [] => Some(Number::ZERO),
-            [(mono, c)] if mono.is_empty() => Some(*c),
-            _ => None,
-        }
+        Some(acc)
     }
 
     /// `true` if `e` has a sine or cosine within two levels (a cheap
@@ -321,5 +339,39 @@ mod tests {
         let c31v = a.eval(c31, &b, &mut NoUserFunctions);
         let v = a.eval(two, &b, &mut NoUserFunctions);
         assert!((v - (1.0 - c31v * c31v)).abs() < 1e-15);
+    }
+
+    /// A sum that is a single term in disguise collapses to it: `x² + y sin
+    /// a - sin a (x² sin a + y)` is `x² cos²a`, and its square root `|x cos
+    /// a|` (`|x| |cos a|`); `x / |x|` is `sign(x)` and `x² / |x|` is `|x|`.
+    /// A sum whose normal form has two terms, `x² + cos²a`, is kept, and so
+    /// is its square root.
+    #[test]
+    fn sums_that_are_one_term_collapse_and_their_square_roots_are_abs() {
+        use crate::expr::{Func, Node};
+        let mut a = Arena::new();
+        let [x, y, q] = ["x", "y", "q"].map(|n| {
+            let s = a.add_symbol(n, SymbolKind::Free).unwrap();
+            a.sym(s)
+        });
+        let (s, c) = (a.sin(q), a.cos(q));
+        let x2 = a.powi(x, 2);
+        let xs = a.mul(x2, s);
+        let inner = a.add(xs, y);
+        let proj = a.mul(s, inner);
+        let ys = a.mul(y, s);
+        let sum = a.sum(&[x2, ys]);
+        let e = a.sub(sum, proj);
+        let c2 = a.powi(c, 2);
+        assert_eq!(e, a.mul(x2, c2), "{}", a.to_text(e));
+        let root = a.sqrt(e);
+        let (ax, ac) = (a.func(Func::Abs, &[x]), a.func(Func::Abs, &[c]));
+        assert_eq!(root, a.mul(ax, ac), "{}", a.to_text(root));
+        assert_eq!(a.div(x, ax), a.func(Func::Sign, &[x]));
+        assert_eq!(a.div(x2, ax), ax);
+        let kept = a.add(x2, c2);
+        assert!(matches!(a.node(kept), Node::Sum(_)));
+        let root = a.sqrt(kept);
+        assert!(matches!(a.node(root), Node::Pow(b, _) if *b == kept));
     }
 }

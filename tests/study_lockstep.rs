@@ -1,7 +1,9 @@
 //! Studies in lockstep (`runtime::study`, "Lockstep"): groups of cases
 //! integrated together, one `derivatives_batch` call per stage, give the
 //! bits of one case at a time (`Study::lockstep(false)`): on a model with
-//! `derivatives_lanes` (`lanes = true`) and on plain ones, with Euler,
+//! `derivatives_lanes` (`lanes = true`), on a hand-written one that allows
+//! lockstep with the default batch (one `derivatives` call per state),
+//! and on a plain generated model (which runs one case at a time), with Euler,
 //! Heun and RK4, every kind of kept value, output times on and off the
 //! step grid, case counts that leave a partial group, serially and on two
 //! threads. A case that fails (a non-finite state, a model error, a
@@ -17,10 +19,7 @@ use autosim::runtime::study::{
 };
 use autosim::runtime::{Model, ModelError, RunSettings};
 
-autosim::model!(
-    file = "examples/models/chain_planar_3.sim",
-    lanes = true
-);
+autosim::model!(file = "examples/models/chain_planar_3.sim", lanes = true);
 use chain_planar3::ChainPlanar3;
 
 autosim::model!(file = "examples/models/pendulum.sim");
@@ -76,7 +75,7 @@ fn lockstep_gives_the_bits_of_one_case_at_a_time() {
         let cases = initial_states(&["q1", "q2", "q3", "u1", "u2", "u3"], 11, 5);
         let results = same_either_way(Study::new(ChainPlanar3::new, cases, task), 11);
         assert_eq!(results.failures(), 0, "{method:?}");
-        // A plain model: 4k + 1 cases.
+        // A plain model (one case at a time, lockstep or not): 4k + 1 cases.
         let keep = Keep::new()
             .final_state()
             .statistic("height", Statistic::Mean)
@@ -95,7 +94,11 @@ fn a_failing_case_of_a_lanes_model_fails_as_alone() {
     let names = ["q1", "q2", "q3", "u1", "u2", "u3"];
     let mut rows = Vec::new();
     for k in 0..10 {
-        let u = if k == 2 || k == 9 { 1e200 } else { 0.1 * k as f64 };
+        let u = if k == 2 || k == 9 {
+            1e200
+        } else {
+            0.1 * k as f64
+        };
         rows.extend([0.1, -0.2, 0.3, u, 0.0, -u]);
     }
     let cases = Cases::new().rows(&names, &rows).unwrap();
@@ -107,8 +110,8 @@ fn a_failing_case_of_a_lanes_model_fails_as_alone() {
 }
 
 /// `x' = k x²` with `y = √(x + 10)`; its derivatives fail below -5 (a model
-/// error) and panic at exactly 7; it counts its batch calls of more than
-/// one state.
+/// error) and panic at exactly 7; it allows lockstep, with the default
+/// batch, and counts its batch calls of more than one state.
 struct Quirky {
     k: f64,
     batches: Arc<AtomicU64>,
@@ -123,6 +126,7 @@ impl Model for Quirky {
     const STATE_UNITS: &'static [&'static str] = &["1"];
     const PARAMETER_NAMES: &'static [&'static str] = &["k"];
     const OUTPUT_NAMES: &'static [&'static str] = &["y"];
+    const LOCKSTEP: bool = true;
     fn derivatives(&mut self, _: f64, x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
         assert!(x[0] != 7.0, "a deliberate panic at x = 7");
         if x[0] < -5.0 {
@@ -165,9 +169,7 @@ fn quirky(columns: &[&str], rows: &[f64]) -> (Results, u64) {
     let count = (rows.len() / columns.len()) as u64;
     let cases = Cases::new().rows(columns, rows).unwrap();
     let settings = RunSettings::new(0.0, 1.0, 0.01, 0.25);
-    let keep = Keep::new()
-        .final_state()
-        .statistic("y", Statistic::Max);
+    let keep = Keep::new().final_state().statistic("y", Statistic::Max);
     let batches = Arc::new(AtomicU64::new(0));
     let make = {
         let batches = batches.clone();

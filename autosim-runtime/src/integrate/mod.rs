@@ -49,14 +49,14 @@ mod vector;
 
 pub use abm::{AbmOrder, AdamsBashforthMoulton};
 pub use dopri::{DopriSettings, DormandPrince};
-pub use explicit::{Euler, Heun, Rk4};
 #[cfg(feature = "study")]
 pub(crate) use explicit::{EULER, HEUN, RK4, Tableau};
-#[cfg(feature = "study")]
-pub(crate) use vector::{check_step, combine_lane};
+pub use explicit::{Euler, Heun, Rk4};
 pub use jacobian::{Analytic, FiniteDifferences, JacobianSource};
 pub use linalg::{LuFactors, SingularMatrix};
 pub use sdirk::{Sdirk3, SdirkSettings};
+#[cfg(feature = "study")]
+pub(crate) use vector::{check_step, combine_lane};
 
 pub use crate::error::check_finite;
 use crate::{IntegrationError, Model};

@@ -117,7 +117,12 @@ mod tests {
         const NAME: &'static str = "Still";
         const STATE_NAMES: &'static [&'static str] = &["x"];
         const STATE_UNITS: &'static [&'static str] = &["1"];
-        fn derivatives(&mut self, _: f64, _: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
+        fn derivatives(
+            &mut self,
+            _: f64,
+            _: &[f64; 1],
+            dx: &mut [f64; 1],
+        ) -> Result<(), ModelError> {
             dx[0] = 0.0;
             Ok(())
         }
@@ -146,7 +151,9 @@ mod tests {
     }
 
     fn bits(log: &[(f64, f64)]) -> Vec<(u64, u64)> {
-        log.iter().map(|(t, h)| (t.to_bits(), h.to_bits())).collect()
+        log.iter()
+            .map(|(t, h)| (t.to_bits(), h.to_bits()))
+            .collect()
     }
 
     #[test]
@@ -161,8 +168,16 @@ mod tests {
         ];
         for settings in &cases {
             let log = Log::default();
-            let mut observe = |t: f64, _: &[f64; 1], _: &[f64; 0]| log.borrow_mut().push((t, f64::NAN));
-            run(&mut Still, &mut Logging(&log), &mut [0.0], settings, &mut observe).unwrap();
+            let mut observe =
+                |t: f64, _: &[f64; 1], _: &[f64; 0]| log.borrow_mut().push((t, f64::NAN));
+            run(
+                &mut Still,
+                &mut Logging(&log),
+                &mut [0.0],
+                settings,
+                &mut observe,
+            )
+            .unwrap();
             let mut ticks = Vec::new();
             fixed_ticks::<f64, ()>(settings, |tick| {
                 ticks.push(tick);

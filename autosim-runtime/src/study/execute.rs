@@ -128,7 +128,7 @@ where
 
     /// Whether the study runs groups of cases in lockstep.
     fn in_lockstep(&self) -> bool {
-        self.lockstep && self.setup.is_none() && self.task.runs_in_lockstep()
+        self.lockstep && M::LOCKSTEP && self.setup.is_none() && self.task.runs_in_lockstep()
     }
 
     /// Runs the group of cases `first..` (`rows`, at most [`GROUP`]): the
@@ -144,8 +144,10 @@ where
         for (i, (case, _, _)) in rows.iter_mut().enumerate() {
             self.cases.case(first + i as u64, case);
         }
-        let done = catch_unwind(AssertUnwindSafe(|| self.run_together(targets, setter, rows)))
-            .unwrap_or([false; GROUP]);
+        let done = catch_unwind(AssertUnwindSafe(|| {
+            self.run_together(targets, setter, rows)
+        }))
+        .unwrap_or([false; GROUP]);
         for (i, (case, out, error)) in rows.iter_mut().enumerate() {
             **error = match done[i] {
                 true => None,

@@ -5,6 +5,15 @@
 //!
 //! # When
 //!
+//! The model must allow it: [`Model::LOCKSTEP`], which models generated
+//! with the `lanes` option set (their `derivatives_batch` is where the
+//! time goes away, and the option already asks user code not to depend on
+//! the order of calls). Other models run one case at a time: their
+//! `derivatives_batch` is one `derivatives` call per state, which gains
+//! nothing (chain-spatial-10 without lanes ran 5 % slower in lockstep),
+//! and user code that keeps state (allowed there, with fresh state per
+//! case) would see the calls of four cases interleaved on one model.
+//!
 //! A group is cases next to each other in the table (a chunk of
 //! [`GROUP`]) that share one model: the study has no setup function, and
 //! the cases' parameter and input columns hold the same values (the
@@ -34,8 +43,8 @@
 //! single stepper's `combine_row` sums, in the same order), and
 //! `derivatives_batch` gives each state the bits `derivatives` gives it
 //! (its contract, tested for generated models in `tests/lanes.rs`). The
-//! model's functions must be functions of their arguments (as
-//! `derivatives_batch` assumes; the language asks the same of user code).
+//! model's functions must be functions of their arguments (what
+//! [`Model::LOCKSTEP`] promises).
 //!
 //! A case that fails any check the run driver makes (a derivative error,
 //! a non-finite state or output, assembly or projection, the step limit)

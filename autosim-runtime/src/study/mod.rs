@@ -56,13 +56,15 @@
 //! # Lockstep
 //!
 //! A [`Simulate`] task with a fixed-step explicit method ([`Method::Euler`],
-//! [`Method::Heun`], [`Method::Rk4`]) of a model without events or
-//! discrete variables, in a study without a [`setup`](Study::setup)
-//! function, integrates up to four neighbouring cases of the table that
+//! [`Method::Heun`], [`Method::Rk4`]) of a model that allows it
+//! ([`Model::LOCKSTEP`]: models generated with the `lanes` option) and has
+//! no events or discrete variables, in a study without a
+//! [`setup`](Study::setup) function, integrates up to four neighbouring
+//! cases of the table that
 //! share their parameter and input values (they differ in their initial
 //! states) together: each stage evaluates their states in one
-//! [`Model::derivatives_batch`] call, four states per call of a model
-//! generated with the `lanes` option. The results are the same bits as
+//! [`Model::derivatives_batch`] call (four states per call of
+//! `derivatives_lanes`). The results are the same bits as
 //! one case at a time, failures included (a case that fails is run again
 //! alone, and fails as it does alone); other studies run one case at a
 //! time. [`Study::lockstep`] turns it off.

@@ -373,7 +373,13 @@ where
         fixed && M::EVENT_INDICATORS.is_empty() && M::DISCRETE_NAMES.is_empty()
     }
 
-    fn run_group(&self, model: &mut M, xs: &[M::State], outs: &mut [&mut [f64]], done: &mut [bool]) {
+    fn run_group(
+        &self,
+        model: &mut M,
+        xs: &[M::State],
+        outs: &mut [&mut [f64]],
+        done: &mut [bool],
+    ) {
         if !self.runs_in_lockstep() {
             return;
         }

@@ -85,7 +85,13 @@ pub trait Task<M: Model>: Sync {
     /// done (one that fails, or every case, as the default does) is run
     /// again alone by the study, so it fails as it does alone; its row is
     /// then written again.
-    fn run_group(&self, model: &mut M, xs: &[M::State], outs: &mut [&mut [f64]], done: &mut [bool]) {
+    fn run_group(
+        &self,
+        model: &mut M,
+        xs: &[M::State],
+        outs: &mut [&mut [f64]],
+        done: &mut [bool],
+    ) {
         let _ = (model, xs, outs, done);
     }
 }

@@ -1,7 +1,7 @@
 //! Running a range of cases into [`Results`]: one case after the other, or
 //! on rayon's workers (each with its own scratch space for setting a
 //! case, reused from case to case); cases one at a time, or in groups of
-//! [`GROUP`] that run in lockstep (see [`lockstep`](super::lockstep)).
+//! [`GROUP`] that run in lockstep (see [the study docs](super#lockstep)).
 
 use core::ops::Range;
 use std::panic::{AssertUnwindSafe, catch_unwind};

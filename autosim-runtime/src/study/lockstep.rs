@@ -203,8 +203,8 @@ pub(super) fn simulate<M: Model, const S: usize>(
 ) {
     let mut lanes = Lanes::<M, S>::new(xs);
     lanes.n = lanes.n.min(outs.len()).min(done.len());
-    for l in 0..lanes.n {
-        plan.begin(outs[l]);
+    for out in outs.iter_mut().take(lanes.n) {
+        plan.begin(out);
     }
     begin(model, &mut lanes, settings.start);
     let (mut steps, mut k, mut next_at) = (0, 0, 0);

@@ -367,7 +367,7 @@ where
     }
 
     /// Fixed-step explicit methods (Euler, Heun, RK4) of a model without
-    /// events or discrete variables (see [`lockstep`](super::lockstep)).
+    /// events or discrete variables (see [the study docs](super#lockstep)).
     fn runs_in_lockstep(&self) -> bool {
         let fixed = matches!(self.method, Method::Euler | Method::Heun | Method::Rk4);
         fixed && M::EVENT_INDICATORS.is_empty() && M::DISCRETE_NAMES.is_empty()

@@ -34,6 +34,7 @@ pub(crate) fn combine_row<F: Float, S: StateArray<F>>(
 /// is stage `j` of that lane, as a study's lockstep groups keep them):
 /// `out = x + h·Σⱼ wⱼ·k[j][lane]`, the same terms summed in the same
 /// order, so the same bits.
+#[cfg(feature = "study")]
 #[inline]
 pub(crate) fn combine_lane<F: Float, S: StateArray<F>, const G: usize>(
     out: &mut S,

@@ -1,7 +1,8 @@
 //! A study allocates per chunk, never per case: serially, 10 cases and
 //! 1000 cases make the same number of allocations (the results' arrays and
 //! the worker's scratch space), for the simulation task with every kind of
-//! kept quantity and for a random table.
+//! kept quantity and for a random table; and the same in lockstep (a
+//! lanes model, initial states only).
 
 use autosim::runtime::RunSettings;
 use autosim::runtime::study::{
@@ -49,4 +50,32 @@ fn a_study_allocates_per_chunk_not_per_case() {
             "{method:?}: 10 cases made {few} allocations, 1000 made {many}"
         );
     }
+}
+
+mod lanes {
+    autosim::model!(file = "examples/models/pendulum.sim", lanes = true);
+}
+
+#[test]
+fn a_study_in_lockstep_allocates_per_chunk_not_per_case() {
+    // Initial states only, a lanes model, RK4: groups of four in lockstep.
+    let u = Distribution::uniform(-1.0, 1.0);
+    let cases = Cases::new().random(1000, 9, &[("q", u), ("u", u)]).unwrap();
+    let keep = Keep::new()
+        .final_state()
+        .at(&[0.5], &["height"])
+        .statistic("u", Statistic::Rms)
+        .history(&["q"]);
+    let task = Simulate::new(RunSettings::new(0.0, 1.0, 0.01, 0.1), Method::Rk4, keep).unwrap();
+    let study = Study::new(lanes::pendulum::Pendulum::new, cases, task)
+        .parallelism(Parallelism::Serial)
+        .progress(false);
+    let run = |n: u64| allocations(|| drop(std::hint::black_box(study.run_cases(0..n).unwrap())));
+    run(1);
+    let (few, many) = (run(10), run(1000));
+    assert!(few > 0, "the counter sees the results' arrays");
+    assert_eq!(
+        few, many,
+        "10 cases made {few} allocations, 1000 made {many}"
+    );
 }

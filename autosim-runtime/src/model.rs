@@ -195,6 +195,14 @@ pub trait Model {
     const OUTPUT_NAMES: &'static [&'static str] = &[];
     /// Units of the outputs.
     const OUTPUT_UNITS: &'static [&'static str] = &[];
+    /// Whether a study may integrate several cases of this model in
+    /// lockstep, all on one model, evaluating their states together
+    /// through [`Model::derivatives_batch`] (see the `study` module's
+    /// "Lockstep"). Set it only when `derivatives_batch` is faster than one
+    /// call per state and every function of the model (user code
+    /// included) depends on its arguments alone, not on earlier calls.
+    /// `false` by default; models generated with the `lanes` option set it.
+    const LOCKSTEP: bool = false;
 
     /// Writes the state derivatives `dx/dt` at time `t` and state `x` into `dx`.
     fn derivatives(

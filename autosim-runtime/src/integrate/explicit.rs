@@ -21,14 +21,14 @@ pub(crate) struct Tableau<const S: usize> {
 }
 
 /// Forward Euler.
-const EULER: Tableau<1> = Tableau {
+pub(crate) const EULER: Tableau<1> = Tableau {
     c: [0.0],
     a: [&[]],
     b: [1.0],
 };
 
 /// Heun's method: an Euler predictor and a trapezoid corrector.
-const HEUN: Tableau<2> = Tableau {
+pub(crate) const HEUN: Tableau<2> = Tableau {
     c: [0.0, 1.0],
     a: [&[], &[1.0]],
     b: [0.5, 0.5],

@@ -49,10 +49,14 @@ mod vector;
 
 pub use abm::{AbmOrder, AdamsBashforthMoulton};
 pub use dopri::{DopriSettings, DormandPrince};
+#[cfg(feature = "study")]
+pub(crate) use explicit::{EULER, HEUN, RK4, Tableau};
 pub use explicit::{Euler, Heun, Rk4};
 pub use jacobian::{Analytic, FiniteDifferences, JacobianSource};
 pub use linalg::{LuFactors, SingularMatrix};
 pub use sdirk::{Sdirk3, SdirkSettings};
+#[cfg(feature = "study")]
+pub(crate) use vector::{check_step, combine_lane};
 
 pub use crate::error::check_finite;
 use crate::{IntegrationError, Model};

@@ -30,6 +30,28 @@ pub(crate) fn combine_row<F: Float, S: StateArray<F>>(
     combine_terms(out, x, h, terms);
 }
 
+/// [`combine_row`] for one lane of stages kept lane by lane (`k[j][lane]`
+/// is stage `j` of that lane, as a study's lockstep groups keep them):
+/// `out = x + h·Σⱼ wⱼ·k[j][lane]`, the same terms summed in the same
+/// order, so the same bits.
+#[cfg(feature = "study")]
+#[inline]
+pub(crate) fn combine_lane<F: Float, S: StateArray<F>, const G: usize>(
+    out: &mut S,
+    x: &S,
+    h: F,
+    weights: &[f64],
+    k: &[[S; G]],
+    lane: usize,
+) {
+    let terms = weights
+        .iter()
+        .zip(k)
+        .filter(|(w, _)| **w != 0.0)
+        .map(|(w, kj)| (F::from_f64(*w), &kj[lane]));
+    combine_terms(out, x, h, terms);
+}
+
 /// `out = x + h · Σ cᵢ·kᵢ` over `terms`, summed in their order.
 #[inline]
 fn combine_terms<'k, F, S>(

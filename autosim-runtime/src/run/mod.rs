@@ -6,6 +6,8 @@ use core::fmt;
 
 mod driver;
 mod events;
+#[cfg(feature = "study")]
+pub(crate) mod grid;
 mod sampled;
 mod times;
 

@@ -1,6 +1,7 @@
 //! Running a range of cases into [`Results`]: one case after the other, or
 //! on rayon's workers (each with its own scratch space for setting a
-//! case, reused from case to case).
+//! case, reused from case to case); cases one at a time, or in groups of
+//! [`GROUP`] that run in lockstep (see [the study docs](super#lockstep)).
 
 use core::ops::Range;
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -10,9 +11,13 @@ use std::vec::Vec;
 use indicatif::ProgressBar;
 use rayon::prelude::*;
 
-use super::targets::{Setter, Target, resolve};
+use super::lockstep::GROUP;
+use super::targets::{Setter, Target, initial_state, resolve, same_model};
 use super::{CaseError, Parallelism, Results, Study, StudyError, Task, progress};
-use crate::Model;
+use crate::{Model, StateArray};
+
+/// A case's row of the results: its table values, kept values, error.
+type Row<'a> = (&'a mut [f64], &'a mut [f64], &'a mut Option<String>);
 
 /// Where cases run during one call: the pool, if any, and the bar.
 pub(super) struct Runner {
@@ -90,30 +95,104 @@ where
         let count = usize::try_from(range.end - range.start)
             .map_err(|_| StudyError::InvalidCases("too many cases for one chunk".into()))?;
         let mut results = Results::blank(self.layout(), range.start, count);
-        let rows = results.rows_mut();
+        let mut rows = results.rows_mut();
         // A worker's scratch space: the parameter, input and setup vectors.
         let worker = || Setter::<M::Float>::new::<M>(self.setup_columns.len());
-        type Row<'a> = (
-            usize,
-            (&'a mut [f64], &'a mut [f64], &'a mut Option<String>),
-        );
-        let one = |w: &mut Setter<M::Float>, (i, (case, out, error)): Row<'_>| {
-            *error = self.run_case(&targets, w, range.start + i as u64, case, out);
-            runner.bar.inc(1);
+        let size = if self.in_lockstep() { GROUP } else { 1 };
+        let first = |g: usize| range.start + (g * size) as u64;
+        let group = |w: &mut Setter<M::Float>, (g, rows): (usize, &mut [Row<'_>])| {
+            match rows {
+                [(case, out, error)] => **error = self.run_case(&targets, w, first(g), case, out),
+                _ => self.run_group(&targets, w, first(g), rows),
+            }
+            runner.bar.inc(rows.len() as u64);
         };
         if runner.serial {
             let mut w = worker();
-            rows.into_iter()
+            rows.chunks_mut(size)
                 .enumerate()
-                .for_each(|row| one(&mut w, row));
+                .for_each(|g| group(&mut w, g));
         } else {
-            let all = || rows.into_par_iter().enumerate().for_each_init(worker, one);
+            let mut all = || {
+                rows.par_chunks_mut(size)
+                    .enumerate()
+                    .for_each_init(worker, group)
+            };
             match &runner.pool {
                 Some(pool) => pool.install(all),
                 None => all(),
             }
         }
         Ok(results)
+    }
+
+    /// Whether the study runs groups of cases in lockstep.
+    fn in_lockstep(&self) -> bool {
+        self.lockstep && M::LOCKSTEP && self.setup.is_none() && self.task.runs_in_lockstep()
+    }
+
+    /// Runs the group of cases `first..` (`rows`, at most [`GROUP`]): the
+    /// ones that share the first one's model in lockstep, the others and
+    /// those that do not finish there one at a time.
+    fn run_group(
+        &self,
+        targets: &[Target],
+        setter: &mut Setter<M::Float>,
+        first: u64,
+        rows: &mut [Row<'_>],
+    ) {
+        for (i, (case, _, _)) in rows.iter_mut().enumerate() {
+            self.cases.case(first + i as u64, case);
+        }
+        let done = catch_unwind(AssertUnwindSafe(|| {
+            self.run_together(targets, setter, rows)
+        }))
+        .unwrap_or([false; GROUP]);
+        for (i, (case, out, error)) in rows.iter_mut().enumerate() {
+            **error = match done[i] {
+                true => None,
+                false => self.run_case(targets, setter, first + i as u64, case, out),
+            };
+        }
+    }
+
+    /// Runs the cases of `rows` that share the first one's model together
+    /// ([`Task::run_group`]); returns which finished.
+    fn run_together(
+        &self,
+        targets: &[Target],
+        setter: &mut Setter<M::Float>,
+        rows: &mut [Row<'_>],
+    ) -> [bool; GROUP] {
+        let mut model = (self.make_model)();
+        let mut xs = [M::State::zeros(); GROUP];
+        let mut outs: [&mut [f64]; GROUP] = Default::default();
+        let mut which = [0; GROUP];
+        let mut n = 0;
+        let members: [bool; GROUP] = core::array::from_fn(|i| {
+            rows.get(i)
+                .is_some_and(|row| same_model(targets, row.0, rows[0].0))
+        });
+        for (i, (case, out, _)) in rows.iter_mut().enumerate().take(GROUP) {
+            if !members[i] {
+                continue;
+            }
+            xs[n] = match n {
+                0 => setter.apply(targets, case, &mut model),
+                _ => initial_state(targets, case, &model),
+            };
+            outs[n] = &mut **out;
+            which[n] = i;
+            n += 1;
+        }
+        let mut finished = [false; GROUP];
+        self.task
+            .run_group(&mut model, &xs[..n], &mut outs[..n], &mut finished[..n]);
+        let mut done = [false; GROUP];
+        for (w, f) in which[..n].iter().zip(&finished) {
+            done[*w] = *f;
+        }
+        done
     }
 
     /// Runs case `index`: its table values into `case`, its kept values

@@ -52,11 +52,28 @@
 //! [`Study::run_in`] writes the results as shards in a folder (CSV, or
 //! Parquet with feature `parquet`), resumes an interrupted study, and
 //! [`StudyDir`] reads a finished one back.
+//!
+//! # Lockstep
+//!
+//! A [`Simulate`] task with a fixed-step explicit method ([`Method::Euler`],
+//! [`Method::Heun`], [`Method::Rk4`]) of a model that allows it
+//! ([`Model::LOCKSTEP`]: models generated with the `lanes` option) and has
+//! no events or discrete variables, in a study without a
+//! [`setup`](Study::setup) function, integrates up to four neighbouring
+//! cases of the table that
+//! share their parameter and input values (they differ in their initial
+//! states) together: each stage evaluates their states in one
+//! [`Model::derivatives_batch`] call (four states per call of
+//! `derivatives_lanes`). The results are the same bits as
+//! one case at a time, failures included (a case that fails is run again
+//! alone, and fails as it does alone); other studies run one case at a
+//! time. [`Study::lockstep`] turns it off.
 
 mod cases;
 mod csv_shard;
 mod error;
 mod execute;
+mod lockstep;
 mod method;
 #[cfg(feature = "analysis")]
 mod modes;
@@ -117,6 +134,7 @@ pub struct Study<M: Model, F, T> {
     setup: Option<SetupFn<M>>,
     parallelism: Parallelism,
     progress: bool,
+    lockstep: bool,
 }
 
 impl<M, F, T> Study<M, F, T>
@@ -138,6 +156,7 @@ where
             setup: None,
             parallelism: Parallelism::AllCores,
             progress: true,
+            lockstep: true,
         }
     }
 
@@ -173,6 +192,19 @@ where
     pub fn progress(mut self, progress: bool) -> Study<M, F, T> {
         self.progress = progress;
         self
+    }
+
+    /// Whether cases that can run in lockstep do (see [the module
+    /// docs](self#lockstep)); on by default. The results are the same
+    /// either way, bit for bit: off is for measuring what it buys.
+    pub fn lockstep(mut self, lockstep: bool) -> Study<M, F, T> {
+        self.lockstep = lockstep;
+        self
+    }
+
+    /// Turns lockstep on or off (see [`Study::lockstep`]).
+    pub fn set_lockstep(&mut self, lockstep: bool) {
+        self.lockstep = lockstep;
     }
 
     /// The case table.

@@ -7,8 +7,10 @@ use std::string::{String, ToString};
 use std::vec::Vec;
 
 use super::StudyError;
+use super::lockstep;
 use super::method::Method;
 use super::task::{CaseError, Field, Task};
+use crate::integrate::{EULER, HEUN, RK4};
 use crate::run::Observer;
 use crate::{Float, IntegrationError, Model, RunSettings, run};
 
@@ -137,7 +139,7 @@ impl Quantity {
 
 /// [`Keep`] resolved against a model: slots in a case's row.
 #[derive(Clone, Debug, PartialEq)]
-struct Plan {
+pub(super) struct Plan {
     fields: Vec<Field>,
     /// Slot of the first final state, if kept.
     final_state: Option<usize>,
@@ -155,9 +157,9 @@ struct Plan {
 /// inherits step sizes or derivative history from the one before), and
 /// the kept values are written as the run goes: no allocation per case.
 pub struct Simulate<M: Model> {
-    settings: RunSettings<M::Float>,
+    pub(super) settings: RunSettings<M::Float>,
     method: Method,
-    plan: Plan,
+    pub(super) plan: Plan,
     keep: Keep,
     model: PhantomData<fn() -> M>,
 }
@@ -268,17 +270,45 @@ impl<M: Model> Observer<M> for Recorder<'_, M> {
     type Error = core::convert::Infallible;
 
     fn observe(&mut self, _t: M::Float, x: &M::State, y: &M::Outputs) -> Result<(), Self::Error> {
-        let k = self.k;
-        while let Some((at_k, q, slot)) = self.plan.at.get(self.next_at) {
+        self.next_at = self.plan.record::<M>(self.k, self.next_at, self.out, x, y);
+        self.k += 1;
+        Ok(())
+    }
+}
+
+impl Plan {
+    /// Starts a case's row: the statistics' initial values.
+    pub(super) fn begin(&self, out: &mut [f64]) {
+        for (_, s, slot) in &self.statistics {
+            out[*slot] = match s {
+                Statistic::Min => f64::INFINITY,
+                Statistic::Max => f64::NEG_INFINITY,
+                Statistic::MaxAbs | Statistic::Mean | Statistic::Rms => 0.0,
+            };
+        }
+    }
+
+    /// Records output `k` (the state `x`, the outputs `y`) in a case's
+    /// row; `next_at` is the first entry of `at` not yet written. Returns
+    /// the next one.
+    pub(super) fn record<M: Model>(
+        &self,
+        k: u64,
+        mut next_at: usize,
+        out: &mut [f64],
+        x: &M::State,
+        y: &M::Outputs,
+    ) -> usize {
+        while let Some((at_k, q, slot)) = self.at.get(next_at) {
             if *at_k != k {
                 break;
             }
-            self.out[*slot] = q.value::<M>(x, y);
-            self.next_at += 1;
+            out[*slot] = q.value::<M>(x, y);
+            next_at += 1;
         }
-        for (q, s, slot) in &self.plan.statistics {
+        for (q, s, slot) in &self.statistics {
             let v = q.value::<M>(x, y);
-            let o = &mut self.out[*slot];
+            let o = &mut out[*slot];
             *o = match s {
                 Statistic::Min => o.min(v),
                 Statistic::Max => o.max(v),
@@ -287,11 +317,27 @@ impl<M: Model> Observer<M> for Recorder<'_, M> {
                 Statistic::Rms => *o + v * v,
             };
         }
-        for (q, first) in &self.plan.history {
-            self.out[*first + k as usize] = q.value::<M>(x, y);
+        for (q, first) in &self.history {
+            out[*first + k as usize] = q.value::<M>(x, y);
         }
-        self.k += 1;
-        Ok(())
+        next_at
+    }
+
+    /// Ends a case's row: the means, the RMS values, the final state `x`.
+    pub(super) fn end<M: Model>(&self, out: &mut [f64], x: &M::State) {
+        let n = self.samples as f64;
+        for (_, s, slot) in &self.statistics {
+            match s {
+                Statistic::Mean => out[*slot] /= n,
+                Statistic::Rms => out[*slot] = (out[*slot] / n).sqrt(),
+                _ => {}
+            }
+        }
+        if let Some(first) = self.final_state {
+            for (o, v) in out[first..].iter_mut().zip(x.as_ref()) {
+                *o = v.to_f64();
+            }
+        }
     }
 }
 
@@ -305,13 +351,7 @@ where
 
     fn run(&self, model: &mut M, x: &mut M::State, out: &mut [f64]) -> Result<(), CaseError> {
         let plan = &self.plan;
-        for (_, s, slot) in &plan.statistics {
-            out[*slot] = match s {
-                Statistic::Min => f64::INFINITY,
-                Statistic::Max => f64::NEG_INFINITY,
-                Statistic::MaxAbs | Statistic::Mean | Statistic::Rms => 0.0,
-            };
-        }
+        plan.begin(out);
         let mut stepper = self.method.stepper::<M>()?;
         let mut recorder = Recorder {
             plan,
@@ -322,20 +362,34 @@ where
         };
         run(model, &mut stepper, x, &self.settings, &mut recorder)
             .map_err(|e| CaseError::Run(IntegrationError::from(e)))?;
-        let n = plan.samples as f64;
-        for (_, s, slot) in &plan.statistics {
-            match s {
-                Statistic::Mean => out[*slot] /= n,
-                Statistic::Rms => out[*slot] = (out[*slot] / n).sqrt(),
-                _ => {}
-            }
-        }
-        if let Some(first) = plan.final_state {
-            for (o, v) in out[first..].iter_mut().zip(x.as_ref()) {
-                *o = v.to_f64();
-            }
-        }
+        plan.end::<M>(out, x);
         Ok(())
+    }
+
+    /// Fixed-step explicit methods (Euler, Heun, RK4) of a model without
+    /// events or discrete variables (see [the study docs](super#lockstep)).
+    fn runs_in_lockstep(&self) -> bool {
+        let fixed = matches!(self.method, Method::Euler | Method::Heun | Method::Rk4);
+        fixed && M::EVENT_INDICATORS.is_empty() && M::DISCRETE_NAMES.is_empty()
+    }
+
+    fn run_group(
+        &self,
+        model: &mut M,
+        xs: &[M::State],
+        outs: &mut [&mut [f64]],
+        done: &mut [bool],
+    ) {
+        if !self.runs_in_lockstep() {
+            return;
+        }
+        let (settings, plan) = (&self.settings, &self.plan);
+        match self.method {
+            Method::Euler => lockstep::simulate(model, &EULER, settings, plan, xs, outs, done),
+            Method::Heun => lockstep::simulate(model, &HEUN, settings, plan, xs, outs, done),
+            Method::Rk4 => lockstep::simulate(model, &RK4, settings, plan, xs, outs, done),
+            _ => {}
+        }
     }
 
     fn describe(&self) -> String {

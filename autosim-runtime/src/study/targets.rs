@@ -136,12 +136,26 @@ impl<F: Float> Setter<F> {
         if inputs {
             model.set_input_values(&self.inputs);
         }
-        let mut x = model.initial_state();
-        for (t, v) in targets.iter().zip(values) {
-            if let Target::State(k) = *t {
-                x.as_mut()[k] = F::from_f64(*v);
-            }
-        }
-        x
+        initial_state(targets, values, model)
     }
+}
+
+/// The model's initial state with the case's initial states (`values` of
+/// the state columns) set.
+pub(super) fn initial_state<M: Model>(targets: &[Target], values: &[f64], model: &M) -> M::State {
+    let mut x = model.initial_state();
+    for (t, v) in targets.iter().zip(values) {
+        if let Target::State(k) = *t {
+            x.as_mut()[k] = M::Float::from_f64(*v);
+        }
+    }
+    x
+}
+
+/// Whether two cases' values (`a`, `b`) make the same model: the same
+/// bits in every parameter and input column.
+pub(super) fn same_model(targets: &[Target], a: &[f64], b: &[f64]) -> bool {
+    targets.iter().zip(a.iter().zip(b)).all(|(t, (a, b))| {
+        !matches!(t, Target::Parameter(_) | Target::Input(_)) || a.to_bits() == b.to_bits()
+    })
 }

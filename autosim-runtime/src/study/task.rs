@@ -70,6 +70,30 @@ pub trait Task<M: Model>: Sync {
     /// Text that identifies the task in a study's manifest: a study
     /// resumed with a different description is refused.
     fn describe(&self) -> String;
+
+    /// Whether [`Task::run_group`] runs cases together (see
+    /// [`lockstep`](super#lockstep)). `false` by default: every case
+    /// through [`Task::run`].
+    fn runs_in_lockstep(&self) -> bool {
+        false
+    }
+
+    /// Runs cases together that share `model` (the same parameters and
+    /// inputs) and differ in their initial states `xs`: writes case `k`'s
+    /// kept values into `outs[k]` and sets `done[k]` when it finished
+    /// exactly as [`Task::run`] would have, bit for bit. A case left not
+    /// done (one that fails, or every case, as the default does) is run
+    /// again alone by the study, so it fails as it does alone; its row is
+    /// then written again.
+    fn run_group(
+        &self,
+        model: &mut M,
+        xs: &[M::State],
+        outs: &mut [&mut [f64]],
+        done: &mut [bool],
+    ) {
+        let _ = (model, xs, outs, done);
+    }
 }
 
 /// A task written as a closure `|model, x, out| -> Result<(), CaseError>`

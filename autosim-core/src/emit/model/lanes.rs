@@ -121,7 +121,8 @@ fn shared_terms_lanes(lanes: &BlockEmitter<'_>) -> TokenStream {
 }
 
 /// `Model::derivatives_batch` through `derivatives_lanes`, four states at
-/// a time (nothing for a model without lanes: the default loop).
+/// a time, and `Model::LOCKSTEP` (nothing for a model without lanes: the
+/// default loop, and studies one case at a time).
 pub(super) fn batch(be: &BlockEmitter<'_>) -> TokenStream {
     if !has_lanes(be.prog) {
         return TokenStream::new();
@@ -129,6 +130,8 @@ pub(super) fn batch(be: &BlockEmitter<'_>) -> TokenStream {
     let rt = &be.rt;
     let n_states = Literal::usize_unsuffixed(be.prog.states().len());
     quote! {
+        const LOCKSTEP: bool = true;
+
         fn derivatives_batch(
             &mut self,
             t: f64,

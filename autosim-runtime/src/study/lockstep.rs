@@ -1,0 +1,239 @@
+//! Lockstep: a simulation study integrates up to [`GROUP`] cases
+//! together, each stage of each step evaluating all of them in one
+//! [`Model::derivatives_batch`] call (four states per call of a generated
+//! model's `derivatives_lanes`, with the `lanes` option).
+//!
+//! # When
+//!
+//! The model must allow it: [`Model::LOCKSTEP`], which models generated
+//! with the `lanes` option set (their `derivatives_batch` is where the
+//! time goes away, and the option already asks user code not to depend on
+//! the order of calls). Other models run one case at a time: their
+//! `derivatives_batch` is one `derivatives` call per state, which gains
+//! nothing (chain-spatial-10 without lanes ran 5 % slower in lockstep),
+//! and user code that keeps state (allowed there, with fresh state per
+//! case) would see the calls of four cases interleaved on one model.
+//!
+//! A group is cases next to each other in the table (a chunk of
+//! [`GROUP`]) that share one model: the study has no setup function, and
+//! the cases' parameter and input columns hold the same values (the
+//! first case's; the others run alone), so they differ only in their
+//! initial states (a Monte Carlo or a grid over initial conditions). The
+//! task must say it can ([`Task::runs_in_lockstep`](super::Task)):
+//! [`Simulate`](super::Simulate) with Euler, Heun or RK4 (fixed steps,
+//! the same times for every case) of a model without events or discrete
+//! variables (whose cases would take different steps and actions).
+//! Adams–Bashforth–Moulton (fixed step, but a start-up and a history per
+//! case) and Dormand–Prince (a step size per case) run one case at a
+//! time, as do [`Modes`](super::Modes) and [`Custom`](super::Custom)
+//! tasks. [`Study::lockstep`](super::Study::lockstep) turns it off.
+//!
+//! # Why this design
+//!
+//! The study already hands chunks of rows to rayon's workers, each with
+//! its own scratch space; lockstep only makes the unit of work a chunk of
+//! [`GROUP`] rows instead of one row, so threads, the progress bar, shards
+//! and resuming are untouched, and nothing is shared between threads.
+//! One model per group serves every case, which is why the cases must
+//! share parameters and inputs: `derivatives_batch` evaluates many states
+//! of one model. Each case does the arithmetic it does alone: the same
+//! ticks (times and steps, [`fixed_ticks`], tested equal to the run
+//! driver's), the same Runge–Kutta combinations
+//! ([`combine_lane`](crate::integrate::combine_lane) sums what the
+//! single stepper's `combine_row` sums, in the same order), and
+//! `derivatives_batch` gives each state the bits `derivatives` gives it
+//! (its contract, tested for generated models in `tests/lanes.rs`). The
+//! model's functions must be functions of their arguments (what
+//! [`Model::LOCKSTEP`] promises).
+//!
+//! A case that fails any check the run driver makes (a derivative error,
+//! a non-finite state or output, assembly or projection, the step limit)
+//! leaves the group (the others go on, compacted, so the batch stays
+//! contiguous) and is run again alone by the study: it fails exactly as
+//! it does alone, with the same error. A panic anywhere in a group runs
+//! the whole group again, case by case. Nothing is allocated: the
+//! workspaces are arrays of [`GROUP`] states on the worker's stack.
+
+use crate::batch::LANES;
+use crate::error::{check_finite_outputs, check_finite_parameters};
+use crate::integrate::{Tableau, check_step, combine_lane};
+use crate::run::grid::{Tick, fixed_ticks};
+use crate::{Float, Model, ModelError, RunSettings, StateArray, check_finite};
+
+use super::simulate::Plan;
+
+/// Cases integrated together: one batch of [`LANES`] states per stage.
+pub(super) const GROUP: usize = LANES;
+
+/// The cases of a group still running (the first `n` lanes), with the
+/// workspaces of a Runge–Kutta method of `S` stages.
+struct Lanes<M: Model, const S: usize> {
+    n: usize,
+    /// The case (index into the group) each lane runs.
+    case: [usize; GROUP],
+    x: [M::State; GROUP],
+    /// `k[j][lane]`: stage `j`'s derivatives.
+    k: [[M::State; GROUP]; S],
+    /// The stages' states, then the new states.
+    stage: [M::State; GROUP],
+    status: [Result<(), ModelError>; GROUP],
+}
+
+impl<M: Model, const S: usize> Lanes<M, S> {
+    /// Lanes for the cases starting at `xs` (at most [`GROUP`]).
+    fn new(xs: &[M::State]) -> Lanes<M, S> {
+        let z = M::State::zeros();
+        let mut x = [z; GROUP];
+        let n = xs.len().min(GROUP);
+        x[..n].copy_from_slice(&xs[..n]);
+        Lanes {
+            n,
+            case: core::array::from_fn(|l| l),
+            x,
+            k: [[z; GROUP]; S],
+            stage: [z; GROUP],
+            status: [Ok(()); GROUP],
+        }
+    }
+
+    /// Lane `l` leaves: the last lane takes its place (every array).
+    fn remove(&mut self, l: usize) {
+        let last = self.n - 1;
+        self.case.swap(l, last);
+        self.x.swap(l, last);
+        self.stage.swap(l, last);
+        for k in &mut self.k {
+            k.swap(l, last);
+        }
+        self.n = last;
+    }
+
+    /// Keeps the lanes for which `ok(self, lane)` holds.
+    fn retain(&mut self, mut ok: impl FnMut(&mut Self, usize) -> bool) {
+        for l in (0..self.n).rev() {
+            if !ok(self, l) {
+                self.remove(l);
+            }
+        }
+    }
+
+    /// Stage `i`'s derivatives at time `t` (of the states `x` for the
+    /// first stage, `stage` for the others), one batch; the lanes that
+    /// fail leave.
+    fn evaluate(&mut self, model: &mut M, t: M::Float, i: usize) {
+        let n = self.n;
+        let states = if i == 0 { &self.x } else { &self.stage };
+        model.derivatives_batch(t, &states[..n], &mut self.k[i][..n], &mut self.status[..n]);
+        self.retain(|lanes, l| lanes.status[l].is_ok());
+    }
+
+    /// One step of `tableau` from `t` by `h` for every lane: what the
+    /// fixed-step steppers do to one state (the step checked, the new
+    /// state checked before it replaces the old).
+    fn step(&mut self, model: &mut M, tableau: &Tableau<S>, t: M::Float, h: M::Float) {
+        if check_step(h).is_err() {
+            self.n = 0;
+            return;
+        }
+        self.evaluate(model, t, 0);
+        for i in 1..S {
+            for l in 0..self.n {
+                combine_lane(&mut self.stage[l], &self.x[l], h, tableau.a[i], &self.k, l);
+            }
+            self.evaluate(model, t + M::Float::from_f64(tableau.c[i]) * h, i);
+        }
+        for l in 0..self.n {
+            combine_lane(&mut self.stage[l], &self.x[l], h, &tableau.b, &self.k, l);
+        }
+        self.retain(|lanes, l| {
+            let ok = check_finite::<M>(t + h, &lanes.stage[l]).is_ok();
+            lanes.x[l] = lanes.stage[l];
+            ok
+        });
+    }
+}
+
+/// What the run driver does at the start: the parameters and states
+/// checked, the states assembled; the lanes that fail leave.
+fn begin<M: Model, const S: usize>(model: &mut M, lanes: &mut Lanes<M, S>, t: M::Float) {
+    if check_finite_parameters(model, t).is_err() {
+        lanes.n = 0;
+        return;
+    }
+    lanes.retain(|lanes, l| {
+        check_finite::<M>(t, &lanes.x[l]).is_ok() && model.assemble(t, &mut lanes.x[l]).is_ok()
+    });
+}
+
+/// The outputs at `t` of every lane, checked and recorded as output `k`
+/// of its case's row; the lanes that fail leave. Returns the next entry
+/// of the plan's `at` (the same for every case).
+fn emit<M: Model, const S: usize>(
+    model: &mut M,
+    lanes: &mut Lanes<M, S>,
+    (plan, outs): (&Plan, &mut [&mut [f64]]),
+    t: M::Float,
+    (k, next_at): (u64, usize),
+) -> usize {
+    let mut y = M::Outputs::zeros();
+    let mut next = next_at;
+    lanes.retain(|lanes, l| {
+        let x = &lanes.x[l];
+        let ok = model.outputs(t, x, &mut y).is_ok() && check_finite_outputs::<M>(t, &y).is_ok();
+        if ok {
+            next = plan.record::<M>(k, next_at, outs[lanes.case[l]], x, &y);
+        }
+        ok
+    });
+    next
+}
+
+/// Runs the cases starting at `xs` (at most [`GROUP`]) together on
+/// `model` with `tableau`, as [`run`](crate::run()) runs each with the
+/// fixed-step stepper of that tableau; `done[k]` is set for the cases
+/// that finished (their rows in `outs[k]` written).
+pub(super) fn simulate<M: Model, const S: usize>(
+    model: &mut M,
+    tableau: &Tableau<S>,
+    settings: &RunSettings<M::Float>,
+    plan: &Plan,
+    xs: &[M::State],
+    outs: &mut [&mut [f64]],
+    done: &mut [bool],
+) {
+    let mut lanes = Lanes::<M, S>::new(xs);
+    lanes.n = lanes.n.min(outs.len()).min(done.len());
+    for out in outs.iter_mut().take(lanes.n) {
+        plan.begin(out);
+    }
+    begin(model, &mut lanes, settings.start);
+    let (mut steps, mut k, mut next_at) = (0, 0, 0);
+    let finished = fixed_ticks(settings, |tick| {
+        match tick {
+            Tick::Output(t) => {
+                next_at = emit(model, &mut lanes, (plan, outs), t, (k, next_at));
+                k += 1;
+            }
+            Tick::Step { t, h, t_end } => {
+                if steps >= settings.max_steps {
+                    // The step limit: every case fails alone.
+                    return Err(());
+                }
+                lanes.step(model, tableau, t, h);
+                let tolerance = settings.projection_tolerance;
+                lanes.retain(|lanes, l| model.project(t_end, &mut lanes.x[l], tolerance).is_ok());
+                steps += 1;
+            }
+        }
+        // Nobody left: stop.
+        if lanes.n == 0 { Err(()) } else { Ok(()) }
+    });
+    if finished.is_err() {
+        return;
+    }
+    for l in 0..lanes.n {
+        let case = lanes.case[l];
+        plan.end::<M>(outs[case], &lanes.x[l]);
+        done[case] = true;
+    }
+}

@@ -1,0 +1,93 @@
+//! What lockstep buys a study: cases per second of a Monte Carlo over the
+//! initial state of chain-spatial-10 generated with `lanes = true` (ten
+//! random joint angles and rates; RK4, 0.5 s at h = 1 ms: 2 000
+//! derivative evaluations a case), one case at a time
+//! (`Study::lockstep(false)`) and in lockstep (groups of four cases, one
+//! `derivatives_batch` call per stage: four states per call of
+//! `derivatives_lanes`); and the same model generated without lanes (one
+//! case at a time either way). Serial (one thread), interleaved over
+//! rounds; prints the medians. Results are checked equal, bit for bit, in
+//! every round.
+//!
+//! ```text
+//! cargo run --release --example study_lockstep [-- ROUNDS [CASES]]
+//! ```
+
+use std::error::Error;
+use std::time::Instant;
+
+use autosim::runtime::study::{Cases, Distribution, Keep, Method, Parallelism, Simulate, Study};
+use autosim::runtime::{Model, RunSettings};
+
+mod lanes {
+    autosim::model!(file = "examples/models/chain_spatial_10.sim", lanes = true);
+}
+mod plain {
+    autosim::model!(file = "examples/models/chain_spatial_10.sim");
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// Random initial angles and rates of every joint.
+fn cases<M: Model>(count: u64) -> Result<Cases, Box<dyn Error>> {
+    let columns: Vec<(&str, Distribution)> = M::STATE_NAMES
+        .iter()
+        .map(|n| (*n, Distribution::uniform(-0.5, 0.5)))
+        .collect();
+    Ok(Cases::new().random(count, 7, &columns)?)
+}
+
+/// Cases per second (median of `rounds`) one at a time and in lockstep.
+fn measure<M, F>(make: F, rounds: usize, count: u64) -> Result<(f64, f64), Box<dyn Error>>
+where
+    M: Model<Float = f64>,
+    F: Fn() -> M + Sync,
+{
+    let settings = RunSettings::new(0.0, 0.5, 0.001, 0.05);
+    let task = Simulate::new(settings, Method::Rk4, Keep::new().final_state())?;
+    let mut study = Study::new(make, cases::<M>(count)?, task)
+        .progress(false)
+        .parallelism(Parallelism::Serial);
+    let (mut alone, mut lockstep) = (vec![], vec![]);
+    for _ in 0..rounds {
+        let mut timed = |on: bool| -> Result<_, Box<dyn Error>> {
+            study.set_lockstep(on);
+            let start = Instant::now();
+            let results = study.run_cases(0..count)?;
+            Ok((count as f64 / start.elapsed().as_secs_f64(), results))
+        };
+        let (a, ra) = timed(false)?;
+        let (b, rb) = timed(true)?;
+        assert!(ra == rb, "lockstep changed the results");
+        assert_eq!(ra.failures(), 0);
+        alone.push(a);
+        lockstep.push(b);
+    }
+    Ok((median(&mut alone), median(&mut lockstep)))
+}
+
+fn main() -> Result<(), Box<dyn Error>> {
+    let mut args = std::env::args().skip(1).map(|a| a.parse::<u64>());
+    let rounds = args.next().transpose()?.unwrap_or(5) as usize;
+    let count = args.next().transpose()?.unwrap_or(2_000);
+    println!("{count} chain-spatial-10 runs (RK4, 500 steps each), serial, median of {rounds}:");
+    for (name, (a, b)) in [
+        (
+            "lanes = true",
+            measure(lanes::chain_spatial10::ChainSpatial10::new, rounds, count)?,
+        ),
+        (
+            "plain",
+            measure(plain::chain_spatial10::ChainSpatial10::new, rounds, count)?,
+        ),
+    ] {
+        println!(
+            "  {name:<13} one at a time {a:>7.0} cases/s, lockstep {b:>7.0} cases/s ({:.2}x)",
+            b / a
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,222 @@
+//! Studies in lockstep (`runtime::study`, "Lockstep"): groups of cases
+//! integrated together, one `derivatives_batch` call per stage, give the
+//! bits of one case at a time (`Study::lockstep(false)`): on a model with
+//! `derivatives_lanes` (`lanes = true`), on a hand-written one that allows
+//! lockstep with the default batch (one `derivatives` call per state),
+//! and on a plain generated model (which runs one case at a time), with Euler,
+//! Heun and RK4, every kind of kept value, output times on and off the
+//! step grid, case counts that leave a partial group, serially and on two
+//! threads. A case that fails (a non-finite state, a model error, a
+//! non-finite output, a panic) fails with the error it has alone and the
+//! others of its group finish; cases whose parameters differ from their
+//! group's run alone.
+
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+use autosim::runtime::study::{
+    Cases, Distribution, Keep, Method, Parallelism, Results, Simulate, Statistic, Study,
+};
+use autosim::runtime::{Model, ModelError, RunSettings};
+
+autosim::model!(file = "examples/models/chain_planar_3.sim", lanes = true);
+use chain_planar3::ChainPlanar3;
+
+autosim::model!(file = "examples/models/pendulum.sim");
+use pendulum::Pendulum;
+
+const METHODS: [Method; 3] = [Method::Euler, Method::Heun, Method::Rk4];
+
+/// Runs `study` with and without lockstep (serially and on two threads)
+/// and checks the results are the same bits; returns them.
+fn same_either_way<M, F>(study: Study<M, F, Simulate<M>>, count: u64) -> Results
+where
+    M: Model<Float = f64>,
+    F: Fn() -> M + Sync,
+{
+    let mut study = study.progress(false);
+    let mut run = |lockstep: bool, parallelism: Parallelism| {
+        study.set_lockstep(lockstep);
+        study.set_parallelism(parallelism);
+        study.run_cases(0..count).unwrap()
+    };
+    let alone = run(false, Parallelism::Serial);
+    assert_eq!(run(true, Parallelism::Serial), alone, "serial");
+    assert_eq!(run(true, Parallelism::Threads(2)), alone, "two threads");
+    alone
+}
+
+/// Random initial coordinates and speeds (no parameter or input column:
+/// every group shares one model).
+fn initial_states(names: &[&str], count: u64, seed: u64) -> Cases {
+    let columns: Vec<(&str, Distribution)> = names
+        .iter()
+        .map(|n| (*n, Distribution::uniform(-1.5, 1.5)))
+        .collect();
+    Cases::new().random(count, seed, &columns).unwrap()
+}
+
+#[test]
+fn lockstep_gives_the_bits_of_one_case_at_a_time() {
+    // Outputs every 0.1 s on the 0.01 s grid; every 0.07 s off the 0.03 s one.
+    let settings = [
+        RunSettings::new(0.0, 0.6, 0.01, 0.1),
+        RunSettings::new(0.0, 0.5, 0.03, 0.07),
+    ];
+    for (settings, method) in settings.iter().flat_map(|s| METHODS.map(|m| (s, m))) {
+        // A model with derivatives_lanes: 4k + 3 cases.
+        let keep = Keep::new()
+            .final_state()
+            .at(&[settings.output_interval], &["q2", "tip_height"])
+            .statistic("tip_height", Statistic::Max)
+            .statistic("u3", Statistic::Rms)
+            .history(&["q1"]);
+        let task = Simulate::new(*settings, method, keep).unwrap();
+        let cases = initial_states(&["q1", "q2", "q3", "u1", "u2", "u3"], 11, 5);
+        let results = same_either_way(Study::new(ChainPlanar3::new, cases, task), 11);
+        assert_eq!(results.failures(), 0, "{method:?}");
+        // A plain model (one case at a time, lockstep or not): 4k + 1 cases.
+        let keep = Keep::new()
+            .final_state()
+            .statistic("height", Statistic::Mean)
+            .history(&["u"]);
+        let task = Simulate::new(*settings, method, keep).unwrap();
+        let cases = initial_states(&["q", "u"], 9, 6);
+        let results = same_either_way(Study::new(Pendulum::new, cases, task), 9);
+        assert_eq!(results.failures(), 0, "{method:?}");
+    }
+}
+
+#[test]
+fn a_failing_case_of_a_lanes_model_fails_as_alone() {
+    // Speeds of 1e200 overflow the derivatives (non-finite, in the batch
+    // of four and again alone).
+    let names = ["q1", "q2", "q3", "u1", "u2", "u3"];
+    let mut rows = Vec::new();
+    for k in 0..10 {
+        let u = if k == 2 || k == 9 {
+            1e200
+        } else {
+            0.1 * k as f64
+        };
+        rows.extend([0.1, -0.2, 0.3, u, 0.0, -u]);
+    }
+    let cases = Cases::new().rows(&names, &rows).unwrap();
+    let settings = RunSettings::new(0.0, 0.3, 0.01, 0.1);
+    let task = Simulate::new(settings, Method::Rk4, Keep::new().final_state()).unwrap();
+    let results = same_either_way(Study::new(ChainPlanar3::new, cases, task), 10);
+    let failed: Vec<usize> = (0..10).filter(|&k| results.errors()[k].is_some()).collect();
+    assert_eq!(failed, [2, 9], "{:?}", results.errors());
+}
+
+/// `x' = k x²` with `y = √(x + 10)`; its derivatives fail below -5 (a model
+/// error) and panic at exactly 7; it allows lockstep, with the default
+/// batch, and counts its batch calls of more than one state.
+struct Quirky {
+    k: f64,
+    batches: Arc<AtomicU64>,
+}
+
+impl Model for Quirky {
+    type Float = f64;
+    type State = [f64; 1];
+    type Outputs = [f64; 1];
+    const NAME: &'static str = "Quirky";
+    const STATE_NAMES: &'static [&'static str] = &["x"];
+    const STATE_UNITS: &'static [&'static str] = &["1"];
+    const PARAMETER_NAMES: &'static [&'static str] = &["k"];
+    const OUTPUT_NAMES: &'static [&'static str] = &["y"];
+    const LOCKSTEP: bool = true;
+    fn derivatives(&mut self, _: f64, x: &[f64; 1], dx: &mut [f64; 1]) -> Result<(), ModelError> {
+        assert!(x[0] != 7.0, "a deliberate panic at x = 7");
+        if x[0] < -5.0 {
+            return Err(ModelError::SingularMassMatrix {
+                speed: 0,
+                name: "x",
+            });
+        }
+        dx[0] = self.k * x[0] * x[0];
+        Ok(())
+    }
+    fn derivatives_batch(
+        &mut self,
+        t: f64,
+        x: &[[f64; 1]],
+        dx: &mut [[f64; 1]],
+        status: &mut [Result<(), ModelError>],
+    ) {
+        if x.len() > 1 {
+            self.batches.fetch_add(1, Ordering::Relaxed);
+        }
+        autosim::runtime::batch::one_by_one(self, t, x, dx, status);
+    }
+    fn outputs(&mut self, _: f64, x: &[f64; 1], y: &mut [f64; 1]) -> Result<(), ModelError> {
+        y[0] = (x[0] + 10.0).sqrt();
+        Ok(())
+    }
+    fn parameter_values(&self, p: &mut [f64]) {
+        p[0] = self.k;
+    }
+    fn set_parameter_values(&mut self, p: &[f64]) {
+        self.k = p[0];
+    }
+}
+
+/// The study of `Quirky` over the table `columns`/`rows` with RK4 to
+/// t = 1; returns its results (the same with and without lockstep) and
+/// the batch calls of more than one state with lockstep (serially).
+fn quirky(columns: &[&str], rows: &[f64]) -> (Results, u64) {
+    let count = (rows.len() / columns.len()) as u64;
+    let cases = Cases::new().rows(columns, rows).unwrap();
+    let settings = RunSettings::new(0.0, 1.0, 0.01, 0.25);
+    let keep = Keep::new().final_state().statistic("y", Statistic::Max);
+    let batches = Arc::new(AtomicU64::new(0));
+    let make = {
+        let batches = batches.clone();
+        move || Quirky {
+            k: 1.0,
+            batches: batches.clone(),
+        }
+    };
+    let task = Simulate::new(settings, Method::Rk4, keep).unwrap();
+    let study = Study::new(make, cases, task).progress(false);
+    let results = same_either_way(study, count);
+    (results, batches.load(Ordering::Relaxed))
+}
+
+#[test]
+fn a_failing_case_fails_as_alone_and_the_others_of_its_group_finish() {
+    // 11 cases: a panic (7), a model error (-6), a blow-up (x' = x² from 3
+    // passes infinity before t = 1/3), a non-finite output (√-1).
+    let x0 = [0.1, 0.2, 7.0, 0.3, -6.0, 0.4, 3.0, -11.0, 0.5, 0.6, 0.7];
+    let (results, batches) = quirky(&["x"], &x0);
+    assert!(batches > 0, "no group ran in lockstep");
+    let errors = results.errors();
+    let has = |k: usize, text: &str| {
+        let e = errors[k].as_deref().unwrap_or_default();
+        assert!(e.contains(text), "case {k}: {e:?}");
+    };
+    has(2, "a deliberate panic at x = 7");
+    has(4, "singular");
+    has(6, "non-finite");
+    has(7, "not finite");
+    for k in [0, 1, 3, 5, 8, 9, 10] {
+        assert!(errors[k].is_none(), "case {k}: {:?}", errors[k]);
+    }
+    assert_eq!(results.failures(), 4);
+}
+
+#[test]
+fn cases_whose_parameters_differ_from_their_groups_run_alone() {
+    // Groups of four: the first shares k = 1 but for case 1; the second
+    // is all k = 0.5; the third has a different k in each case.
+    let rows = [
+        1.0, 0.1, 2.0, 0.2, 1.0, 0.3, 1.0, 0.4, //
+        0.5, 0.1, 0.5, 0.2, 0.5, 0.3, 0.5, 0.4, //
+        0.1, 0.1, 0.2, 0.2, 0.3, 0.3, 0.4, 0.4, //
+        0.9, 0.5,
+    ];
+    let (results, batches) = quirky(&["k", "x"], &rows);
+    assert!(batches > 0, "no group ran in lockstep");
+    assert_eq!(results.failures(), 0, "{:?}", results.errors());
+}

@@ -265,3 +265,45 @@ fn outputs_reading_constraint_loads_match_finite_differences() {
     );
     assert!(largest(&c) > 0.1 && largest(&d) > 0.1);
 }
+
+/// Entries zero by structure are exactly `0.0` at any state: the bicycle
+/// never reads its rear contact's position (`A` and `C` columns `x`, `y`),
+/// its coordinates' rates and its outputs never read the torques (`B`
+/// rows of the coordinates, `D`).
+#[test]
+fn structurally_zero_entries_are_exact_zeros() {
+    use constrained::bicycle::Bicycle;
+    type B = Bicycle;
+    let states = B::LINEAR_STATES;
+    let (nl, nw, ny) = (states.len(), B::INPUT_NAMES.len(), B::OUTPUT_NAMES.len());
+    let col = |name: &str| {
+        states
+            .iter()
+            .position(|k| B::STATE_NAMES[*k] == name)
+            .expect("a linear state")
+    };
+    let (x, y) = (col("x"), col("y"));
+    let nq = constrained::bicycle::N_STATES - constrained::bicycle::N_SPEEDS;
+    let coordinates = states.iter().filter(|k| **k < nq).count();
+    let mut rng = Rng::new(26);
+    let mut m = B::new();
+    for _ in 0..5 {
+        let mut s = [0.0; 11];
+        for v in &mut s {
+            *v = rng.uniform(-0.4, 0.4);
+        }
+        // The pitch follows (assembly), the rear wheel rolls.
+        s[4] = 0.0;
+        s[9] = rng.uniform(5.0, 20.0);
+        m.set_input_values(&[rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)]);
+        m.assemble(0.0, &mut s).expect("assembles");
+        let [a, b, c, d] = generated(&mut m, &s);
+        let mut zeros: Vec<f64> = (0..nl)
+            .flat_map(|i| [a[i * nl + x], a[i * nl + y]])
+            .collect();
+        zeros.extend((0..ny).flat_map(|i| [c[i * nl + x], c[i * nl + y]]));
+        zeros.extend(&b[..coordinates * nw]);
+        zeros.extend(&d);
+        assert!(zeros.iter().all(|v| *v == 0.0), "{zeros:?} at {s:?}");
+    }
+}

@@ -207,3 +207,66 @@ fn big_models_compute_the_shared_terms_once() {
         }
     }
 }
+
+/// A Jacobian entry that does not depend on its variable is the literal
+/// zero in the program, not a computed value that rounds to zero: the
+/// bicycle's equations never read the rear contact's position `x`, `y`,
+/// no coordinate's rate reads the inputs, and no output reads the inputs.
+#[test]
+fn structural_zeros_of_the_linearization_are_literal() {
+    use autosim_core::model::Scene;
+    use autosim_core::pipeline::compile_source_scene;
+    let path = root().join("examples/models/bicycle.sim");
+    let text = std::fs::read_to_string(&path).expect("model file");
+    let src = SourceFile::new(&path, text);
+    let scene = Scene {
+        linearize: Some(true),
+        ..Scene::default()
+    };
+    let program = compile_source_scene(&src, &scene)
+        .unwrap_or_else(|d| panic!("{}", d.render(&src)))
+        .program;
+    let states = program.interface.linear_states.clone().expect("linearized");
+    let layout = &program.interface.states;
+    let names = |k: usize| layout.state(k).name.as_str();
+    let (nl, nw, ny) = (states.len(), 2, 3);
+    let col = |name: &str| {
+        states
+            .iter()
+            .position(|k| names(*k) == name)
+            .expect("a linear state")
+    };
+    let (x, y) = (col("x"), col("y"));
+    let coordinates = states
+        .iter()
+        .filter(|k| **k < layout.coordinates.len())
+        .count();
+    let (b0, c0) = (nl * nl, nl * nl + nl * nw);
+    let d0 = c0 + ny * nl;
+    let mut zero: Vec<usize> = (0..nl).flat_map(|i| [i * nl + x, i * nl + y]).collect();
+    zero.extend((0..ny).flat_map(|i| [c0 + i * nl + x, c0 + i * nl + y]));
+    zero.extend(b0..b0 + coordinates * nw);
+    zero.extend(d0..d0 + ny * nw);
+    let block = &program
+        .blocks
+        .iter()
+        .find(|(k, _)| *k == BlockKind::Linearize)
+        .expect("a linearize block")
+        .1;
+    let computed: Vec<usize> = block
+        .stmts
+        .iter()
+        .filter_map(|s| match s {
+            Stmt::Store { slot, value }
+                if zero.contains(slot) && program.ir.as_num(*value) != Some(0.0) =>
+            {
+                Some(*slot)
+            }
+            _ => None,
+        })
+        .collect();
+    assert!(
+        computed.is_empty(),
+        "structurally zero slots computed: {computed:?}"
+    );
+}

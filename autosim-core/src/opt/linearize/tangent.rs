@@ -7,6 +7,12 @@
 //! not from differentiating the unrolled solve). User functions and
 //! subroutine outputs are held: their derivative is zero (a linear model
 //! treats them as inputs; documented in `language.md`).
+//!
+//! Independence is structural: a node none of whose operands moves with
+//! the leaf has the literal zero as its derivative, whichever its rule, so
+//! a Jacobian entry that does not depend on the leaf costs nothing and is
+//! exactly `0.0` (the rules alone would leave `0 / b` for quotients and
+//! roots, which the IR does not fold: it is NaN where `b` is zero).
 
 use crate::expr::Func;
 use crate::opt::ir::{Ir, Leaf, Nid, Op};
@@ -61,10 +67,22 @@ impl Tangent {
         self.memo[&n]
     }
 
-    /// The derivative of `n`, its children's known.
+    /// The derivative of `n`, its children's known. A node none of whose
+    /// children moves with `wrt` does not either: its derivative is the
+    /// literal zero, whatever the rule would build (a quotient's rule
+    /// gives `0 / b`, which the IR keeps: it is NaN where `b` is zero).
     fn rule(&mut self, ir: &mut Ir, n: Nid) -> Nid {
         let d = |t: &Tangent, c: Nid| t.memo[&c];
-        match ir.op(n).clone() {
+        let op = ir.op(n).clone();
+        if !matches!(op, Op::Leaf(_))
+            && ir
+                .children(n)
+                .iter()
+                .all(|c| ir.as_num(d(self, *c)) == Some(0.0))
+        {
+            return ir.num(0.0);
+        }
+        match op {
             Op::Num(_) => ir.num(0.0),
             Op::Leaf(l) => ir.num(if l == self.wrt { 1.0 } else { 0.0 }),
             Op::Sum { pos, neg } => {
@@ -272,6 +290,26 @@ mod tests {
                 f.eval_builtin(&xs).unwrap_or(f64::NAN)
             }
         }
+    }
+
+    #[test]
+    fn values_independent_of_the_leaf_have_literal_zero_derivatives() {
+        let mut ir = Ir::new();
+        let (x, y) = (ir.leaf(Leaf::State(0)), ir.leaf(Leaf::State(1)));
+        // Every rule that divides (quotient, root, inverse sine, atan2,
+        // logarithm) would build `0 / ...` from zero derivatives.
+        let q = ir.div(x, y);
+        let r = ir.sqrt(y);
+        let a = ir.call(Func::Asin, vec![y]);
+        let t = ir.call(Func::Atan2, vec![y, r]);
+        let l = ir.call(Func::Ln, vec![a]);
+        let s = ir.sum(vec![r, t, l], Vec::new());
+        let independent = ir.mul(s, q);
+        let d = Tangent::new(Leaf::State(2)).d(&mut ir, independent);
+        assert_eq!(ir.as_num(d), Some(0.0));
+        // Along a dependent path the rules still apply.
+        let d = Tangent::new(Leaf::State(1)).d(&mut ir, independent);
+        assert_eq!(ir.as_num(d), None);
     }
 
     #[test]

@@ -149,6 +149,8 @@ pub mod __private {
     pub use crate::float::MulAdd;
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     pub use crate::float::dispatch::{allow_fast_path, has_v3};
+    #[cfg(feature = "std")]
+    pub use crate::float::fused;
     pub use crate::float::lanes::{
         Lanes, call_each, call_each_sub, check_derivatives_lanes, check_user_result_lanes,
         check_user_results_lanes, math as lanes_math,

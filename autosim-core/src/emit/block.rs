@@ -308,7 +308,10 @@ impl BlockEmitter<'_> {
     }
 
     /// `let mut s = [0.0; K]; self.shared_terms(t, x, &mut s);` in a block
-    /// that reads the common block's values.
+    /// that reads the common block's values. In lanes, the common block
+    /// itself in a nested block, so that it computes with the `MulAdd` and
+    /// `math` of the copy it is in (the fast copy's fuse, as its
+    /// `shared_terms_fast` does for one state).
     fn shared_terms_call(&self, block: &Block) -> TokenStream {
         if block.common.is_empty() {
             return TokenStream::new();
@@ -322,9 +325,14 @@ impl BlockEmitter<'_> {
             .flatten();
         if self.lanes {
             let l = &self.locals.lanes;
+            let common = self.prog.block(BlockKind::Common);
+            let body = self.emit(common, true, Target::Array(&self.locals.s));
             return quote! {
                 let mut #s = [Lanes::<#l>::ZERO; #len];
-                self.shared_terms_lanes(#(#args,)* &mut #s);
+                {
+                    let #s = &mut #s;
+                    #body
+                }
             };
         }
         quote! {

@@ -15,16 +15,24 @@
 //! baseline copy. `is_x86_feature_detected!` needs `std`, which is why
 //! `no_std` builds keep one copy.
 //!
-//! Both copies inline the same `#[inline(always)]` body, so they compute
-//! the same operations in the same order: [`MulAdd`](super::MulAdd)
-//! decides fusing by the *crate's* target features, which the fast copy
-//! does not change, so it does not fuse either, and the compiler never
-//! contracts a multiply and an add on its own. The two paths therefore
-//! give the same bits (`tests/dispatch.rs` compares them); what the fast
-//! copy gains is the instruction set (three-operand AVX encodings, 256-bit
-//! vectors for the sines in lanes, BMI), not a different rounding. A build
-//! with FMA in its target features fuses where generated code asks for it,
-//! as before, and then gives different bits from a default build.
+//! Both copies are one body (the model module's `<name>_copy!` macro,
+//! expanded twice), so they compute the same operations in the same
+//! order. The baseline copy, in the model's module, calls
+//! [`MulAdd`](super::MulAdd), which fuses by the *crate's* target
+//! features (not in a default build), and the compiler never contracts a
+//! multiply and an add on its own. The fast copy is expanded in a child
+//! module that imports [`fused`](super::fused)'s `MulAdd`, `math` and
+//! `lanes_math` by name: each `add_mul` and `sub_mul` there, and each in
+//! the branch-free sines, is one fused multiply-add. So each path gives
+//! fixed bits: the fast copy those of a build whose target has FMA
+//! (`-C target-cpu=x86-64-v3` or `native`), which keeps one copy and
+//! fuses the same products, the baseline those of a plain x86-64 build;
+//! the two differ in the last bits (`tests/dispatch.rs` checks that they
+//! agree to a few roundings and give the same errors). The fast copy
+//! gains the fused multiply-adds and the instruction set (three-operand
+//! AVX encodings, 256-bit vectors for the sines in lanes, BMI). With the
+//! runtime's `libm` feature neither copy fuses (the bits of a `no_std`
+//! build).
 
 #[cfg(all(feature = "std", target_arch = "x86_64"))]
 pub use detect::{allow_fast_path, has_v3};
@@ -87,14 +95,39 @@ mod detect {
     not(all(target_feature = "avx2", target_feature = "fma"))
 ))]
 mod two_copies {
-    /// The fast copy of a generated function, compiled for x86-64-v3.
+    /// The fast copy of a generated function, compiled for x86-64-v3:
+    /// `fast_path!(#[doc = ".."] copy => name in mod module for impl <G>
+    /// Type<G> where ..)` declares `module`, a child of the model's module
+    /// that sees its items (`use super::*`) but imports the fused
+    /// [`MulAdd`](crate::float::fused::MulAdd), `math` and `lanes_math` by
+    /// name, shadowing the model module's plain ones, and expands there
+    /// the model's `copy!` macro, which writes the whole function
+    /// (signature and body) under the name `name`, `pub(super)`, with
+    /// `#[target_feature]`.
     #[doc(hidden)]
     #[macro_export]
     macro_rules! fast_path {
-        ($(#[$attr:meta])* fn $($rest:tt)*) => {
-            $(#[$attr])*
-            #[target_feature(enable = "avx,avx2,fma,bmi1,bmi2,f16c,lzcnt,movbe,popcnt")]
-            fn $($rest)*
+        (
+            $(#[$attr:meta])*
+            $copy:ident => $fast:ident in mod $module:ident for impl $($head:tt)*
+        ) => {
+            // Dead where the model is (a model a program never builds):
+            // the baseline copy, in the model's impl, is not warned there.
+            #[allow(dead_code)]
+            mod $module {
+                #[allow(unused_imports)]
+                use super::*;
+                #[allow(unused_imports)]
+                use $crate::__private::fused::{MulAdd, lanes_math, math};
+
+                impl $($head)* {
+                    $copy! {
+                        $(#[$attr])*
+                        #[target_feature(enable = "avx,avx2,fma,bmi1,bmi2,f16c,lzcnt,movbe,popcnt")]
+                        pub(super) $fast
+                    }
+                }
+            }
         };
     }
 

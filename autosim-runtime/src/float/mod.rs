@@ -3,6 +3,8 @@
 use core::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Sub, SubAssign};
 
 pub(crate) mod dispatch;
+#[cfg(feature = "std")]
+pub mod fused;
 pub(crate) mod lanes;
 mod straight_sin_cos;
 
@@ -152,8 +154,9 @@ impl_float!(f32);
 /// and `std` provides it (`-C target-cpu=native` on current x86-64, every
 /// 64-bit Arm); otherwise exactly the bits of the plain expression. The
 /// decision is the crate's target features: the x86-64-v3 copy a default
-/// build adds of generated `derivatives` (`dispatch.rs`) does not fuse, so
-/// both copies give the same bits.
+/// build adds of generated `derivatives` (`dispatch.rs`) uses
+/// `fused::MulAdd` instead, which always fuses (the bits of a build with
+/// FMA), so the two copies differ in the last bits.
 pub trait MulAdd: Sized {
     /// `self + a * b`.
     fn add_mul(self, a: Self, b: Self) -> Self;

@@ -25,11 +25,36 @@
 //! by Estrin's scheme for a short dependency chain, with fused
 //! multiply-adds where the target has them (`MulAdd`: the same bits as
 //! the plain expressions elsewhere; chain-planar-20 and chain-planar-50
-//! 5-6 % faster with them on an Intel Xeon). Against libm's and
+//! 5-6 % faster with them on an Intel Xeon), or always (the x86-64-v3
+//! copy of a default build, through [`Rounding`]). Against libm's and
 //! the platform's values: within one unit in the last place up to 10 rad,
 //! two up to 1e6 rad (`tests/straight_sin_cos.rs`).
 
 use super::MulAdd;
+
+/// How the kernel rounds `acc + a b` and `acc - a b`: [`AsTarget`] as the
+/// crate's [`MulAdd`] does (fused where the target has FMA), or always
+/// fused (`fused::Always`, for the x86-64-v3 copy of generated code).
+pub(crate) trait Rounding {
+    /// `acc + a b`.
+    fn add_mul(acc: f64, a: f64, b: f64) -> f64;
+    /// `acc - a b`.
+    fn sub_mul(acc: f64, a: f64, b: f64) -> f64;
+}
+
+/// [`Rounding`] by the crate's [`MulAdd`].
+pub(crate) struct AsTarget;
+
+impl Rounding for AsTarget {
+    #[inline(always)]
+    fn add_mul(acc: f64, a: f64, b: f64) -> f64 {
+        acc.add_mul(a, b)
+    }
+    #[inline(always)]
+    fn sub_mul(acc: f64, a: f64, b: f64) -> f64 {
+        acc.sub_mul(a, b)
+    }
+}
 
 /// `1.5 · 2^52`: adding and subtracting it rounds to an integer.
 const ROUNDING: f64 = 6_755_399_441_055_744.0;
@@ -63,7 +88,7 @@ const C: [f64; 8] = [
 /// Sine and cosine of `x` (see the module documentation).
 #[inline(always)]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    let ([sin], [cos]) = sin_cos_lanes([x]);
+    let ([sin], [cos]) = sin_cos_lanes_with::<AsTarget, 1>([x]);
     (sin, cos)
 }
 
@@ -73,13 +98,19 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
 /// turns into vector instructions where the target has them.
 #[inline(always)]
 pub fn sin_cos_lanes<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+    sin_cos_lanes_with::<AsTarget, N>(x)
+}
+
+/// [`sin_cos_lanes`] rounding as `R` says.
+#[inline(always)]
+pub(crate) fn sin_cos_lanes_with<R: Rounding, const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
     // Every lane compared, then one branch (`&`, not `&&`).
     if !x.iter().fold(true, |all, &x| all & in_range(x)) {
-        return elsewhere(x);
+        return elsewhere::<R, N>(x);
     }
     let (mut sin, mut cos) = ([0.0; N], [0.0; N]);
     for lane in 0..N {
-        (sin[lane], cos[lane]) = reduced(x[lane]);
+        (sin[lane], cos[lane]) = reduced::<R>(x[lane]);
     }
     (sin, cos)
 }
@@ -93,15 +124,16 @@ fn in_range(x: f64) -> bool {
 /// Sine and cosine of an angle [`in_range`], by its nearest multiple of
 /// π/2 and the remainder.
 #[inline(always)]
-fn reduced(x: f64) -> (f64, f64) {
+fn reduced<R: Rounding>(x: f64) -> (f64, f64) {
     // `1.5 · 2^52 + k`: its low bits are `k`'s (two's complement).
-    let shifted = ROUNDING.add_mul(x, core::f64::consts::FRAC_2_PI);
+    let shifted = R::add_mul(ROUNDING, x, core::f64::consts::FRAC_2_PI);
     let k = shifted - ROUNDING;
-    let r = x
-        .sub_mul(k, PI_2_HI)
-        .sub_mul(k, PI_2_MID)
-        .sub_mul(k, PI_2_LO);
-    let (s, c) = near_zero(r);
+    let r = R::sub_mul(
+        R::sub_mul(R::sub_mul(x, k, PI_2_HI), k, PI_2_MID),
+        k,
+        PI_2_LO,
+    );
+    let (s, c) = near_zero::<R>(r);
     let quadrant = shifted.to_bits();
     let swap = 0u64.wrapping_sub(quadrant & 1);
     let (s, c) = (s.to_bits(), c.to_bits());
@@ -114,22 +146,21 @@ fn reduced(x: f64) -> (f64, f64) {
 
 /// Sine and cosine of `|r| ≤ π/4`.
 #[inline(always)]
-fn near_zero(r: f64) -> (f64, f64) {
+fn near_zero<R: Rounding>(r: f64) -> (f64, f64) {
     let z = r * r;
     let z2 = z * z;
     let z4 = z2 * z2;
     let estrin = |p: &[f64; 8]| {
-        let pair = |a: f64, b: f64| a.add_mul(b, z);
-        let high = pair(p[4], p[5]).add_mul(z2, pair(p[6], p[7]));
-        pair(p[0], p[1])
-            .add_mul(z2, pair(p[2], p[3]))
-            .add_mul(z4, high)
+        let pair = |a: f64, b: f64| R::add_mul(a, b, z);
+        let high = R::add_mul(pair(p[4], p[5]), z2, pair(p[6], p[7]));
+        let low = R::add_mul(pair(p[0], p[1]), z2, pair(p[2], p[3]));
+        R::add_mul(low, z4, high)
     };
-    let sin = r.add_mul(r * z, estrin(&S));
+    let sin = R::add_mul(r, r * z, estrin(&S));
     // 1 - z/2 rounded, then what that rounding lost, as in fdlibm.
     let half = 0.5 * z;
     let w = 1.0 - half;
-    let cos = w + ((1.0 - w) - half).add_mul(z2, estrin(&C));
+    let cos = w + R::add_mul((1.0 - w) - half, z2, estrin(&C));
     (sin, cos)
 }
 
@@ -138,10 +169,10 @@ fn near_zero(r: f64) -> (f64, f64) {
 /// infinities, and reduces huge angles exactly).
 #[cold]
 #[inline(never)]
-fn elsewhere<const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
+fn elsewhere<R: Rounding, const N: usize>(x: [f64; N]) -> ([f64; N], [f64; N]) {
     let pairs = x.map(|x| {
         if in_range(x) {
-            reduced(x)
+            reduced::<R>(x)
         } else {
             libm::sincos(x)
         }

@@ -127,10 +127,15 @@ pub(super) fn mass_matrix(be: &BlockEmitter<'_>, t: TokenStream, x: TokenStream)
 }
 
 /// `shared_terms`, the function of the common block (none without one), in
-/// two copies (`versions`).
-pub(super) fn shared_terms(be: &BlockEmitter<'_>) -> TokenStream {
+/// two copies (`versions`): the caller with its doc and the baseline copy
+/// for the inherent impl, the module-level items apart.
+pub(super) fn shared_terms(be: &BlockEmitter<'_>) -> Versions {
     if be.prog.try_block(BlockKind::Common).is_none() {
-        return TokenStream::new();
+        return Versions {
+            caller: TokenStream::new(),
+            copies: TokenStream::new(),
+            items: TokenStream::new(),
+        };
     }
     let ty = crate::emit::expr::float_type(be.float);
     let (lx, ls) = (&be.locals.x, &be.locals.s);
@@ -152,21 +157,28 @@ pub(super) fn shared_terms(be: &BlockEmitter<'_>) -> TokenStream {
     }
     params.push(param(ls, quote!(&mut [#ty; #len])));
     let body = body(be, BlockKind::Common);
-    let Versions { caller, copies } = versions(
+    let Versions {
+        caller,
+        copies,
+        items,
+    } = versions(
         &be.rt,
-        true,
+        super::versions::two_copies(be.prog),
+        &super::impl_head(&be.prog.interface),
         "shared_terms",
         quote!(&self),
         &params,
         quote!(),
         body,
     );
-    quote! {
-        /// What `derivatives` and `forcing` both compute, computed once
-        /// for either: they read slot `k` as `s[k]`.
-        #caller
-
-        #copies
+    Versions {
+        caller: quote! {
+            /// What `derivatives` and `forcing` both compute, computed once
+            /// for either: they read slot `k` as `s[k]`.
+            #caller
+        },
+        copies,
+        items,
     }
 }
 

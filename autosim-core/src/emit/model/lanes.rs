@@ -20,15 +20,17 @@ pub(super) fn has_lanes(prog: &Program) -> bool {
     i.lanes && i.float == FloatType::F64 && !prog.states().is_empty()
 }
 
-/// The inherent items: `derivatives_lanes` (public), its two copies, and
-/// `shared_terms_lanes` where `derivatives` reads the common block.
-pub(super) fn inherent(be: &BlockEmitter<'_>) -> TokenStream {
+/// The inherent items, `derivatives_lanes` (public) and its baseline copy,
+/// and the module-level items of its fast copy (`versions_of`).
+pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
     if !has_lanes(be.prog) {
-        return TokenStream::new();
+        return Default::default();
     }
     let lanes = BlockEmitter {
         lanes: true,
-        math: be.math.clone(),
+        // `lanes_math` as the enclosing module has it: the plain one, or
+        // the fused one in the fast copy's module.
+        math: quote!(lanes_math),
         rt: be.rt.clone(),
         ..*be
     };
@@ -54,7 +56,9 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> TokenStream {
         name: format_ident!("{name}"),
         ty,
     });
+    let impl_head = super::impl_head(&prog.interface);
     let signature = Signature {
+        impl_head: &impl_head,
         name: "derivatives_lanes",
         generics: quote!(<const #l: usize>),
         receiver: quote!(&mut self),
@@ -63,19 +67,18 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> TokenStream {
     };
     let versions = versions_of(
         rt,
-        true,
+        super::versions::two_copies(prog),
         &signature,
         quote! {
             #[allow(unused_imports)]
-            use #rt::__private::{Lanes, lanes_math as math};
+            use #rt::__private::Lanes;
             #bind_t
             #body
             #rt::__private::check_derivatives_lanes::<Self, #l>(#ldx)
         },
     );
     let (caller, copies) = (versions.caller, versions.copies);
-    let shared = shared_terms_lanes(&lanes);
-    quote! {
+    let inherent = quote! {
         /// `derivatives` at `L` states at once, in struct-of-arrays form:
         /// `x[i].0[l]` is state `i` of the `l`-th state vector, and
         /// `dx[i].0[l]` its derivative. Each lane computes exactly what
@@ -87,37 +90,8 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> TokenStream {
         pub #caller
 
         #copies
-
-        #shared
-    }
-}
-
-/// `shared_terms_lanes`: the common block in lanes, for a `derivatives`
-/// that reads it (nothing otherwise).
-fn shared_terms_lanes(lanes: &BlockEmitter<'_>) -> TokenStream {
-    let prog = lanes.prog;
-    if prog.block(BlockKind::Derivatives).common.is_empty() {
-        return TokenStream::new();
-    }
-    let rt = &lanes.rt;
-    let l = &lanes.locals.lanes;
-    let lane_ty = quote!(#rt::__private::Lanes<#l>);
-    let (lx, ls) = (&lanes.locals.x, &lanes.locals.s);
-    let n_states = Literal::usize_unsuffixed(prog.states().len());
-    let len = Literal::usize_unsuffixed(prog.common.len());
-    let (reads_t, reads_x) = lanes.shared_reads();
-    let t = reads_t.then(|| quote!(t: #lane_ty,));
-    let x = reads_x.then(|| quote!(#lx: &[#lane_ty; #n_states],));
-    let body = functions::body(lanes, BlockKind::Common);
-    quote! {
-        /// `shared_terms` at `L` states at once (see `derivatives_lanes`).
-        #[inline(always)]
-        fn shared_terms_lanes<const #l: usize>(&self, #t #x #ls: &mut [#lane_ty; #len]) {
-            #[allow(unused_imports)]
-            use #rt::__private::{Lanes, lanes_math as math};
-            #body
-        }
-    }
+    };
+    (inherent, versions.items)
 }
 
 /// `Model::derivatives_batch` through `derivatives_lanes`, four states at

@@ -146,7 +146,7 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
         )]
         pub mod #module {
             #[allow(unused_imports)]
-            use #rt::__private::{MulAdd as _, math};
+            use #rt::__private::{MulAdd, lanes_math, math};
 
             #parameters
 
@@ -405,15 +405,23 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
     let mass_matrix = functions::mass_matrix(be, mt, mx);
     let fo = functions::body(be, BlockKind::Forcing);
     let shared = functions::shared_terms(be);
+    let shared_items = &shared.items;
+    let shared = [&shared.caller, &shared.copies];
     let lf = &be.locals.f;
     let f_arg = if n == 0 { quote!(_) } else { quote!(#lf) };
     let derivatives = derivatives(be);
     let model_trait = model_trait_impl(be, &derivatives.caller);
-    let derivative_copies = &derivatives.copies;
+    let (derivative_copies, derivative_items) = (&derivatives.copies, &derivatives.items);
     let assembly = assembly::inherent(be);
     let linear = linear::inherent(be);
-    let lanes = lanes::inherent(be);
+    let (lanes, lanes_items) = lanes::inherent(be);
     quote! {
+        #shared_items
+
+        #derivative_items
+
+        #lanes_items
+
         impl #generics #model_ty #struct_generics #where_clause {
             #new_fn
 
@@ -437,7 +445,7 @@ fn model_impl(be: &BlockEmitter<'_>) -> TokenStream {
                 #fo
             }
 
-            #shared
+            #(#shared)*
 
             #derivative_copies
 
@@ -546,8 +554,17 @@ fn impl_generics(i: &Interface) -> [TokenStream; 3] {
     }
 }
 
+/// The head of an impl of the model type (`<E: Externs> Model<E> where
+/// E: Externs`), for the fast copies' impls (`versions`).
+pub(super) fn impl_head(i: &Interface) -> TokenStream {
+    let [generics, struct_generics, where_clause] = impl_generics(i);
+    let model_ty = ident(&i.model.name);
+    quote!(#generics #model_ty #struct_generics #where_clause)
+}
+
 /// `derivatives` in two copies (`versions`): the caller goes into the
-/// `Model` implementation, the copies into the inherent impl.
+/// `Model` implementation, the baseline copy into the inherent impl, the
+/// copy macro and the fast copy's module before it.
 fn derivatives(be: &BlockEmitter<'_>) -> versions::Versions {
     let prog = be.prog;
     let rt = &be.rt;
@@ -581,10 +598,10 @@ fn derivatives(be: &BlockEmitter<'_>) -> versions::Versions {
         name: format_ident!("{name}"),
         ty,
     });
-    let ops = prog.block(BlockKind::Derivatives).ops.total();
     versions::versions(
         rt,
-        ops >= versions::MIN_OPS_FOR_TWO_COPIES,
+        versions::two_copies(prog),
+        &impl_head(&prog.interface),
         "derivatives",
         quote!(&mut self),
         &params,

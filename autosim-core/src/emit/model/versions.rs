@@ -17,11 +17,14 @@ pub(super) struct Param {
 }
 
 /// What [`versions`] writes: the calling function's signature and body
-/// (without visibility or docs, for an impl of the caller's choice), and
-/// the two copies (private inherent methods).
+/// (without visibility or docs, for an impl of the caller's choice), the
+/// baseline copy (an inherent method, for the model's inherent impl), and
+/// the items that go into the model's module before that impl: the macro
+/// writing either copy, and the fast copy's module (`fast_path!`).
 pub(super) struct Versions {
     pub caller: TokenStream,
     pub copies: TokenStream,
+    pub items: TokenStream,
 }
 
 /// Functions of fewer operations keep one copy: there the instruction set
@@ -35,10 +38,21 @@ pub(super) struct Versions {
 /// (chain-spatial-10, 2 046 operations: 329 against 287).
 pub(super) const MIN_OPS_FOR_TWO_COPIES: usize = 200;
 
+/// Whether the model's hot functions (`derivatives`, its `shared_terms`
+/// and `derivatives_lanes`) have two copies: all or none, by the size of
+/// `derivatives`, since the fast copy fuses and the baseline does not (a
+/// lanes function gives the bits of single calls, on either copy).
+pub(super) fn two_copies(prog: &crate::opt::Program) -> bool {
+    let ops = prog.block(crate::opt::BlockKind::Derivatives).ops.total();
+    ops >= MIN_OPS_FOR_TWO_COPIES
+}
+
 /// A multiversioned function's signature: its name, generic parameters
 /// (`<const L: usize>` or nothing), receiver (`&self`, `&mut self`),
-/// parameters and return type (`-> T` or nothing).
+/// parameters and return type (`-> T` or nothing); and the head of the
+/// impl it is a method in (`<E: Externs> Model<E>`, for the fast copy's).
 pub(super) struct Signature<'a> {
+    pub impl_head: &'a TokenStream,
     pub name: &'a str,
     pub generics: TokenStream,
     pub receiver: TokenStream,
@@ -48,9 +62,11 @@ pub(super) struct Signature<'a> {
 
 /// `name` with `receiver` (`&self`, `&mut self`), `params` and `ret` (`->
 /// T` or nothing), computing `body`: [`versions_of`] without generics.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn versions(
     rt: &TokenStream,
     two_copies: bool,
+    impl_head: &TokenStream,
     name: &str,
     receiver: TokenStream,
     params: &[Param],
@@ -58,6 +74,7 @@ pub(super) fn versions(
     body: TokenStream,
 ) -> Versions {
     let signature = Signature {
+        impl_head,
         name,
         generics: TokenStream::new(),
         receiver,
@@ -67,10 +84,15 @@ pub(super) fn versions(
     versions_of(rt, two_copies, &signature, body)
 }
 
-/// The function of `signature` computing `body`: the body once,
-/// `#[inline(always)]`, in `<name>_baseline`; `<name>_fast` compiled for
-/// x86-64-v3 calling it, so both copies are the same operations in the
-/// same order; `name` calls one of them. With `two_copies` false, `name`
+/// The function of `signature` computing `body`: a module-level macro
+/// `<name>_copy!(#[attrs] vis fn_name)` writing the whole function (the
+/// signature with the body, so that `self` and the parameters are the
+/// macro's own names); `<name>_baseline`, `#[inline(always)]`, the macro
+/// in the model's inherent impl; `<name>_fast`, the macro expanded by the
+/// runtime's `fast_path!` in a child module `<name>_v3` that imports the
+/// fused `MulAdd` and math functions (the same operations, each
+/// `add_mul` and `sub_mul` rounded once, as in a build whose target has
+/// FMA); `name` calls one of them. With `two_copies` false, `name`
 /// computes `body` itself.
 pub(super) fn versions_of(
     rt: &TokenStream,
@@ -79,6 +101,7 @@ pub(super) fn versions_of(
     body: TokenStream,
 ) -> Versions {
     let Signature {
+        impl_head,
         name,
         generics,
         receiver,
@@ -90,11 +113,11 @@ pub(super) fn versions_of(
         format_ident!("{name}_baseline"),
         format_ident!("{name}_fast"),
     );
+    let (copy, module) = (format_ident!("{name}_copy"), format_ident!("{name}_v3"));
     let patterns = params.iter().map(|p| &p.pattern);
     let names: Vec<&Ident> = params.iter().map(|p| &p.name).collect();
     let types: Vec<&TokenStream> = params.iter().map(|p| &p.ty).collect();
     if !two_copies {
-        let patterns = params.iter().map(|p| &p.pattern);
         return Versions {
             caller: quote! {
                 fn #call #generics(#receiver, #(#patterns: #types),*) #ret {
@@ -102,10 +125,14 @@ pub(super) fn versions_of(
                 }
             },
             copies: TokenStream::new(),
+            items: TokenStream::new(),
         };
     }
     let baseline_doc = format!(" `{name}` compiled for the target's baseline.");
-    let fast_doc = format!(" `{name}` compiled for x86-64-v3 (AVX2, FMA): the same operations.");
+    let fast_doc = format!(
+        " `{name}` compiled for x86-64-v3 (AVX2, FMA): the same operations, \
+         each `add_mul` fused."
+    );
     Versions {
         caller: quote! {
             fn #call #generics(#receiver, #(#names: #types),*) #ret {
@@ -113,17 +140,25 @@ pub(super) fn versions_of(
             }
         },
         copies: quote! {
-            #[doc = #baseline_doc]
-            #[inline(always)]
-            fn #baseline #generics(#receiver, #(#patterns: #types),*) #ret {
-                #body
+            #copy! {
+                #[doc = #baseline_doc]
+                #[inline(always)]
+                #baseline
+            }
+        },
+        items: quote! {
+            macro_rules! #copy {
+                ($(#[$attr:meta])* $vis:vis $name:ident) => {
+                    $(#[$attr])*
+                    $vis fn $name #generics(#receiver, #(#patterns: #types),*) #ret {
+                        #body
+                    }
+                };
             }
 
             #rt::__private::fast_path! {
                 #[doc = #fast_doc]
-                fn #fast #generics(#receiver, #(#names: #types),*) #ret {
-                    self.#baseline(#(#names),*)
-                }
+                #copy => #fast in mod #module for impl #impl_head
             }
         },
     }

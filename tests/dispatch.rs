@@ -3,7 +3,7 @@
 //! errors, and every state derivative within a few rounding errors of the
 //! other's, at random states, for models that take each kind of generated
 //! code (the mass matrix's LDLᵀ, the articulated-body recursion,
-//! constraint solves, `f32`), each big enough to have two (200 operations
+//! constraint solves, `f32`), each big enough to have two (40 operations
 //! or more). The x86-64-v3 copy fuses each `add_mul` (one rounding), the
 //! baseline does not: where both copies run, some derivatives differ in
 //! their last bits, which shows that the fast copy fuses. That it fuses
@@ -24,7 +24,7 @@ mod models {
     autosim::model!(file = "examples/models/chain_planar_5.sim");
     autosim::model!(file = "examples/models/chain_spatial_7.sim");
     // In `f32`, at a size that keeps two copies (a function of fewer than
-    // 200 operations has one: `emit/model/versions.rs`).
+    // 40 operations has one: `emit/model/versions.rs`).
     autosim::model!(
         file = "examples/models/chain_planar_5.sim",
         name = ChainPlanar5F32,

@@ -8,7 +8,11 @@ use proc_macro2::TokenStream;
 /// file (never expected) are returned unformatted rather than lost.
 pub fn format_tokens(tokens: &TokenStream) -> String {
     match syn::parse2::<syn::File>(tokens.clone()) {
-        Ok(file) => super::pack::pack_short_arrays(&prettyplease::unparse(&file)),
+        Ok(mut file) => {
+            let copies = super::copy_macros::set_aside(&mut file.items);
+            let text = super::copy_macros::restore(&prettyplease::unparse(&file), &copies);
+            super::pack::pack_short_arrays(&text)
+        }
         Err(_) => tokens.to_string(),
     }
 }

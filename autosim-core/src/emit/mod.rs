@@ -2,6 +2,7 @@
 //! documentation, from the program and its interface alone.
 
 mod block;
+mod copy_macros;
 mod expr;
 mod file;
 mod markdown;

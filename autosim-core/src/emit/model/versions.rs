@@ -28,15 +28,16 @@ pub(super) struct Versions {
 }
 
 /// Functions of fewer operations keep one copy: there the instruction set
-/// gains less than the dispatch costs. Measured with the chains of
-/// `bench/peers` at default flags, both copies of one build, the baseline
-/// forced with `allow_fast_path(false)`, ns per call, two interleaved runs
-/// agreeing to 0.1 ns: chain-planar-2 16.9 on the baseline copy against
-/// 17.7 dispatched to the x86-64-v3 copy, chain-spatial-2 20.9 against 21.7,
-/// chain-spatial-3 (194 operations) 42.5 against 43.5; chain-planar-5
-/// (317) 79.6 against 78.6, and from there up the x86-64-v3 copy wins
-/// (chain-spatial-10, 2 046 operations: 329 against 287).
-pub(super) const MIN_OPS_FOR_TWO_COPIES: usize = 200;
+/// gains less than the dispatch costs (chain-spatial-1: 7 operations and a
+/// libm sine). With the fast copy fusing, small models gain too; measured
+/// with the chains of `bench/peers` at default flags, three interleaved
+/// runs, ns per call, this threshold against 200 against a
+/// `-C target-cpu=x86-64-v3` build: chain-planar-2 15.1 / 16.6–17.5 /
+/// 14.8, chain-spatial-2 18.2 / 21.0 / 18.0, chain-spatial-3 (194
+/// operations) 39.5–41.7 / 44.0–44.5 / 38.9–40.8, chain-planar-5 (317)
+/// and chain-spatial-10 equal. (Before the fast copy fused, the baseline
+/// copy won below about 200 operations.)
+pub(super) const MIN_OPS_FOR_TWO_COPIES: usize = 40;
 
 /// Whether the model's hot functions (`derivatives`, its `shared_terms`
 /// and `derivatives_lanes`) have two copies: all or none, by the size of

@@ -137,7 +137,10 @@ mod tests {
     fn squeezed(text: &str) -> String {
         let file: syn::File = syn::parse_str(text).expect("formatted text parses");
         let tokens: String = quote!(#file).to_string().split_whitespace().collect();
-        tokens.replace(",)", ")").replace(",]", "]").replace(",}", "}")
+        tokens
+            .replace(",)", ")")
+            .replace(",]", "]")
+            .replace(",}", "}")
     }
 
     #[test]

@@ -15,7 +15,7 @@ impl Frames {
     /// `v / |v|`, or `None` for the zero vector. Where the length has
     /// factors `|c|` (the squared length simplified to a perfect square)
     /// and `v = c w` in the axes of some frame, `sign(c) w / (|v| / |c|)`
-    /// (see [`Frames::dir_without_factors`]).
+    /// (see `Frames::dir_without_factors`).
     pub fn dir(&mut self, arena: &mut Arena, v: &Vector) -> Option<Vector> {
         if v.is_zero() {
             return None;

@@ -1,7 +1,7 @@
 //! Compile errors a user sees: every `tests/ui/<topic>/*.rs` must fail to
 //! compile with exactly the diagnostics in the `.stderr` beside it.
-//! Regenerate with `TRYBUILD=overwrite cargo test --test ui`, then read
-//! every changed `.stderr` as a user would.
+//! Regenerate with `TRYBUILD=overwrite cargo test -p autosim-ui-tests`,
+//! then read every changed `.stderr` as a user would.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -10,7 +10,7 @@ use std::process::Command;
 fn ui() {
     copy_model_files();
     let t = trybuild::TestCases::new();
-    t.compile_fail("tests/ui/*/*.rs");
+    t.compile_fail("*/*.rs");
 }
 
 /// `model!(file = "...")` reads a path relative to `CARGO_MANIFEST_DIR`,
@@ -21,7 +21,7 @@ fn ui() {
 /// expected output holds no absolute path.
 fn copy_model_files() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let from = root.join("tests/ui/files");
+    let from = root.join("files");
     let to = trybuild_project_dir().join("tests/ui/files");
     std::fs::create_dir_all(&to).expect("create the trybuild project's model folder");
     for entry in std::fs::read_dir(&from).expect("tests/ui/files exists") {

@@ -4,7 +4,9 @@
 //! become divisions, the constant terms of a sum are grouped into one
 //! constant, and terms of a sum sharing a factor multiply it once
 //! (`k·a + k·b` as `k·(a + b)`; constant factors first, which may add a
-//! sum to the constants block to save a product in every call).
+//! sum to the constants block to save a product in every call); the sine
+//! and cosine of an angle sum are computed from its terms' sines and
+//! cosines (`sin(a + b) = sin a cos b + cos a sin b`), not called.
 
 use super::context::{Lowering, UnboundSymbol};
 use crate::expr::{ExprId, Func, Node, Number};

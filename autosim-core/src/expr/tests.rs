@@ -295,7 +295,8 @@ fn the_trigonometric_normal_form_sees_through_sines_of_sums() {
 fn angle_sums_keep_the_value() {
     use crate::expr::{Bindings, NoUserFunctions};
     let mut a = Arena::new();
-    let cases: [(&str, fn(f64, f64, f64, f64) -> f64); 2] = [
+    type Value = fn(f64, f64, f64, f64) -> f64;
+    let cases: [(&str, Value); 2] = [
         (
             "3*x*sin(a)*cos(b) - 3*x*cos(a)*sin(b) + y",
             |x: f64, y: f64, a: f64, b: f64| {

@@ -4,7 +4,8 @@
 //! flattened, numbers folded, like terms and like powers combined, terms and
 //! factors sorted by id, a sum's leading term is never negative (`-(a + b)`
 //! instead of `-a - b`), `sin² + cos²` collapses (and any sum of products of
-//! sines and cosines that is identically a number, `trigpoly.rs`), inverse
+//! sines and cosines that is identically a number, `trigpoly.rs`),
+//! `sin a cos b + cos a sin b` is `sin(a + b)` (and the like, `angle_sum.rs`), inverse
 //! functions cancel, and terms that are small relative to the rest of their
 //! sum are dropped.
 
@@ -114,7 +115,7 @@ impl Arena {
     /// Splits a term of a sum into (monomial with coefficient 1, coefficient),
     /// flattening nested sums (a numeric multiple of a sum is distributed, so
     /// `-(a + b)` and `a + b` cancel).
-    fn collect_term(
+    pub(super) fn collect_term(
         &mut self,
         e: ExprId,
         scale: Number,
@@ -153,7 +154,7 @@ impl Arena {
     }
 
     /// Like `monomial` but never creates a node.
-    fn find_monomial(&self, factors: &[ExprId]) -> Option<ExprId> {
+    pub(super) fn find_monomial(&self, factors: &[ExprId]) -> Option<ExprId> {
         match factors.len() {
             0 => Some(self.one()),
             1 => Some(factors[0]),
@@ -176,7 +177,7 @@ impl Arena {
     }
 
     /// The factors of a monomial (coefficient 1).
-    fn monomial_factors(&self, mono: ExprId) -> Vec<ExprId> {
+    pub(super) fn monomial_factors(&self, mono: ExprId) -> Vec<ExprId> {
         match self.node(mono) {
             Node::Prod(c, fs) if c.is_one() => fs.to_vec(),
             _ => vec![mono],
@@ -225,6 +226,11 @@ impl Arena {
         }
 
         if !merged.is_empty() && self.apply_trig_identity(&mut merged, &mut constant) {
+            let terms = merged;
+            return self.finish_sum(constant, terms, pulled);
+        }
+        // Sines and cosines of angle sums (`angle_sum.rs`).
+        if merged.len() >= 2 && self.apply_angle_sum(&mut merged, &mut constant) {
             let terms = merged;
             return self.finish_sum(constant, terms, pulled);
         }

@@ -1,6 +1,7 @@
 //! Scalar expressions: a hash-consed arena with simplifying constructors,
 //! calculus, evaluation and a text form.
 
+mod angle_sum;
 mod arena;
 mod calculus;
 mod construct;

@@ -170,3 +170,156 @@ fn repeated_partials_stop_at_a_size_limit_instead_of_filling_the_memory() {
     assert_eq!(err, ExprError::TooLarge(20_000), "after {k} derivatives");
     assert!(a.len() < 80_000, "{} nodes", a.len());
 }
+
+/// `input` and `expect` parsed into one arena are one node (hash-consing:
+/// the same canonical expression, whatever order the terms print in).
+fn same_node(a: &mut Arena, input: &str, expect: &str) {
+    let e = a.parse_text(input).unwrap();
+    let x = a.parse_text(expect).unwrap();
+    assert_eq!(e, x, "{input} gave {}, not {expect}", a.to_text(e));
+}
+
+#[test]
+fn sines_and_cosines_of_two_angles_become_the_sine_or_cosine_of_their_sum() {
+    let mut a = Arena::new();
+    same_node(&mut a, "sin(a)*cos(b) + cos(a)*sin(b)", "sin(a + b)");
+    same_node(&mut a, "sin(a)*cos(b) - cos(a)*sin(b)", "sin(a - b)");
+    same_node(&mut a, "cos(a)*sin(b) - sin(a)*cos(b)", "-sin(a - b)");
+    same_node(&mut a, "cos(a)*cos(b) - sin(a)*sin(b)", "cos(a + b)");
+    same_node(&mut a, "cos(a)*cos(b) + sin(a)*sin(b)", "cos(a - b)");
+    same_node(&mut a, "sin(a)*sin(b) - cos(a)*cos(b)", "-cos(a + b)");
+    // A common factor and coefficient, and other terms beside the pair.
+    same_node(
+        &mut a,
+        "3*x*y*sin(a)*cos(b) + 3*x*y*cos(a)*sin(b)",
+        "3*x*y*sin(a + b)",
+    );
+    same_node(
+        &mut a,
+        "z - 2*x*cos(a)*cos(b) + 2*x*sin(a)*sin(b) + w",
+        "z + w - 2*x*cos(a + b)",
+    );
+    // Angles that are sums themselves: a chain's absolute angles.
+    same_node(
+        &mut a,
+        "sin(a + b)*cos(c) + cos(a + b)*sin(c)",
+        "sin(a + b + c)",
+    );
+    same_node(
+        &mut a,
+        "cos(a)*cos(b)*cos(c) - sin(a)*sin(b)*cos(c) - sin(a)*cos(b)*sin(c) - cos(a)*sin(b)*sin(c)",
+        "cos(a + b + c)",
+    );
+    // One angle a parameter, the other not.
+    a.add_symbol("p", SymbolKind::Parameter { default: 0.5 })
+        .unwrap();
+    same_node(&mut a, "sin(p)*cos(q) + cos(p)*sin(q)", "sin(p + q)");
+}
+
+#[test]
+fn angle_sums_are_not_made_where_the_terms_do_not_match() {
+    let mut a = Arena::new();
+    let kept = |a: &mut Arena, s: &str| {
+        let e = a.parse_text(s).unwrap();
+        let text = a.to_text(e);
+        assert!(
+            !text.contains("sin(a + b)") && !text.contains("cos(a + b)"),
+            "{s}: {text}"
+        );
+        assert!(
+            !text.contains("- b)") && !text.contains("- a)"),
+            "{s}: {text}"
+        );
+        assert!(
+            matches!(a.node(e), Node::Sum(_) | Node::Prod(..)),
+            "{s}: {text}"
+        );
+    };
+    // Different coefficients, different common factors, a missing partner.
+    kept(&mut a, "2*sin(a)*cos(b) + cos(a)*sin(b)");
+    kept(&mut a, "x*sin(a)*cos(b) + y*cos(a)*sin(b)");
+    kept(&mut a, "sin(a)*cos(b) + sin(a)*sin(b)");
+    kept(&mut a, "cos(a)*cos(b) + sin(a)*cos(b)");
+    // Powers are not the factor the identity needs.
+    kept(&mut a, "sin(a)^2*cos(b) + cos(a)^2*sin(b)");
+    // One angle: sin(2a) and cos(2a) would be new functions to compute.
+    same_node(&mut a, "sin(a)*cos(a) + cos(a)*sin(a)", "2*sin(a)*cos(a)");
+    let e = a.parse_text("cos(a)^2 - sin(a)^2").unwrap();
+    assert!(!a.to_text(e).contains("2*a"), "{}", a.to_text(e));
+    // Constant angles (parameters and numbers) are left alone: their sines
+    // cost nothing per call, the sine of their sum would.
+    a.add_symbol("p", SymbolKind::Parameter { default: 0.5 })
+        .unwrap();
+    a.add_symbol("r", SymbolKind::Parameter { default: 0.25 })
+        .unwrap();
+    for s in [
+        "sin(p)*cos(r) + cos(p)*sin(r)",
+        "cos(p)*cos(r) - sin(p)*sin(r)",
+        "sin(1)*cos(2) + cos(1)*sin(2)",
+        "x*sin(p)*cos(1) + x*cos(p)*sin(1)",
+    ] {
+        let e = a.parse_text(s).unwrap();
+        let text = a.to_text(e);
+        assert!(
+            !text.contains("p + ") && !text.contains("+ p"),
+            "{s}: {text}"
+        );
+        assert!(
+            !text.contains("1 + ") && !text.contains("+ 1"),
+            "{s}: {text}"
+        );
+    }
+}
+
+#[test]
+fn the_trigonometric_normal_form_sees_through_sines_of_sums() {
+    // sin(a + b)^2 + cos(a + b)^2 with the cosine written out: 1 only if
+    // sin(a + b) is expanded into sines and cosines of a and b.
+    check(
+        "sin(a + b)^2 + cos(a)^2*cos(b)^2 - 2*cos(a)*cos(b)*sin(a)*sin(b) + sin(a)^2*sin(b)^2",
+        "1",
+    );
+    check(
+        "sin(a - b)^2 + cos(a)^2*cos(b)^2 + 2*cos(a)*cos(b)*sin(a)*sin(b) + sin(a)^2*sin(b)^2",
+        "1",
+    );
+    // ... and a sum that is not a number is kept.
+    let mut a = Arena::new();
+    let e = a
+        .parse_text("sin(a + b)^2 + cos(a)^2*cos(b)^2 + sin(a)^2*sin(b)^2")
+        .unwrap();
+    assert!(a.as_number(e).is_none(), "{}", a.to_text(e));
+}
+
+#[test]
+fn angle_sums_keep_the_value() {
+    use crate::expr::{Bindings, NoUserFunctions};
+    let mut a = Arena::new();
+    type Value = fn(f64, f64, f64, f64) -> f64;
+    let cases: [(&str, Value); 2] = [
+        (
+            "3*x*sin(a)*cos(b) - 3*x*cos(a)*sin(b) + y",
+            |x: f64, y: f64, a: f64, b: f64| {
+                3.0 * x * a.sin() * b.cos() - 3.0 * x * a.cos() * b.sin() + y
+            },
+        ),
+        (
+            "x*cos(a)*cos(b) + x*sin(a)*sin(b) - y*cos(a)",
+            |x: f64, y: f64, a: f64, b: f64| {
+                x * a.cos() * b.cos() + x * a.sin() * b.sin() - y * a.cos()
+            },
+        ),
+    ];
+    for (s, f) in cases {
+        let e = a.parse_text(s).unwrap();
+        let mut bind = Bindings::with_defaults(&a);
+        let vals = [("x", 1.3), ("y", -0.4), ("a", 0.7), ("b", -2.1)];
+        for (name, v) in vals {
+            bind.set(a.symbol_named(name).unwrap(), v);
+        }
+        let got = a.eval(e, &bind, &mut NoUserFunctions);
+        let want = f(1.3, -0.4, 0.7, -2.1);
+        assert!((got - want).abs() < 1e-14, "{s}: {got} vs {want}");
+        assert!(a.to_text(e).contains(" b)"), "{s}: {}", a.to_text(e));
+    }
+}

@@ -9,6 +9,10 @@
 //! and the products of two rows or columns (0) that rotating a vector into
 //! other axes and back leaves, which `sin² + cos²` of one angle cannot see.
 //!
+//! The sine and cosine of a sum of angles are expanded into the sines and
+//! cosines of its terms (the constructor makes `sin(a + b)` of `sin a cos
+//! b + cos a sin b`, `angle_sum.rs`), so the identities see through them.
+//!
 //! The expansion is bounded ([`MAX_MONOMIALS`]): a sum too big to expand is
 //! left as it is, so the check costs little where it cannot help.
 
@@ -130,9 +134,51 @@ impl Arena {
                 }
                 _ => atom(e),
             },
+            Node::Func(f @ (Func::Sin | Func::Cos), args) if args.len() == 1 => {
+                match self.angle_sum_polys(args[0]) {
+                    Some((sin, _)) if f == Func::Sin => sin,
+                    Some((_, cos)) => cos,
+                    None => atom(e),
+                }
+            }
             _ => atom(e),
         };
         (p.len() <= MAX_MONOMIALS).then_some(p)
+    }
+
+    /// The normal forms of `sin(x)` and `cos(x)` of a sum `x = t1 + t2 +
+    /// ...`, expanded through `sin(a + b) = sin a cos b + cos a sin b` and
+    /// `cos(a + b) = cos a cos b - sin a sin b` into the sines and cosines
+    /// of its terms (`angle_sum.rs` makes such nodes of those products).
+    /// `None` if `x` is not a sum or the expansion is too big.
+    fn angle_sum_polys(&mut self, x: ExprId) -> Option<(Poly, Poly)> {
+        let Node::Sum(items) = self.node(x).clone() else {
+            return None;
+        };
+        let (mut sin, mut cos) = self.term_trig_polys(items[0])?;
+        for &t in &items[1..] {
+            let (st, ct) = self.term_trig_polys(t)?;
+            let sc = self.poly_mul(&sin, &ct)?;
+            let cs = self.poly_mul(&cos, &st)?;
+            let cc = self.poly_mul(&cos, &ct)?;
+            let ss = self.poly_mul(&sin, &st)?;
+            sin = add(&sc, &cs);
+            cos = add(&cc, &scale(&ss, Number::MINUS_ONE));
+            if sin.len() > MAX_MONOMIALS || cos.len() > MAX_MONOMIALS {
+                return None;
+            }
+        }
+        Some((sin, cos))
+    }
+
+    /// The normal forms of `sin(t)` and `cos(t)` of one term of an angle
+    /// sum (made if they are not nodes yet: the form of a node must not
+    /// depend on what else the arena holds, it is memoized).
+    fn term_trig_polys(&mut self, t: ExprId) -> Option<(Poly, Poly)> {
+        let (sin, cos) = (self.sin(t), self.cos(t));
+        let sin = self.poly_of(sin)?;
+        let cos = self.poly_of(cos)?;
+        Some(((*sin).clone(), (*cos).clone()))
     }
 
     /// `a b`, reduced (`sin² → 1 - cos²`), or `None` when too big.

@@ -4,10 +4,12 @@
 //! become divisions, the constant terms of a sum are grouped into one
 //! constant, and terms of a sum sharing a factor multiply it once
 //! (`k·a + k·b` as `k·(a + b)`; constant factors first, which may add a
-//! sum to the constants block to save a product in every call).
+//! sum to the constants block to save a product in every call); the sine
+//! and cosine of an angle sum are computed from its terms' sines and
+//! cosines (`sin(a + b) = sin a cos b + cos a sin b`), not called.
 
 use super::context::{Lowering, UnboundSymbol};
-use crate::expr::{ExprId, Node, Number};
+use crate::expr::{ExprId, Func, Node, Number};
 use crate::opt::ir::{Nid, Op};
 use indexmap::IndexMap;
 
@@ -27,16 +29,106 @@ impl Lowering<'_> {
             Node::Sum(terms) => self.lower_sum(&terms)?,
             Node::Prod(c, fs) => self.lower_prod(c, &fs)?,
             Node::Pow(b, x) => self.lower_pow(b, x)?,
-            Node::Func(f, args) => {
-                let mut xs = Vec::with_capacity(args.len());
-                for a in args.iter() {
-                    xs.push(self.lower(*a)?);
+            Node::Func(f, args) => match self.lower_angle_sum(f, &args)? {
+                Some(n) => n,
+                None => {
+                    let mut xs = Vec::with_capacity(args.len());
+                    for a in args.iter() {
+                        xs.push(self.lower(*a)?);
+                    }
+                    self.ir.call(f, xs)
                 }
-                self.ir.call(f, xs)
-            }
+            },
         };
         self.memo.insert(e, r);
         Ok(r)
+    }
+
+    /// `sin(x)` or `cos(x)` of a sum `x = r + t` (`t` its last term) as
+    /// `sin r cos t + cos r sin t` or `cos r cos t - sin r sin t`, when the
+    /// sine and cosine of every term of `x` are expressions of the model
+    /// (the constructor made `sin(x)` of their products, `angle_sum.rs`):
+    /// three operations from sines the program takes anyway (two at a
+    /// time, `emit/sines.rs`), where a call would be a new sine of an angle
+    /// the program computes, one call each. `None` for any other function
+    /// or argument, and for a constant `x` (computed once per parameter
+    /// set).
+    fn lower_angle_sum(&mut self, f: Func, args: &[ExprId]) -> Result<Option<Nid>, UnboundSymbol> {
+        if !matches!(f, Func::Sin | Func::Cos) || args.len() != 1 {
+            return Ok(None);
+        }
+        let x = args[0];
+        let Node::Sum(items) = self.arena.node(x).clone() else {
+            return Ok(None);
+        };
+        if self.arena.is_constant(x) {
+            return Ok(None);
+        }
+        for &t in items.iter() {
+            let (_, abs) = self.arena.split_sign(t);
+            for g in [Func::Sin, Func::Cos] {
+                if self.arena.find(&Node::Func(g, Box::new([abs]))).is_none() {
+                    return Ok(None);
+                }
+            }
+        }
+        let (t, r) = self.angle_split(&items);
+        let (sr, cr) = (self.arena.sin(r), self.arena.cos(r));
+        let (st, ct) = (self.arena.sin(t), self.arena.cos(t));
+        let [sr, cr, st, ct] = [sr, cr, st, ct].map(|e| self.lower(e));
+        let (sr, cr, st, ct) = (sr?, cr?, st?, ct?);
+        Ok(Some(match f {
+            Func::Sin => {
+                let (a, b) = (self.ir.mul(sr, ct), self.ir.mul(cr, st));
+                self.ir.sum(vec![a, b], Vec::new())
+            }
+            _ => {
+                let (a, b) = (self.ir.mul(cr, ct), self.ir.mul(sr, st));
+                self.ir.sum(vec![a], vec![b])
+            }
+        }))
+    }
+
+    /// A term `t` of the angle sum `items` and the sum `r` of the others,
+    /// `x = r + t`: the first split whose rest's sine and cosine are
+    /// already lowered, else are expressions, else the first term (a
+    /// chain's relative angles `q3 + (q4 + q5)` share `q4 + q5`).
+    fn angle_split(&mut self, items: &[ExprId]) -> (ExprId, ExprId) {
+        let n = items.len();
+        let order = std::iter::once(0).chain((1..n).rev());
+        let mut best: Option<(u8, usize, ExprId)> = None;
+        for k in order {
+            let rest: Vec<ExprId> = (0..n).filter(|&i| i != k).map(|i| items[i]).collect();
+            let r = match rest.as_slice() {
+                [one] => Some(*one),
+                _ => self.arena.find(&Node::Sum(rest.into())),
+            };
+            let Some(r) = r else { continue };
+            let trig =
+                [Func::Sin, Func::Cos].map(|g| self.arena.find(&Node::Func(g, Box::new([r]))));
+            let score = if trig
+                .iter()
+                .all(|f| f.is_some_and(|f| self.memo.contains_key(&f)))
+            {
+                3
+            } else if trig.iter().all(Option::is_some) {
+                2
+            } else if trig.iter().any(Option::is_some) {
+                1
+            } else {
+                0
+            };
+            if best.is_none_or(|b| score > b.0) {
+                best = Some((score, k, r));
+            }
+        }
+        match best {
+            Some((_, k, r)) => (items[k], r),
+            None => {
+                let r = self.arena.sum(&items[1..]);
+                (items[0], r)
+            }
+        }
     }
 
     fn lower_sum(&mut self, terms: &[ExprId]) -> Result<Nid, UnboundSymbol> {

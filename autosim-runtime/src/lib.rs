@@ -148,7 +148,7 @@ pub mod __private {
     pub use crate::batch::in_lanes;
     pub use crate::float::MulAdd;
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
-    pub use crate::float::dispatch::{allow_fast_path, has_v3};
+    pub use crate::float::dispatch::{Path, limit_path, path};
     #[cfg(feature = "std")]
     pub use crate::float::fused;
     pub use crate::float::lanes::{

@@ -310,8 +310,8 @@ impl BlockEmitter<'_> {
     /// `let mut s = [0.0; K]; self.shared_terms(t, x, &mut s);` in a block
     /// that reads the common block's values. In lanes, the common block
     /// itself in a nested block, so that it computes with the `MulAdd` and
-    /// `math` of the copy it is in (the fast copy's fuse, as its
-    /// `shared_terms_fast` does for one state).
+    /// `math` of the copy it is in (the x86-64-v3 copy's fuse, as
+    /// `shared_terms_v3` does for one state).
     fn shared_terms_call(&self, block: &Block) -> TokenStream {
         if block.common.is_empty() {
             return TokenStream::new();

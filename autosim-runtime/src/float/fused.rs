@@ -1,11 +1,11 @@
-//! What the x86-64-v3 copy of generated code computes with: a [`MulAdd`]
-//! that always fuses (one rounding per `add_mul` and `sub_mul`), and the
+//! What the x86-64-v3 and x86-64-v4 copies of generated code compute
+//! with: a [`MulAdd`] that always fuses (one rounding per `add_mul` and `sub_mul`), and the
 //! math functions whose implementation uses it (the branch-free sines and
 //! cosines) fused the same way; the others are the plain ones.
 //!
 //! [`fast_path!`](crate::fast_path) imports these by name into the module
-//! of the fast copy, where they shadow the model module's plain imports:
-//! the fast copy then computes exactly what a build whose target has FMA
+//! of each fast copy, where they shadow the model module's plain imports:
+//! a fast copy then computes exactly what a build whose target has FMA
 //! computes (`-C target-cpu=x86-64-v3` or `native` on such a processor),
 //! `f64::mul_add` becoming one `vfmadd` in a function compiled with the
 //! `fma` feature. With the `libm` feature, which asks for the bits of a
@@ -186,7 +186,7 @@ mod tests {
 
     /// The fused sines and cosines: within an ulp of libm's up to 10 rad;
     /// in a build whose target has FMA, the bits of the crate's own
-    /// (which fuse there), which is what the x86-64-v3 copy of a default
+    /// (which fuse there), which is what the fast copies of a default
     /// build must give; lanes and single angles the same bits.
     #[test]
     fn fused_sines_are_the_fma_builds() {

@@ -153,10 +153,11 @@ impl_float!(f32);
 /// multiply-add (a single rounding) where the target has the instruction
 /// and `std` provides it (`-C target-cpu=native` on current x86-64, every
 /// 64-bit Arm); otherwise exactly the bits of the plain expression. The
-/// decision is the crate's target features: the x86-64-v3 copy a default
-/// build adds of generated `derivatives` (`dispatch.rs`) uses
-/// `fused::MulAdd` instead, which always fuses (the bits of a build with
-/// FMA), so the two copies differ in the last bits.
+/// decision is the crate's target features: the x86-64-v3 and x86-64-v4
+/// copies a default build adds of generated `derivatives`
+/// (`dispatch.rs`) use `fused::MulAdd` instead, which always fuses (the
+/// bits of a build with FMA), so they differ from the baseline copy in
+/// the last bits.
 pub trait MulAdd: Sized {
     /// `self + a * b`.
     fn add_mul(self, a: Self, b: Self) -> Self;

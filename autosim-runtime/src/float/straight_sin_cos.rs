@@ -25,8 +25,8 @@
 //! by Estrin's scheme for a short dependency chain, with fused
 //! multiply-adds where the target has them (`MulAdd`: the same bits as
 //! the plain expressions elsewhere; chain-planar-20 and chain-planar-50
-//! 5-6 % faster with them on an Intel Xeon), or always (the x86-64-v3
-//! copy of a default build, through [`Rounding`]). Against libm's and
+//! 5-6 % faster with them on an Intel Xeon), or always (the fast
+//! copies of a default build, through [`Rounding`]). Against libm's and
 //! the platform's values: within one unit in the last place up to 10 rad,
 //! two up to 1e6 rad (`tests/straight_sin_cos.rs`).
 
@@ -34,7 +34,7 @@ use super::MulAdd;
 
 /// How the kernel rounds `acc + a b` and `acc - a b`: [`AsTarget`] as the
 /// crate's [`MulAdd`] does (fused where the target has FMA), or always
-/// fused (`fused::Always`, for the x86-64-v3 copy of generated code).
+/// fused (`fused::Always`, for the fast copies of generated code).
 pub(crate) trait Rounding {
     /// `acc + a b`.
     fn add_mul(acc: f64, a: f64, b: f64) -> f64;

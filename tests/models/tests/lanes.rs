@@ -3,13 +3,14 @@
 //! states at a time) against `derivatives` at each state, every
 //! derivative's bits and every error, at random states (with states that
 //! make a derivative or a user result non-finite, and state counts that
-//! leave a partial group), on both instruction-set copies, for models
+//! leave a partial group), on each instruction-set copy, for models
 //! that take each kind of generated code: sines in pairs (the chains),
 //! the articulated-body recursion, the mass matrix's LDLᵀ and constraint
 //! solves (the four-bar, the rolling disc), the common block
 //! (chain-spatial-20), user functions and subroutines (the satellite),
 //! inputs and discrete variables, and an `f32` model (the default batch).
 
+use autosim::runtime::__private::{Path, limit_path};
 use autosim::runtime::{Float, Model, ModelError, StateArray};
 use autosim_models_check::lanes as models;
 use autosim_test_support::Rng;
@@ -45,9 +46,10 @@ fn states<M: Model>(model: &M, rng: &mut Rng, count: usize) -> Vec<M::State> {
 }
 
 /// Compares the batch with single calls on `model` at `count` states,
-/// with the fast copy allowed or not; returns (states, errors) compared.
-fn compare<M: Model>(model: &mut M, seed: u64, count: usize, fast: bool) -> (usize, usize) {
-    autosim::runtime::__private::allow_fast_path(fast);
+/// with calls limited to the copy `path` (or the most capable the
+/// processor has, if less); returns (states, errors) compared.
+fn compare<M: Model>(model: &mut M, seed: u64, count: usize, path: Path) -> (usize, usize) {
+    limit_path(path);
     let mut rng = Rng::new(seed);
     let xs = states(model, &mut rng, count);
     let t = M::Float::from_f64(0.3);
@@ -73,15 +75,21 @@ fn compare<M: Model>(model: &mut M, seed: u64, count: usize, fast: bool) -> (usi
     (count, errors)
 }
 
-/// [`compare`] on both copies and at two counts (a multiple of four and
+/// [`compare`] on every copy and at two counts (a multiple of four and
 /// not); returns the states and errors compared.
-fn both_copies<M: Model>(mut model: M, seed: u64) -> (usize, usize) {
+fn every_copy<M: Model>(mut model: M, seed: u64) -> (usize, usize) {
     let mut total = (0, 0);
-    for (fast, count) in [(false, 200), (true, 203), (true, 3)] {
-        let (n, e) = compare(&mut model, seed, count, fast);
+    let cases = [
+        (Path::Baseline, 200),
+        (Path::V3, 203),
+        (Path::V4, 203),
+        (Path::V4, 3),
+    ];
+    for (path, count) in cases {
+        let (n, e) = compare(&mut model, seed, count, path);
         total = (total.0 + n, total.1 + e);
     }
-    autosim::runtime::__private::allow_fast_path(true);
+    limit_path(Path::V4);
     total
 }
 
@@ -121,19 +129,19 @@ fn batch_gives_the_bits_and_errors_of_single_calls() {
 
 fn batch_matches_single_calls() {
     let runs = [
-        both_copies(models::chain_spatial7::ChainSpatial7::new(), 1),
-        both_copies(models::chain_spatial10::ChainSpatial10::new(), 2),
-        both_copies(models::chain_spatial20::ChainSpatial20::new(), 3),
-        both_copies(models::chain_planar10::ChainPlanar10::new(), 4),
-        both_copies(models::four_bar::FourBar::new(), 5),
-        both_copies(models::rolling_disc::RollingDisc::new(), 6),
-        both_copies(models::bicycle::Bicycle::new(), 7),
-        both_copies(models::satellite::Satellite::new(Thrusters), 8),
-        both_copies(models::quarter_car_bump_stop::QuarterCarBumpStop::new(), 9),
-        both_copies(models::chain_planar2_f32::ChainPlanar2F32::new(), 10),
+        every_copy(models::chain_spatial7::ChainSpatial7::new(), 1),
+        every_copy(models::chain_spatial10::ChainSpatial10::new(), 2),
+        every_copy(models::chain_spatial20::ChainSpatial20::new(), 3),
+        every_copy(models::chain_planar10::ChainPlanar10::new(), 4),
+        every_copy(models::four_bar::FourBar::new(), 5),
+        every_copy(models::rolling_disc::RollingDisc::new(), 6),
+        every_copy(models::bicycle::Bicycle::new(), 7),
+        every_copy(models::satellite::Satellite::new(Thrusters), 8),
+        every_copy(models::quarter_car_bump_stop::QuarterCarBumpStop::new(), 9),
+        every_copy(models::chain_planar2_f32::ChainPlanar2F32::new(), 10),
     ];
     for (k, (states, errors)) in runs.iter().enumerate() {
-        assert_eq!(*states, 406, "model #{k}");
+        assert_eq!(*states, 609, "model #{k}");
         // Every model meets the NaN and huge states: the error path is
         // compared too, not only the finite one.
         assert!(*errors >= 10, "model #{k}: only {errors} errors compared");

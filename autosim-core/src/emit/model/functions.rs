@@ -127,7 +127,7 @@ pub(super) fn mass_matrix(be: &BlockEmitter<'_>, t: TokenStream, x: TokenStream)
 }
 
 /// `shared_terms`, the function of the common block (none without one), in
-/// two copies (`versions`): the caller with its doc and the baseline copy
+/// several copies (`versions`): the caller with its doc and the baseline copy
 /// for the inherent impl, the module-level items apart.
 pub(super) fn shared_terms(be: &BlockEmitter<'_>) -> Versions {
     if be.prog.try_block(BlockKind::Common).is_none() {
@@ -163,7 +163,7 @@ pub(super) fn shared_terms(be: &BlockEmitter<'_>) -> Versions {
         items,
     } = versions(
         &be.rt,
-        super::versions::two_copies(be.prog),
+        super::versions::copies(be.prog),
         &super::impl_head(&be.prog.interface),
         "shared_terms",
         quote!(&self),

@@ -21,7 +21,8 @@ pub(super) fn has_lanes(prog: &Program) -> bool {
 }
 
 /// The inherent items, `derivatives_lanes` (public) and its baseline copy,
-/// and the module-level items of its fast copy (`versions_of`).
+/// and the module-level items of its x86-64-v3 copy (`versions_of`,
+/// `lanes_copies`).
 pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
     if !has_lanes(be.prog) {
         return Default::default();
@@ -67,7 +68,7 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
     };
     let versions = versions_of(
         rt,
-        super::versions::two_copies(prog),
+        super::versions::lanes_copies(prog),
         &signature,
         quote! {
             #[allow(unused_imports)]

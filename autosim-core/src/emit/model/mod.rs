@@ -562,9 +562,9 @@ pub(super) fn impl_head(i: &Interface) -> TokenStream {
     quote!(#generics #model_ty #struct_generics #where_clause)
 }
 
-/// `derivatives` in two copies (`versions`): the caller goes into the
+/// `derivatives` in several copies (`versions`): the caller goes into the
 /// `Model` implementation, the baseline copy into the inherent impl, the
-/// copy macro and the fast copy's module before it.
+/// copy macro and the fast copies' modules before it.
 fn derivatives(be: &BlockEmitter<'_>) -> versions::Versions {
     let prog = be.prog;
     let rt = &be.rt;
@@ -600,7 +600,7 @@ fn derivatives(be: &BlockEmitter<'_>) -> versions::Versions {
     });
     versions::versions(
         rt,
-        versions::two_copies(prog),
+        versions::copies(prog),
         &impl_head(&prog.interface),
         "derivatives",
         quote!(&mut self),

@@ -53,9 +53,10 @@ for c in comp:
     ctab.append(f"| chain-{c['kind']}-{c['n']} | {c['lines']} | {c['rustc_s']:.1f} |")
 rustflags = os.environ.get("AUTOSIM_RUSTFLAGS", "-C target-cpu=native")
 flags = f"`RUSTFLAGS={rustflags}`" if rustflags else "default flags (no `RUSTFLAGS`: the x86-64 baseline, with the x86-64-v3 or x86-64-v4 copy of `derivatives` chosen at run time)"
-compile_text = "" if not comp else f"""Compile cost of the generated module (one model per crate, dependencies
-built, `cargo build --release` with default flags after touching the
-source; the model compiler itself runs in the macro):
+compile_text = "" if not comp else f"""Compile cost of the generated module (one model per crate, its program
+calling `derivatives`, dependencies built, `cargo build --release` with
+default flags after touching the source; the model compiler itself runs
+in the macro; more models and settings: `bench/compile`):
 
 {chr(10).join(ctab)}
 """

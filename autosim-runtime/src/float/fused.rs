@@ -53,7 +53,8 @@ impl_mul_add!(f64);
 impl_mul_add!(f32);
 
 impl<const L: usize> MulAdd for Lanes<L> {
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn add_mul(self, a: Self, b: Self) -> Self {
         let mut out = self;
         for l in 0..L {
@@ -61,7 +62,8 @@ impl<const L: usize> MulAdd for Lanes<L> {
         }
         out
     }
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sub_mul(self, a: Self, b: Self) -> Self {
         let mut out = self;
         for l in 0..L {
@@ -119,14 +121,16 @@ pub mod lanes_math {
     pub use crate::float::lanes::math::*;
 
     /// [`sin_cos_inline`](crate::float::lanes::math::sin_cos_inline), fused.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn sin_cos_inline<const L: usize>(x: Lanes<L>) -> (Lanes<L>, Lanes<L>) {
         let (s, c) = super::sin_cos_fused(x.0);
         (Lanes(s), Lanes(c))
     }
 
     /// [`sin_cos_lanes`](crate::float::lanes::math::sin_cos_lanes), fused.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn sin_cos_lanes<const N: usize, const L: usize>(
         x: [Lanes<L>; N],
     ) -> ([Lanes<L>; N], [Lanes<L>; N]) {

@@ -9,6 +9,14 @@
 //! computes exactly what one call computes for its state, in the same
 //! order, with the same fusing of [`MulAdd`]: the results are the same
 //! bits as `L` single calls on the same instruction set.
+//!
+//! Every operation here is `#[inline(always)]` in builds without debug
+//! assertions and a plain `#[inline]` (so a call, at `opt-level = 0`) in
+//! debug builds: inlined unoptimized into a lanes function of thousands
+//! of operations, each operation's locals got their own stack slots
+//! (chain-spatial-20's `derivatives_lanes` had a 1.3 MB frame, more than
+//! a thread's default stack with the fast copy's on top; 350 KB with the
+//! calls). The operations and their order are the same either way.
 
 use super::MulAdd;
 use crate::model::{Model, ModelError};
@@ -31,13 +39,15 @@ impl<const L: usize> Lanes<L> {
     pub const ZERO: Self = Lanes([0.0; L]);
 
     /// The same value in every lane.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub const fn splat(x: f64) -> Self {
         Lanes([x; L])
     }
 
     /// `f` of each lane.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn map(self, mut f: impl FnMut(f64) -> f64) -> Self {
         let mut out = self;
         for l in 0..L {
@@ -47,7 +57,8 @@ impl<const L: usize> Lanes<L> {
     }
 
     /// `f` of each lane of `self` and `other`.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn zip(self, other: Self, mut f: impl FnMut(f64, f64) -> f64) -> Self {
         let mut out = self;
         for l in 0..L {
@@ -58,7 +69,8 @@ impl<const L: usize> Lanes<L> {
 
     /// Whether `test` holds in every lane (no early exit: a vectorizable
     /// AND).
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn all(self, mut test: impl FnMut(f64) -> bool) -> bool {
         let mut all = true;
         for l in 0..L {
@@ -74,7 +86,8 @@ macro_rules! lane_op {
         $(
             impl<const L: usize> $trait for Lanes<L> {
                 type Output = Self;
-                #[inline(always)]
+                #[cfg_attr(debug_assertions, inline)]
+                #[cfg_attr(not(debug_assertions), inline(always))]
                 fn $method(self, other: Self) -> Self {
                     self.zip(other, |a, b| a $op b)
                 }
@@ -87,14 +100,16 @@ lane_op!(Add add +, Sub sub -, Mul mul *, Div div /);
 
 impl<const L: usize> Neg for Lanes<L> {
     type Output = Self;
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn neg(self) -> Self {
         self.map(|a| -a)
     }
 }
 
 impl<const L: usize> MulAdd for Lanes<L> {
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn add_mul(self, a: Self, b: Self) -> Self {
         let mut out = self;
         for l in 0..L {
@@ -102,7 +117,8 @@ impl<const L: usize> MulAdd for Lanes<L> {
         }
         out
     }
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     fn sub_mul(self, a: Self, b: Self) -> Self {
         let mut out = self;
         for l in 0..L {
@@ -114,7 +130,8 @@ impl<const L: usize> MulAdd for Lanes<L> {
 
 /// The result of a user function called once per lane, `f` taking the
 /// lanes' arguments: generated code calls user code lane by lane.
-#[inline(always)]
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub fn call_each<const A: usize, const L: usize>(
     args: [Lanes<L>; A],
     mut f: impl FnMut([f64; A]) -> f64,
@@ -123,7 +140,8 @@ pub fn call_each<const A: usize, const L: usize>(
 }
 
 /// The results of a user subroutine called once per lane (`K` results).
-#[inline(always)]
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub fn call_each_sub<const A: usize, const K: usize, const L: usize>(
     args: [Lanes<L>; A],
     mut f: impl FnMut([f64; A]) -> [f64; K],
@@ -139,7 +157,8 @@ pub fn call_each_sub<const A: usize, const K: usize, const L: usize>(
 }
 
 /// [`check_user_result`](crate::check_user_result) for every lane.
-#[inline(always)]
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub fn check_user_result_lanes<const L: usize>(
     value: Lanes<L>,
     function: &'static str,
@@ -148,7 +167,8 @@ pub fn check_user_result_lanes<const L: usize>(
 }
 
 /// [`check_user_results`](crate::check_user_results) for every lane.
-#[inline(always)]
+#[cfg_attr(debug_assertions, inline)]
+#[cfg_attr(not(debug_assertions), inline(always))]
 pub fn check_user_results_lanes<const K: usize, const L: usize>(
     values: [Lanes<L>; K],
     function: &'static str,
@@ -191,7 +211,8 @@ pub mod math {
         ($($name:ident),+) => {
             $(
                 #[doc = concat!("[`", stringify!($name), "`](crate::float::math::", stringify!($name), ") lane by lane.")]
-                #[inline(always)]
+                #[cfg_attr(debug_assertions, inline)]
+                #[cfg_attr(not(debug_assertions), inline(always))]
                 pub fn $name<const L: usize>(x: Lanes<L>) -> Lanes<L> {
                     x.map(one::$name)
                 }
@@ -204,7 +225,8 @@ pub mod math {
         ($($name:ident),+) => {
             $(
                 #[doc = concat!("[`", stringify!($name), "`](crate::float::math::", stringify!($name), ") lane by lane.")]
-                #[inline(always)]
+                #[cfg_attr(debug_assertions, inline)]
+                #[cfg_attr(not(debug_assertions), inline(always))]
                 pub fn $name<const L: usize>(a: Lanes<L>, b: Lanes<L>) -> Lanes<L> {
                     a.zip(b, one::$name)
                 }
@@ -216,13 +238,15 @@ pub mod math {
     binary!(atan2, min, max, powf);
 
     /// [`powi`](crate::float::math::powi) lane by lane.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn powi<const L: usize>(x: Lanes<L>, n: i32) -> Lanes<L> {
         x.map(|v| one::powi(v, n))
     }
 
     /// [`sin_cos`](crate::float::math::sin_cos) (libm's) lane by lane.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn sin_cos<const L: usize>(x: Lanes<L>) -> (Lanes<L>, Lanes<L>) {
         let (mut s, mut c) = (Lanes::ZERO, Lanes::ZERO);
         for l in 0..L {
@@ -233,7 +257,8 @@ pub mod math {
 
     /// [`sin_cos_inline`](crate::float::math::sin_cos_inline) of every
     /// lane at once (the branch-free kernel, whose lanes are independent).
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn sin_cos_inline<const L: usize>(x: Lanes<L>) -> (Lanes<L>, Lanes<L>) {
         let (s, c) = one::sin_cos_lanes(x.0);
         (Lanes(s), Lanes(c))
@@ -241,7 +266,8 @@ pub mod math {
 
     /// [`sin_cos_lanes`](crate::float::math::sin_cos_lanes) of `N` angles
     /// in `L` lanes: each angle's lanes through the branch-free kernel.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn sin_cos_lanes<const N: usize, const L: usize>(
         x: [Lanes<L>; N],
     ) -> ([Lanes<L>; N], [Lanes<L>; N]) {
@@ -253,13 +279,15 @@ pub mod math {
     }
 
     /// [`is_positive`](crate::float::math::is_positive) in every lane.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn is_positive<const L: usize>(x: Lanes<L>) -> bool {
         x.all(one::is_positive)
     }
 
     /// [`is_regular`](crate::float::math::is_regular) in every lane.
-    #[inline(always)]
+    #[cfg_attr(debug_assertions, inline)]
+    #[cfg_attr(not(debug_assertions), inline(always))]
     pub fn is_regular<const L: usize>(x: Lanes<L>) -> bool {
         x.all(one::is_regular)
     }

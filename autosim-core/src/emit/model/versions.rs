@@ -131,7 +131,10 @@ pub(super) fn versions(
 /// The function of `signature` computing `body`: a module-level macro
 /// `<name>_copy!(#[attrs] vis fn_name)` writing the whole function (the
 /// signature with the body, so that `self` and the parameters are the
-/// macro's own names); `<name>_baseline`, `#[inline(always)]`, the macro
+/// macro's own names); `<name>_baseline`, `#[inline(always)]` in builds
+/// without debug assertions (in a debug build the dispatcher calls it,
+/// so that its frame, big there, is not on the stack under a fast
+/// copy's), the macro
 /// in the model's inherent impl; `<name>_v3` and `<name>_v4`, the macro
 /// expanded by the runtime's `fast_path!` in child modules
 /// `<name>_x86_64_v3` and `<name>_x86_64_v4` that import the fused
@@ -210,7 +213,7 @@ pub(super) fn versions_of(
         copies: quote! {
             #copy! {
                 #[doc = #baseline_doc]
-                #[inline(always)]
+                #[cfg_attr(not(debug_assertions), inline(always))]
                 #baseline
             }
         },

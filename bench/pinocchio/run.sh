@@ -7,7 +7,7 @@
 # 1. installs Pinocchio + Eigen headers from PyPI (pip install pin cmeel-eigen) if missing;
 # 2. compiles chain_aba.cpp in three builds (binaries in bench/pinocchio/build/):
 #      native    header-only templates, g++ -O3 -DNDEBUG -march=native   (the headline numbers)
-#      portable  header-only templates, g++ -O3 -DNDEBUG (baseline x86-64, like the Rust build)
+#      portable  header-only templates, g++ -O3 -DNDEBUG (baseline x86-64, as the Rust build's baseline copy)
 #      lib       PINOCCHIO_ENABLE_TEMPLATE_INSTANTIATION, no -march=native: aba, crba,
 #                nonLinearEffects and cholesky::decompose run the pip wheel's precompiled
 #                libpinocchio_default.so (cholesky::solve on a vector block is compiled locally)
@@ -209,7 +209,8 @@ xdot = [v; ddq], like autosim's generated `derivatives()`. "ratio" = Pinocchio n
 (how many times faster the generated code is).
 
 - autosim: `cargo run --release --example perf` (examples/perf.rs), default release profile
-  (no `-C target-cpu=native`, i.e. baseline x86-64 SSE2 code).
+  (no `-C target-cpu=native`: the x86-64 baseline, with the x86-64-v3 or x86-64-v4 copy of
+  `derivatives` chosen at run time where the processor has it; README, "At default flags").
 - Pinocchio {env['BENCH_PIN']} (PyPI `pin`, headers and libs from the cmeel prefix), Eigen
   {env['BENCH_EIGEN']} (PyPI `cmeel-eigen`), `bench/pinocchio/chain_aba.cpp`:
   - `aba`: `pinocchio::aba(model, data, q, v, tau)` (articulated-body algorithm, O(n),

@@ -14,6 +14,10 @@
 #          may be shared with other jobs)
 #   PY     the Python interpreter: $PYTHON, default python3
 # Defines:
+#   model_crate  model_crate DIR NAME: the manifest of a one-model binary
+#                crate in DIR (package NAME) depending on this autosim by
+#                path with `std` only, the macro's build optimized, as a
+#                user's crate is (bench/peers' and bench/compile's builds)
 #   run_report   runs a script's report writer, a Python program read from
 #                stdin (a heredoc), as `$PY - "$HERE"`, so its sys.argv[1] is
 #                HERE; first it exports, beside the script's own BENCH_*
@@ -49,4 +53,19 @@ run_report() {
   BENCH_GIT="$(bench_git)"
   export BENCH_GIT
   $PY - "$HERE"
+}
+
+model_crate() {
+  mkdir -p "$1/src"
+  cat > "$1/Cargo.toml" <<TOML
+[package]
+name = "$2"
+version = "0.1.0"
+edition = "2024"
+[workspace]
+[dependencies]
+autosim = { path = "$REPO", default-features = false, features = ["std"] }
+[profile.release.build-override]
+opt-level = 3
+TOML
 }

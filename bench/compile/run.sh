@@ -30,20 +30,9 @@ CHAINS="$WORK/chains"; mkdir -p "$CHAINS"
 case_() {
   local name=$1 file=$2 opts=$3
   local crate="$WORK/$name"
-  mkdir -p "$crate/src"
+  model_crate "$crate" "compile-$name"
   cp "$file" "$crate/model.sim"
   [ -z "$opts" ] || printf '\nsettings { %s }\n' "$opts" >> "$crate/model.sim"
-  cat > "$crate/Cargo.toml" <<TOML
-[package]
-name = "compile-$name"
-version = "0.1.0"
-edition = "2024"
-[workspace]
-[dependencies]
-autosim = { path = "$REPO", default-features = false, features = ["std"] }
-[profile.release.build-override]
-opt-level = 3
-TOML
   # The satellite calls user code: a thruster law and fixed commands.
   local new="bench::Bench::new()" user=""
   if grep -q "^ *extern " "$crate/model.sim"; then
@@ -131,7 +120,7 @@ lines = [
     "# What a model costs a release build",
     "",
     f"`bash bench/compile/run.sh`, autosim at {os.environ['BENCH_GIT']}, "
-    f"{os.environ['ROUNDS']} rebuilds per case, load average at the start "
+    f"rebuilds per case: {os.environ['ROUNDS']}, load average at the start "
     f"{os.environ['BENCH_LOAD']}, {os.cpu_count()} cores. Each case is a new binary crate "
     "calling the model's `derivatives` and `derivatives_batch` (and "
     "`linearize_into` with `linearize: true`), rebuilt at default flags "

@@ -79,19 +79,8 @@ echo "== 4. compile cost (one model per crate, release, dependencies built)"
 [ "$COMPILE_COST" = 1 ] && for kind in spatial planar; do
   for n in 10 20 50; do
     CRATE="$TARGET/compile-$kind-$n"
-    mkdir -p "$CRATE/src"
+    model_crate "$CRATE" "compile-$kind-$n"
     cp "$HERE/models/chain_${kind}_$n.sim" "$CRATE/model.sim"
-    cat > "$CRATE/Cargo.toml" <<TOML
-[package]
-name = "compile-$kind-$n"
-version = "0.1.0"
-edition = "2024"
-[workspace]
-[dependencies]
-autosim = { path = "$REPO", default-features = false, features = ["std"] }
-[profile.release.build-override]
-opt-level = 3
-TOML
     # The program calls `derivatives`: rustc compiles only what is reachable,
     # and a model nothing calls would cost a fraction of what it costs a user.
     cat > "$CRATE/src/main.rs" <<'RS'

@@ -30,9 +30,10 @@ pub(super) struct Versions {
 /// Functions of fewer operations keep one copy: there the instruction set
 /// gains less than the dispatch costs (chain-spatial-1: 7 operations and a
 /// libm sine). Measured with the baseline and x86-64-v3 copies alone
-/// (before the x86-64-v4 copy; it gains 3-11 % more from 194 operations,
-/// chain-spatial-3, up: `copies`'s measurement). With the fast copy fusing, small models gain too; measured
-/// with the chains of `bench/peers` at default flags, three interleaved
+/// (before the x86-64-v4 copy, which gains 3-11 % more from 194
+/// operations, chain-spatial-3, up: `copies`'s measurement). With the
+/// fast copy fusing, small models gain too; measured with the chains of
+/// `bench/peers` at default flags, three interleaved
 /// runs, ns per call, this threshold against 200 against a
 /// `-C target-cpu=x86-64-v3` build: chain-planar-2 15.1 / 16.6–17.5 /
 /// 14.8, chain-spatial-2 18.2 / 21.0 / 18.0, chain-spatial-3 (194
@@ -62,9 +63,10 @@ pub(super) enum Copies {
 /// chain-spatial-10 266 / 300, chain-spatial-20 802 / 870, chain-spatial-50
 /// 2 236 / 2 407, the satellite 172 / 179, the bicycle 292 / 307 (the
 /// baseline copy: 51, 241, 365, 1 115, 3 098, 205, 516). Its price is
-/// compile time: release rustc of a crate calling the model's
-/// `derivatives` and `derivatives_batch`, chain-spatial-10 0.79 → 0.90 s,
-/// chain-spatial-50 9.4 → 13.3 s, the bicycle 0.62 → 0.81 s.
+/// compile time: a release build of a crate calling the model's
+/// `derivatives` and `derivatives_batch` (`bench/compile`),
+/// chain-spatial-10 0.79 → 0.94 s, chain-spatial-50 9.4 → 13.3 s, the
+/// bicycle 0.62 → 0.84 s.
 pub(super) fn copies(prog: &crate::opt::Program) -> Copies {
     let ops = prog.block(crate::opt::BlockKind::Derivatives).ops.total();
     if ops >= MIN_OPS_FOR_FAST_COPIES {
@@ -82,8 +84,8 @@ pub(super) fn copies(prog: &crate::opt::Program) -> Copies {
 /// chain-spatial-10 126 against 147 ns, the satellite 73 against 74 ns
 /// (one state per call, the x86-64-v4 copy gains 3-11 %: 300 against 266
 /// ns for chain-spatial-10). And each copy costs compile time: with it,
-/// chain-spatial-10 with lanes took 12.6 s of release rustc instead of
-/// 8.5 s.
+/// a release build of a crate calling chain-spatial-10 with lanes took
+/// 12.6 s instead of 8.5 s.
 pub(super) fn lanes_copies(prog: &crate::opt::Program) -> Copies {
     match copies(prog) {
         Copies::UpToV4 => Copies::UpToV3,

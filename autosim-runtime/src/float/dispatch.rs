@@ -77,16 +77,25 @@ mod detect {
         }
     }
 
+    /// The path [`encode`] wrote, `None` for `UNKNOWN`.
+    #[inline(always)]
+    const fn decode(level: u8) -> Option<Path> {
+        match level {
+            V4 => Some(Path::V4),
+            V3 => Some(Path::V3),
+            BASELINE => Some(Path::Baseline),
+            _ => None,
+        }
+    }
+
     /// The most capable copy the running processor has every feature of
     /// (within [`limit_path`]'s limit): asked once (`std`'s
     /// `is_x86_feature_detected!`), then one relaxed atomic load per call.
     #[inline(always)]
     pub fn path() -> Path {
-        match LEVEL.load(Ordering::Relaxed) {
-            V4 => Path::V4,
-            V3 => Path::V3,
-            BASELINE => Path::Baseline,
-            _ => detect(),
+        match decode(LEVEL.load(Ordering::Relaxed)) {
+            Some(path) => path,
+            None => detect(),
         }
     }
 
@@ -115,11 +124,7 @@ mod detect {
             (false, true) => Path::V3,
             (false, false) => Path::Baseline,
         };
-        let limit = match LIMIT.load(Ordering::Relaxed) {
-            V3 => Path::V3,
-            BASELINE => Path::Baseline,
-            _ => Path::V4,
-        };
+        let limit = decode(LIMIT.load(Ordering::Relaxed)).unwrap_or(Path::V4);
         let chosen = found.min(limit);
         LEVEL.store(encode(chosen), Ordering::Relaxed);
         chosen

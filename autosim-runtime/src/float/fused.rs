@@ -1,7 +1,8 @@
 //! What the x86-64-v3 and x86-64-v4 copies of generated code compute
-//! with: a [`MulAdd`] that always fuses (one rounding per `add_mul` and `sub_mul`), and the
-//! math functions whose implementation uses it (the branch-free sines and
-//! cosines) fused the same way; the others are the plain ones.
+//! with: a [`MulAdd`] that always fuses (one rounding per `add_mul` and
+//! `sub_mul`), and the math functions whose implementation uses it (the
+//! branch-free sines and cosines) fused the same way; the others are the
+//! plain ones.
 //!
 //! [`fast_path!`](crate::fast_path) imports these by name into the module
 //! of each fast copy, where they shadow the model module's plain imports:

@@ -1,10 +1,12 @@
 //! What lockstep buys a study: cases per second of a Monte Carlo over the
 //! initial state of chain-spatial-10 generated with `lanes = true` (ten
 //! random joint angles and rates; RK4, 0.5 s at h = 1 ms: 2 000
-//! derivative evaluations a case), one case at a time
-//! (`Study::lockstep(false)`) and in lockstep (groups of four cases, one
-//! `derivatives_batch` call per stage: four states per call of
-//! `derivatives_lanes`); and the same model generated without lanes (one
+//! derivative evaluations a case), and of one over its parameters too
+//! (every parameter within ±20 % of its default: each case its own
+//! model), one case at a time (`Study::lockstep(false)`) and in lockstep
+//! (groups of four cases, one `derivatives_each` call per stage: four
+//! states per call of `derivatives_lanes`, each lane reading its own
+//! case's parameters); and the same model generated without lanes (one
 //! case at a time either way). Serial (one thread), interleaved over
 //! rounds; prints the medians. Results are checked equal, bit for bit, in
 //! every round.
@@ -31,24 +33,42 @@ fn median(v: &mut [f64]) -> f64 {
     v[v.len() / 2]
 }
 
-/// Random initial angles and rates of every joint.
-fn cases<M: Model>(count: u64) -> Result<Cases, Box<dyn Error>> {
-    let columns: Vec<(&str, Distribution)> = M::STATE_NAMES
+/// Random initial angles and rates of every joint; with `parameters`,
+/// every parameter of `model` within ±20 % of its value too.
+fn cases<M: Model<Float = f64>>(
+    model: &M,
+    parameters: bool,
+    count: u64,
+) -> Result<Cases, Box<dyn Error>> {
+    let mut columns: Vec<(&str, Distribution)> = M::STATE_NAMES
         .iter()
         .map(|n| (*n, Distribution::uniform(-0.5, 0.5)))
         .collect();
+    if parameters {
+        let mut values = vec![0.0; M::PARAMETER_NAMES.len()];
+        model.parameter_values(&mut values);
+        for (name, v) in M::PARAMETER_NAMES.iter().zip(values) {
+            columns.push((name, Distribution::uniform(0.8 * v, 1.2 * v)));
+        }
+    }
     Ok(Cases::new().random(count, 7, &columns)?)
 }
 
 /// Cases per second (median of `rounds`) one at a time and in lockstep.
-fn measure<M, F>(make: F, rounds: usize, count: u64) -> Result<(f64, f64), Box<dyn Error>>
+fn measure<M, F>(
+    make: F,
+    parameters: bool,
+    rounds: usize,
+    count: u64,
+) -> Result<(f64, f64), Box<dyn Error>>
 where
     M: Model<Float = f64>,
     F: Fn() -> M + Sync,
 {
     let settings = RunSettings::new(0.0, 0.5, 0.001, 0.05);
     let task = Simulate::new(settings, Method::Rk4, Keep::new().final_state())?;
-    let mut study = Study::new(make, cases::<M>(count)?, task)
+    let cases = cases(&make(), parameters, count)?;
+    let mut study = Study::new(make, cases, task)
         .progress(false)
         .parallelism(Parallelism::Serial);
     let (mut alone, mut lockstep) = (vec![], vec![]);
@@ -74,20 +94,37 @@ fn main() -> Result<(), Box<dyn Error>> {
     let rounds = args.next().transpose()?.unwrap_or(5) as usize;
     let count = args.next().transpose()?.unwrap_or(2_000);
     println!("{count} chain-spatial-10 runs (RK4, 500 steps each), serial, median of {rounds}:");
-    for (name, (a, b)) in [
-        (
-            "lanes = true",
-            measure(lanes::chain_spatial10::ChainSpatial10::new, rounds, count)?,
-        ),
-        (
-            "plain",
-            measure(plain::chain_spatial10::ChainSpatial10::new, rounds, count)?,
-        ),
-    ] {
-        println!(
-            "  {name:<13} one at a time {a:>7.0} cases/s, lockstep {b:>7.0} cases/s ({:.2}x)",
-            b / a
-        );
+    for parameters in [false, true] {
+        let what = match parameters {
+            false => "initial states",
+            true => "parameters too",
+        };
+        println!("random {what}:");
+        for (name, (a, b)) in [
+            (
+                "lanes = true",
+                measure(
+                    lanes::chain_spatial10::ChainSpatial10::new,
+                    parameters,
+                    rounds,
+                    count,
+                )?,
+            ),
+            (
+                "plain",
+                measure(
+                    plain::chain_spatial10::ChainSpatial10::new,
+                    parameters,
+                    rounds,
+                    count,
+                )?,
+            ),
+        ] {
+            println!(
+                "  {name:<13} one at a time {a:>7.0} cases/s, lockstep {b:>7.0} cases/s ({:.2}x)",
+                b / a
+            );
+        }
     }
     Ok(())
 }

@@ -8,8 +8,9 @@
 //! step grid, case counts that leave a partial group, serially and on two
 //! threads. A case that fails (a non-finite state, a model error, a
 //! non-finite output, a panic) fails with the error it has alone and the
-//! others of its group finish; cases whose parameters differ from their
-//! group's run alone.
+//! others of its group finish; cases with different parameters run
+//! together, each lane with its own (a parameter sweep of the lanes
+//! model).
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -88,6 +89,35 @@ fn lockstep_gives_the_bits_of_one_case_at_a_time() {
 }
 
 #[test]
+fn a_parameter_sweep_in_lockstep_gives_the_bits_of_one_case_at_a_time() {
+    // Every case its own stiffness, damping, gravity, masses and lengths
+    // (lengths enter the constants computed from the parameters) and
+    // initial angles: each lane reads its own case's values.
+    let columns = [
+        ("k", Distribution::uniform(0.5, 5.0)),
+        ("c", Distribution::uniform(0.0, 0.5)),
+        ("g", Distribution::uniform(1.0, 20.0)),
+        ("m2", Distribution::uniform(0.5, 2.0)),
+        ("L1", Distribution::uniform(0.2, 0.8)),
+        ("L3", Distribution::uniform(0.2, 0.8)),
+        ("Ixx3", Distribution::uniform(0.01, 0.03)),
+        ("q1", Distribution::uniform(-1.0, 1.0)),
+        ("u3", Distribution::uniform(-1.0, 1.0)),
+    ];
+    let settings = RunSettings::new(0.0, 0.5, 0.01, 0.1);
+    for method in METHODS {
+        let keep = Keep::new()
+            .final_state()
+            .statistic("tip_height", Statistic::Max)
+            .history(&["q2"]);
+        let task = Simulate::new(settings, method, keep).unwrap();
+        let cases = Cases::new().random(14, 8, &columns).unwrap();
+        let results = same_either_way(Study::new(ChainPlanar3::new, cases, task), 14);
+        assert_eq!(results.failures(), 0, "{method:?}");
+    }
+}
+
+#[test]
 fn a_failing_case_of_a_lanes_model_fails_as_alone() {
     // Speeds of 1e200 overflow the derivatives (non-finite, in the batch
     // of four and again alone).
@@ -111,7 +141,7 @@ fn a_failing_case_of_a_lanes_model_fails_as_alone() {
 
 /// `x' = k x²` with `y = √(x + 10)`; its derivatives fail below -5 (a model
 /// error) and panic at exactly 7; it allows lockstep, with the default
-/// batch, and counts its batch calls of more than one state.
+/// `derivatives_each`, and counts its calls of more than one model.
 struct Quirky {
     k: f64,
     batches: Arc<AtomicU64>,
@@ -138,17 +168,17 @@ impl Model for Quirky {
         dx[0] = self.k * x[0] * x[0];
         Ok(())
     }
-    fn derivatives_batch(
-        &mut self,
+    fn derivatives_each(
+        models: &mut [Quirky],
         t: f64,
         x: &[[f64; 1]],
         dx: &mut [[f64; 1]],
         status: &mut [Result<(), ModelError>],
     ) {
         if x.len() > 1 {
-            self.batches.fetch_add(1, Ordering::Relaxed);
+            models[0].batches.fetch_add(1, Ordering::Relaxed);
         }
-        autosim::runtime::batch::one_by_one(self, t, x, dx, status);
+        autosim::runtime::batch::each_alone(models, t, x, dx, status);
     }
     fn outputs(&mut self, _: f64, x: &[f64; 1], y: &mut [f64; 1]) -> Result<(), ModelError> {
         y[0] = (x[0] + 10.0).sqrt();
@@ -164,7 +194,7 @@ impl Model for Quirky {
 
 /// The study of `Quirky` over the table `columns`/`rows` with RK4 to
 /// t = 1; returns its results (the same with and without lockstep) and
-/// the batch calls of more than one state with lockstep (serially).
+/// the `derivatives_each` calls of more than one model with lockstep.
 fn quirky(columns: &[&str], rows: &[f64]) -> (Results, u64) {
     let count = (rows.len() / columns.len()) as u64;
     let cases = Cases::new().rows(columns, rows).unwrap();
@@ -207,7 +237,7 @@ fn a_failing_case_fails_as_alone_and_the_others_of_its_group_finish() {
 }
 
 #[test]
-fn cases_whose_parameters_differ_from_their_groups_run_alone() {
+fn cases_with_different_parameters_run_together() {
     // Groups of four: the first shares k = 1 but for case 1; the second
     // is all k = 0.5; the third has a different k in each case.
     let rows = [

@@ -1,8 +1,10 @@
-//! Derivatives at many states in one call ([`Model::derivatives_batch`]):
-//! generated `f64` models evaluate [`LANES`] states at a time through
-//! their `derivatives_lanes` (struct of arrays, vector instructions), the
-//! same bits as one call per state; every other model loops over single
-//! calls.
+//! Derivatives at many states in one call: of one model
+//! ([`Model::derivatives_batch`]) or of several, each at its own state
+//! ([`Model::derivatives_each`], a study's cases in lockstep). Generated
+//! `f64` models with the `lanes` option evaluate [`LANES`] states at a
+//! time through their `derivatives_lanes` (struct of arrays, vector
+//! instructions), the same bits as one call per state; every other model
+//! loops over single calls.
 
 use crate::float::lanes::Lanes;
 use crate::model::{Model, ModelError};
@@ -43,16 +45,7 @@ pub fn in_lanes<M, const L: usize, const N: usize>(
         let soa_x: [Lanes<L>; N] =
             core::array::from_fn(|i| Lanes(core::array::from_fn(|l| x[range.start + l][i])));
         match lanes(model, t, &soa_x, &mut soa_dx) {
-            Ok(()) => {
-                for (l, (d, s)) in dx[range.clone()]
-                    .iter_mut()
-                    .zip(&mut status[range.clone()])
-                    .enumerate()
-                {
-                    *d = core::array::from_fn(|i| soa_dx[i].0[l]);
-                    *s = Ok(());
-                }
-            }
+            Ok(()) => scatter(&soa_dx, &mut dx[range.clone()], &mut status[range]),
             Err(_) => one_by_one(
                 model,
                 t,
@@ -70,6 +63,91 @@ pub fn in_lanes<M, const L: usize, const N: usize>(
         &mut dx[rest.clone()],
         &mut status[rest],
     );
+}
+
+/// [`Model::derivatives_each`] through a model's lanes function (generated
+/// models' override): `models[k]` at state `x[k]`, in groups of `L` whose
+/// lane `l` reads the parameters, constants and inputs of the group's
+/// `l`-th model (`values`, the generated `lane_values`) while user code
+/// is called on the group's first model (what [`Model::LOCKSTEP`]
+/// allows). A group in which any state fails, and the models left over
+/// after the last full group, are evaluated one call each, so that each
+/// state gets exactly the result its model's [`Model::derivatives`] gives
+/// it.
+#[inline]
+pub fn each_in_lanes<M, V, const L: usize, const N: usize>(
+    models: &mut [M],
+    t: f64,
+    x: &[[f64; N]],
+    dx: &mut [[f64; N]],
+    status: &mut [Result<(), ModelError>],
+    values: impl Fn([&M; L]) -> V,
+    mut lanes: impl FnMut(&mut M, &V, f64, &[Lanes<L>; N], &mut [Lanes<L>; N]) -> Result<(), ModelError>,
+) where
+    M: Model<Float = f64, State = [f64; N]>,
+{
+    let count = models.len().min(x.len()).min(dx.len()).min(status.len());
+    let groups = count / L;
+    let mut soa_dx = [Lanes::<L>::ZERO; N];
+    for g in 0..groups {
+        let range = g * L..(g + 1) * L;
+        let group = &mut models[range.clone()];
+        let v = values(core::array::from_fn(|l| &group[l]));
+        let soa_x: [Lanes<L>; N] =
+            core::array::from_fn(|i| Lanes(core::array::from_fn(|l| x[range.start + l][i])));
+        match lanes(&mut group[0], &v, t, &soa_x, &mut soa_dx) {
+            Ok(()) => scatter(&soa_dx, &mut dx[range.clone()], &mut status[range]),
+            Err(_) => each_alone(
+                group,
+                t,
+                &x[range.clone()],
+                &mut dx[range.clone()],
+                &mut status[range],
+            ),
+        }
+    }
+    let rest = groups * L..count;
+    each_alone(
+        &mut models[rest.clone()],
+        t,
+        &x[rest.clone()],
+        &mut dx[rest.clone()],
+        &mut status[rest],
+    );
+}
+
+/// Lane `l` of the struct-of-arrays derivatives `soa_dx` into `dx[l]`, its
+/// status `Ok`.
+#[inline]
+fn scatter<const L: usize, const N: usize>(
+    soa_dx: &[Lanes<L>; N],
+    dx: &mut [[f64; N]],
+    status: &mut [Result<(), ModelError>],
+) {
+    for (l, (d, s)) in dx.iter_mut().zip(status).enumerate() {
+        *d = core::array::from_fn(|i| soa_dx[i].0[l]);
+        *s = Ok(());
+    }
+}
+
+/// One [`Model::derivatives`] call per model, each at its state: the
+/// default [`Model::derivatives_each`].
+#[inline]
+pub fn each_alone<M: Model>(
+    models: &mut [M],
+    t: M::Float,
+    x: &[M::State],
+    dx: &mut [M::State],
+    status: &mut [Result<(), ModelError>],
+) {
+    for (((m, x), dx), s) in models
+        .iter_mut()
+        .zip(x)
+        .zip(dx.iter_mut())
+        .zip(status.iter_mut())
+    {
+        *s = m.derivatives(t, x, dx);
+    }
 }
 
 /// One [`Model::derivatives`] call per state: the default

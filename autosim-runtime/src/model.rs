@@ -196,12 +196,13 @@ pub trait Model {
     /// Units of the outputs.
     const OUTPUT_UNITS: &'static [&'static str] = &[];
     /// Whether a study may integrate several cases of this model in
-    /// lockstep, all on one model, evaluating their states together
-    /// through [`Model::derivatives_batch`] (see the `study` module's
-    /// "Lockstep"). Set it only when `derivatives_batch` is faster than one
-    /// call per state and every function of the model (user code
-    /// included) depends on its arguments alone, not on earlier calls.
-    /// `false` by default; models generated with the `lanes` option set it.
+    /// lockstep, each case on its own model, evaluating their states
+    /// together through [`Model::derivatives_each`] (see the `study`
+    /// module's "Lockstep"). Set it only when `derivatives_each` is faster
+    /// than one call per model and every function of the model (user code
+    /// included) depends on its arguments alone, not on earlier calls nor
+    /// on which model of the group it is called on. `false` by default;
+    /// models generated with the `lanes` option set it.
     const LOCKSTEP: bool = false;
 
     /// Writes the state derivatives `dx/dt` at time `t` and state `x` into `dx`.
@@ -215,7 +216,8 @@ pub trait Model {
     /// The derivatives at many states at one time `t`: `dx[k]` and
     /// `status[k]` are what [`Model::derivatives`] gives for `x[k]` (up to
     /// the shortest of the three slices; nothing is allocated). Generated
-    /// `f64` models evaluate [`LANES`](crate::batch::LANES) states per call
+    /// `f64` models with the `lanes` option evaluate
+    /// [`LANES`](crate::batch::LANES) states per call
     /// of their `derivatives_lanes` (vector instructions across states),
     /// with the same bits as one call per state; the default (and `f32`
     /// models) calls [`Model::derivatives`] once per state.
@@ -252,6 +254,31 @@ pub trait Model {
         status: &mut [Result<(), ModelError>],
     ) {
         crate::batch::one_by_one(self, t, x, dx, status);
+    }
+
+    /// The derivatives of several models of this type at one time `t`,
+    /// each at its own state: `dx[k]` and `status[k]` are what
+    /// `models[k].derivatives` gives for `x[k]` (up to the shortest of the
+    /// four slices; nothing is allocated). What a study's cases in
+    /// lockstep call, each case on its own model (its parameters and
+    /// inputs). Generated `f64` models with the `lanes` option evaluate
+    /// [`LANES`](crate::batch::LANES) models per call of their
+    /// `derivatives_lanes`, each lane reading its own model's parameters,
+    /// constants and inputs, with the same bits as one call per model;
+    /// user code is then called on the first model of each group of
+    /// [`LANES`](crate::batch::LANES), for every lane (what
+    /// [`Model::LOCKSTEP`] allows). The default calls
+    /// [`Model::derivatives`] once per model.
+    fn derivatives_each(
+        models: &mut [Self],
+        t: Self::Float,
+        x: &[Self::State],
+        dx: &mut [Self::State],
+        status: &mut [Result<(), ModelError>],
+    ) where
+        Self: Sized,
+    {
+        crate::batch::each_alone(models, t, x, dx, status);
     }
 
     /// Writes the output variables at time `t` and state `x` into `y`. The

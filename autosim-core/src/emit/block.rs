@@ -2,6 +2,7 @@
 //! user calls, named intermediates, pivot checks and stores.
 
 use super::expr::{ExprPrinter, Locals, ident};
+use super::lane_values::LaneValue;
 use super::sines;
 use crate::limits::MAX_LETS_IN_FUNCTION;
 use crate::opt::FloatType;
@@ -273,10 +274,12 @@ impl BlockEmitter<'_> {
         let in_constants = matches!(target, Target::Constants(_));
         let Locals { x, dx, p, c, .. } = self.locals;
         let mut out = TokenStream::new();
-        if !in_constants && block.reads_parameters() {
+        // A lanes function reads parameters and constants from its lane
+        // values.
+        if !in_constants && !self.lanes && block.reads_parameters() {
             out.extend(quote!(let #p = &self.parameters;));
         }
-        if hoisted && !block.hoisted.is_empty() {
+        if hoisted && !self.lanes && !block.hoisted.is_empty() {
             out.extend(quote!(let #c = &self.constants;));
         }
         for l in &block.leaves {
@@ -288,7 +291,7 @@ impl BlockEmitter<'_> {
                 }
                 Leaf::Input(i) => {
                     let id = ident(&self.prog.interface.model.inputs[i].name);
-                    let value = printer.splat(quote!(self.inputs.#id));
+                    let value = printer.read(LaneValue::Input(i), quote!(self.inputs.#id));
                     out.extend(quote!(let #id = #value;));
                 }
                 Leaf::Accel(i) => {
@@ -298,7 +301,7 @@ impl BlockEmitter<'_> {
                 }
                 Leaf::Discrete(i) => {
                     let id = ident(&self.prog.interface.model.discrete[i].name);
-                    let value = printer.splat(quote!(self.discrete.#id));
+                    let value = printer.read(LaneValue::Discrete(i), quote!(self.discrete.#id));
                     out.extend(quote!(let #id = #value;));
                 }
                 Leaf::Param(_) | Leaf::Time | Leaf::SubOut(..) => {}

@@ -2,6 +2,7 @@
 //! in the model's float type, operators with the parentheses the IR's order
 //! of evaluation needs, and calls of the runtime's math functions.
 
+use super::lane_values::LaneValue;
 use crate::expr::{Func, Prec};
 use crate::opt::FloatType;
 use crate::opt::{Ir, Leaf, Nid, Op, Program};
@@ -188,6 +189,8 @@ pub struct Locals {
     pub s: Ident,
     /// The number of lanes of `derivatives_lanes` (a const generic).
     pub lanes: Ident,
+    /// The lane values of a lanes function (`lane_values.rs`).
+    pub values: Ident,
 }
 
 impl Locals {
@@ -229,6 +232,7 @@ impl Locals {
             z: pick("z"),
             s: pick("s"),
             lanes: pick("L"),
+            values: pick("v"),
         }
     }
 }
@@ -261,8 +265,9 @@ pub struct ExprPrinter<'a> {
     /// NaN and infinity (in functions that return `Result`), else `None`.
     pub user_check: Option<TokenStream>,
     /// The runtime's path in a lanes function (`derivatives_lanes`), where
-    /// every value is a `Lanes<L>`: literals, parameters and constants are
-    /// splat into every lane, user functions called lane by lane.
+    /// every value is a `Lanes<L>`: literals are splat into every lane,
+    /// parameters and constants read from the lane values, user functions
+    /// called lane by lane.
     pub lanes: Option<TokenStream>,
 }
 
@@ -331,8 +336,9 @@ impl ExprPrinter<'_> {
         if self.hoisted
             && let Some(k) = self.constant_slot.get(&n)
         {
+            let slot = LaneValue::Constant(*k);
             let (c, k) = (&self.locals.c, Literal::usize_unsuffixed(*k));
-            return self.splat(quote!(#c.p[#k]));
+            return self.read(slot, quote!(#c.p[#k]));
         }
         self.definition(n)
     }
@@ -426,6 +432,19 @@ impl ExprPrinter<'_> {
         }
     }
 
+    /// `scalar`, the value read from the model; in a lanes function,
+    /// `v[i]`, its place in the lane values (`lane_values.rs`).
+    pub fn read(&self, value: LaneValue, scalar: TokenStream) -> TokenStream {
+        match self.lanes {
+            Some(_) => {
+                let v = &self.locals.values;
+                let i = Literal::usize_unsuffixed(value.index(self.prog));
+                quote!(#v[#i])
+            }
+            None => scalar,
+        }
+    }
+
     /// A user function called once per lane (its results checked where
     /// the function returns `Result`): the arguments evaluated first, as
     /// one call evaluates them.
@@ -452,7 +471,7 @@ impl ExprPrinter<'_> {
             Leaf::Param(k) => {
                 let id = ident(&i.model.parameters[k].name);
                 let p = &self.locals.p;
-                self.splat(quote!(#p.#id))
+                self.read(LaneValue::Parameter(k), quote!(#p.#id))
             }
             Leaf::State(k) => {
                 let id = ident(&i.states.state(k).name);

@@ -5,6 +5,7 @@ mod block;
 mod copy_macros;
 mod expr;
 mod file;
+mod lane_values;
 mod markdown;
 mod model;
 mod pack;

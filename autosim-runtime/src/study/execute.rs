@@ -12,7 +12,7 @@ use indicatif::ProgressBar;
 use rayon::prelude::*;
 
 use super::lockstep::GROUP;
-use super::targets::{Setter, Target, initial_state, resolve, same_model};
+use super::targets::{Setter, Target, resolve};
 use super::{CaseError, Parallelism, Results, Study, StudyError, Task, progress};
 use crate::{Model, StateArray};
 
@@ -131,9 +131,9 @@ where
         self.lockstep && M::LOCKSTEP && self.setup.is_none() && self.task.runs_in_lockstep()
     }
 
-    /// Runs the group of cases `first..` (`rows`, at most [`GROUP`]): the
-    /// ones that share the first one's model in lockstep, the others and
-    /// those that do not finish there one at a time.
+    /// Runs the group of cases `first..` (`rows`, at most [`GROUP`]) in
+    /// lockstep, each on its own model; those that do not finish there,
+    /// one at a time.
     fn run_group(
         &self,
         targets: &[Target],
@@ -156,42 +156,26 @@ where
         }
     }
 
-    /// Runs the cases of `rows` that share the first one's model together
-    /// ([`Task::run_group`]); returns which finished.
+    /// Runs the cases of `rows` together ([`Task::run_group`]), each on a
+    /// model of its own, set as `run_case` sets it; returns which
+    /// finished.
     fn run_together(
         &self,
         targets: &[Target],
         setter: &mut Setter<M::Float>,
         rows: &mut [Row<'_>],
     ) -> [bool; GROUP] {
-        let mut model = (self.make_model)();
+        let n = rows.len().min(GROUP);
+        let mut models: [M; GROUP] = core::array::from_fn(|_| (self.make_model)());
         let mut xs = [M::State::zeros(); GROUP];
         let mut outs: [&mut [f64]; GROUP] = Default::default();
-        let mut which = [0; GROUP];
-        let mut n = 0;
-        let members: [bool; GROUP] = core::array::from_fn(|i| {
-            rows.get(i)
-                .is_some_and(|row| same_model(targets, row.0, rows[0].0))
-        });
-        for (i, (case, out, _)) in rows.iter_mut().enumerate().take(GROUP) {
-            if !members[i] {
-                continue;
-            }
-            xs[n] = match n {
-                0 => setter.apply(targets, case, &mut model),
-                _ => initial_state(targets, case, &model),
-            };
-            outs[n] = &mut **out;
-            which[n] = i;
-            n += 1;
+        for (i, (case, out, _)) in rows.iter_mut().enumerate().take(n) {
+            xs[i] = setter.apply(targets, case, &mut models[i]);
+            outs[i] = &mut **out;
         }
-        let mut finished = [false; GROUP];
-        self.task
-            .run_group(&mut model, &xs[..n], &mut outs[..n], &mut finished[..n]);
         let mut done = [false; GROUP];
-        for (w, f) in which[..n].iter().zip(&finished) {
-            done[*w] = *f;
-        }
+        self.task
+            .run_group(&mut models[..n], &xs[..n], &mut outs[..n], &mut done[..n]);
         done
     }
 

@@ -1,25 +1,29 @@
 //! Lockstep: a simulation study integrates up to [`GROUP`] cases
-//! together, each stage of each step evaluating all of them in one
-//! [`Model::derivatives_batch`] call (four states per call of a generated
-//! model's `derivatives_lanes`, with the `lanes` option).
+//! together, each on its own model, each stage of each step evaluating
+//! all of them in one [`Model::derivatives_each`] call (four states per
+//! call of a generated model's `derivatives_lanes`, with the `lanes`
+//! option, each lane reading its own case's parameters and inputs).
 //!
 //! # When
 //!
 //! The model must allow it: [`Model::LOCKSTEP`], which models generated
-//! with the `lanes` option set (their `derivatives_batch` is where the
+//! with the `lanes` option set (their `derivatives_each` is where the
 //! time goes away, and the option already asks user code not to depend on
 //! the order of calls). Other models run one case at a time: their
-//! `derivatives_batch` is one `derivatives` call per state, which gains
+//! `derivatives_each` is one `derivatives` call per state, which gains
 //! nothing (chain-spatial-10 without lanes ran 5 % slower in lockstep),
 //! and user code that keeps state (allowed there, with fresh state per
-//! case) would see the calls of four cases interleaved on one model.
+//! case) would see the calls of four cases interleaved.
 //!
 //! A group is cases next to each other in the table (a chunk of
-//! [`GROUP`]) that share one model: the study has no setup function, and
-//! the cases' parameter and input columns hold the same values (the
-//! first case's; the others run alone), so they differ only in their
-//! initial states (a Monte Carlo or a grid over initial conditions). The
-//! task must say it can ([`Task::runs_in_lockstep`](super::Task)):
+//! [`GROUP`]), whatever their parameters, inputs and initial states (a
+//! parameter sweep, a Monte Carlo, a grid over initial conditions): each
+//! case has its own model, set as it is when it runs alone, and the
+//! lanes function reads each lane's parameters, constants and inputs from
+//! its case's model (user code is called on the group's first model for
+//! every lane: its results depend on its arguments alone). The study must
+//! have no setup function (which may change a model in ways the lanes
+//! cannot see). The task must say it can ([`Task::runs_in_lockstep`](super::Task)):
 //! [`Simulate`](super::Simulate) with Euler, Heun or RK4 (fixed steps,
 //! the same times for every case) of a model without events or discrete
 //! variables (whose cases would take different steps and actions).
@@ -34,15 +38,16 @@
 //! its own scratch space; lockstep only makes the unit of work a chunk of
 //! [`GROUP`] rows instead of one row, so threads, the progress bar, shards
 //! and resuming are untouched, and nothing is shared between threads.
-//! One model per group serves every case, which is why the cases must
-//! share parameters and inputs: `derivatives_batch` evaluates many states
-//! of one model. Each case does the arithmetic it does alone: the same
+//! Each case keeps its own model, so a lane that leaves takes its model
+//! with it, and the outputs, assembly and projection of each case are its
+//! own model's. Each case does the arithmetic it does alone: the same
 //! ticks (times and steps, [`fixed_ticks`], tested equal to the run
 //! driver's), the same Runge–Kutta combinations
 //! ([`combine_lane`](crate::integrate::combine_lane) sums what the
 //! single stepper's `combine_row` sums, in the same order), and
-//! `derivatives_batch` gives each state the bits `derivatives` gives it
-//! (its contract, tested for generated models in `tests/lanes.rs`). The
+//! `derivatives_each` gives each state the bits its model's `derivatives`
+//! gives it (its contract, tested for generated models in
+//! `tests/lanes.rs`). The
 //! model's functions must be functions of their arguments (what
 //! [`Model::LOCKSTEP`] promises).
 //!
@@ -52,7 +57,8 @@
 //! contiguous) and is run again alone by the study: it fails exactly as
 //! it does alone, with the same error. A panic anywhere in a group runs
 //! the whole group again, case by case. Nothing is allocated: the
-//! workspaces are arrays of [`GROUP`] states on the worker's stack.
+//! workspaces are arrays of [`GROUP`] states on the worker's stack, the
+//! models the study's, one per case of the group.
 
 use crate::batch::LANES;
 use crate::error::{check_finite_outputs, check_finite_parameters};
@@ -65,12 +71,14 @@ use super::simulate::Plan;
 /// Cases integrated together: one batch of [`LANES`] states per stage.
 pub(super) const GROUP: usize = LANES;
 
-/// The cases of a group still running (the first `n` lanes), with the
-/// workspaces of a Runge–Kutta method of `S` stages.
-struct Lanes<M: Model, const S: usize> {
+/// The cases of a group still running (the first `n` lanes, each with its
+/// model), with the workspaces of a Runge–Kutta method of `S` stages.
+struct Lanes<'m, M: Model, const S: usize> {
     n: usize,
     /// The case (index into the group) each lane runs.
     case: [usize; GROUP],
+    /// Each lane's model (its case's).
+    models: &'m mut [M],
     x: [M::State; GROUP],
     /// `k[j][lane]`: stage `j`'s derivatives.
     k: [[M::State; GROUP]; S],
@@ -79,16 +87,18 @@ struct Lanes<M: Model, const S: usize> {
     status: [Result<(), ModelError>; GROUP],
 }
 
-impl<M: Model, const S: usize> Lanes<M, S> {
-    /// Lanes for the cases starting at `xs` (at most [`GROUP`]).
-    fn new(xs: &[M::State]) -> Lanes<M, S> {
+impl<'m, M: Model, const S: usize> Lanes<'m, M, S> {
+    /// Lanes for the cases starting at `xs` on `models` (at most [`GROUP`],
+    /// as many as both have).
+    fn new(models: &'m mut [M], xs: &[M::State]) -> Lanes<'m, M, S> {
         let z = M::State::zeros();
         let mut x = [z; GROUP];
-        let n = xs.len().min(GROUP);
+        let n = xs.len().min(models.len()).min(GROUP);
         x[..n].copy_from_slice(&xs[..n]);
         Lanes {
             n,
             case: core::array::from_fn(|l| l),
+            models,
             x,
             k: [[z; GROUP]; S],
             stage: [z; GROUP],
@@ -100,6 +110,7 @@ impl<M: Model, const S: usize> Lanes<M, S> {
     fn remove(&mut self, l: usize) {
         let last = self.n - 1;
         self.case.swap(l, last);
+        self.models.swap(l, last);
         self.x.swap(l, last);
         self.stage.swap(l, last);
         for k in &mut self.k {
@@ -118,29 +129,35 @@ impl<M: Model, const S: usize> Lanes<M, S> {
     }
 
     /// Stage `i`'s derivatives at time `t` (of the states `x` for the
-    /// first stage, `stage` for the others), one batch; the lanes that
-    /// fail leave.
-    fn evaluate(&mut self, model: &mut M, t: M::Float, i: usize) {
+    /// first stage, `stage` for the others), one call for every lane; the
+    /// lanes that fail leave.
+    fn evaluate(&mut self, t: M::Float, i: usize) {
         let n = self.n;
         let states = if i == 0 { &self.x } else { &self.stage };
-        model.derivatives_batch(t, &states[..n], &mut self.k[i][..n], &mut self.status[..n]);
+        M::derivatives_each(
+            &mut self.models[..n],
+            t,
+            &states[..n],
+            &mut self.k[i][..n],
+            &mut self.status[..n],
+        );
         self.retain(|lanes, l| lanes.status[l].is_ok());
     }
 
     /// One step of `tableau` from `t` by `h` for every lane: what the
     /// fixed-step steppers do to one state (the step checked, the new
     /// state checked before it replaces the old).
-    fn step(&mut self, model: &mut M, tableau: &Tableau<S>, t: M::Float, h: M::Float) {
+    fn step(&mut self, tableau: &Tableau<S>, t: M::Float, h: M::Float) {
         if check_step(h).is_err() {
             self.n = 0;
             return;
         }
-        self.evaluate(model, t, 0);
+        self.evaluate(t, 0);
         for i in 1..S {
             for l in 0..self.n {
                 combine_lane(&mut self.stage[l], &self.x[l], h, tableau.a[i], &self.k, l);
             }
-            self.evaluate(model, t + M::Float::from_f64(tableau.c[i]) * h, i);
+            self.evaluate(t + M::Float::from_f64(tableau.c[i]) * h, i);
         }
         for l in 0..self.n {
             combine_lane(&mut self.stage[l], &self.x[l], h, &tableau.b, &self.k, l);
@@ -153,15 +170,14 @@ impl<M: Model, const S: usize> Lanes<M, S> {
     }
 }
 
-/// What the run driver does at the start: the parameters and states
-/// checked, the states assembled; the lanes that fail leave.
-fn begin<M: Model, const S: usize>(model: &mut M, lanes: &mut Lanes<M, S>, t: M::Float) {
-    if check_finite_parameters(model, t).is_err() {
-        lanes.n = 0;
-        return;
-    }
+/// What the run driver does at the start: each lane's parameters and
+/// state checked, its state assembled; the lanes that fail leave.
+fn begin<M: Model, const S: usize>(lanes: &mut Lanes<'_, M, S>, t: M::Float) {
     lanes.retain(|lanes, l| {
-        check_finite::<M>(t, &lanes.x[l]).is_ok() && model.assemble(t, &mut lanes.x[l]).is_ok()
+        let model = &mut lanes.models[l];
+        check_finite_parameters(model, t).is_ok()
+            && check_finite::<M>(t, &lanes.x[l]).is_ok()
+            && model.assemble(t, &mut lanes.x[l]).is_ok()
     });
 }
 
@@ -169,8 +185,7 @@ fn begin<M: Model, const S: usize>(model: &mut M, lanes: &mut Lanes<M, S>, t: M:
 /// of its case's row; the lanes that fail leave. Returns the next entry
 /// of the plan's `at` (the same for every case).
 fn emit<M: Model, const S: usize>(
-    model: &mut M,
-    lanes: &mut Lanes<M, S>,
+    lanes: &mut Lanes<'_, M, S>,
     (plan, outs): (&Plan, &mut [&mut [f64]]),
     t: M::Float,
     (k, next_at): (u64, usize),
@@ -179,7 +194,8 @@ fn emit<M: Model, const S: usize>(
     let mut next = next_at;
     lanes.retain(|lanes, l| {
         let x = &lanes.x[l];
-        let ok = model.outputs(t, x, &mut y).is_ok() && check_finite_outputs::<M>(t, &y).is_ok();
+        let ok = lanes.models[l].outputs(t, x, &mut y).is_ok()
+            && check_finite_outputs::<M>(t, &y).is_ok();
         if ok {
             next = plan.record::<M>(k, next_at, outs[lanes.case[l]], x, &y);
         }
@@ -188,12 +204,14 @@ fn emit<M: Model, const S: usize>(
     next
 }
 
-/// Runs the cases starting at `xs` (at most [`GROUP`]) together on
-/// `model` with `tableau`, as [`run`](crate::run()) runs each with the
-/// fixed-step stepper of that tableau; `done[k]` is set for the cases
-/// that finished (their rows in `outs[k]` written).
+/// Runs the cases starting at `xs` (at most [`GROUP`]) together, case `k`
+/// on `models[k]`, with `tableau`, as [`run`](crate::run()) runs each with
+/// the fixed-step stepper of that tableau; `done[k]` is set for the cases
+/// that finished (their rows in `outs[k]` written). The models of the
+/// cases that leave are swapped among `models`' first entries (the study
+/// makes fresh ones for a case it runs again).
 pub(super) fn simulate<M: Model, const S: usize>(
-    model: &mut M,
+    models: &mut [M],
     tableau: &Tableau<S>,
     settings: &RunSettings<M::Float>,
     plan: &Plan,
@@ -201,17 +219,17 @@ pub(super) fn simulate<M: Model, const S: usize>(
     outs: &mut [&mut [f64]],
     done: &mut [bool],
 ) {
-    let mut lanes = Lanes::<M, S>::new(xs);
+    let mut lanes = Lanes::<M, S>::new(models, xs);
     lanes.n = lanes.n.min(outs.len()).min(done.len());
     for out in outs.iter_mut().take(lanes.n) {
         plan.begin(out);
     }
-    begin(model, &mut lanes, settings.start);
+    begin(&mut lanes, settings.start);
     let (mut steps, mut k, mut next_at) = (0, 0, 0);
     let finished = fixed_ticks(settings, |tick| {
         match tick {
             Tick::Output(t) => {
-                next_at = emit(model, &mut lanes, (plan, outs), t, (k, next_at));
+                next_at = emit(&mut lanes, (plan, outs), t, (k, next_at));
                 k += 1;
             }
             Tick::Step { t, h, t_end } => {
@@ -219,9 +237,13 @@ pub(super) fn simulate<M: Model, const S: usize>(
                     // The step limit: every case fails alone.
                     return Err(());
                 }
-                lanes.step(model, tableau, t, h);
+                lanes.step(tableau, t, h);
                 let tolerance = settings.projection_tolerance;
-                lanes.retain(|lanes, l| model.project(t_end, &mut lanes.x[l], tolerance).is_ok());
+                lanes.retain(|lanes, l| {
+                    lanes.models[l]
+                        .project(t_end, &mut lanes.x[l], tolerance)
+                        .is_ok()
+                });
                 steps += 1;
             }
         }

@@ -59,12 +59,12 @@
 //! [`Method::Heun`], [`Method::Rk4`]) of a model that allows it
 //! ([`Model::LOCKSTEP`]: models generated with the `lanes` option) and has
 //! no events or discrete variables, in a study without a
-//! [`setup`](Study::setup) function, integrates up to four neighbouring
-//! cases of the table that
-//! share their parameter and input values (they differ in their initial
-//! states) together: each stage evaluates their states in one
-//! [`Model::derivatives_batch`] call (four states per call of
-//! `derivatives_lanes`). The results are the same bits as
+//! [`setup`](Study::setup) function, integrates four neighbouring cases
+//! of the table together, whatever their parameters, inputs and initial
+//! states, each on its own model: each stage evaluates their states in
+//! one [`Model::derivatives_each`] call (four states per call of
+//! `derivatives_lanes`, each lane reading its own case's parameters,
+//! constants and inputs). The results are the same bits as
 //! one case at a time, failures included (a case that fails is run again
 //! alone, and fails as it does alone); other studies run one case at a
 //! time. [`Study::lockstep`] turns it off.

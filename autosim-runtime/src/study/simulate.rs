@@ -375,7 +375,7 @@ where
 
     fn run_group(
         &self,
-        model: &mut M,
+        models: &mut [M],
         xs: &[M::State],
         outs: &mut [&mut [f64]],
         done: &mut [bool],
@@ -385,9 +385,9 @@ where
         }
         let (settings, plan) = (&self.settings, &self.plan);
         match self.method {
-            Method::Euler => lockstep::simulate(model, &EULER, settings, plan, xs, outs, done),
-            Method::Heun => lockstep::simulate(model, &HEUN, settings, plan, xs, outs, done),
-            Method::Rk4 => lockstep::simulate(model, &RK4, settings, plan, xs, outs, done),
+            Method::Euler => lockstep::simulate(models, &EULER, settings, plan, xs, outs, done),
+            Method::Heun => lockstep::simulate(models, &HEUN, settings, plan, xs, outs, done),
+            Method::Rk4 => lockstep::simulate(models, &RK4, settings, plan, xs, outs, done),
             _ => {}
         }
     }

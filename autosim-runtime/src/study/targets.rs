@@ -142,7 +142,7 @@ impl<F: Float> Setter<F> {
 
 /// The model's initial state with the case's initial states (`values` of
 /// the state columns) set.
-pub(super) fn initial_state<M: Model>(targets: &[Target], values: &[f64], model: &M) -> M::State {
+fn initial_state<M: Model>(targets: &[Target], values: &[f64], model: &M) -> M::State {
     let mut x = model.initial_state();
     for (t, v) in targets.iter().zip(values) {
         if let Target::State(k) = *t {
@@ -150,12 +150,4 @@ pub(super) fn initial_state<M: Model>(targets: &[Target], values: &[f64], model:
         }
     }
     x
-}
-
-/// Whether two cases' values (`a`, `b`) make the same model: the same
-/// bits in every parameter and input column.
-pub(super) fn same_model(targets: &[Target], a: &[f64], b: &[f64]) -> bool {
-    targets.iter().zip(a.iter().zip(b)).all(|(t, (a, b))| {
-        !matches!(t, Target::Parameter(_) | Target::Input(_)) || a.to_bits() == b.to_bits()
-    })
 }

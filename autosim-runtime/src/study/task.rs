@@ -78,21 +78,21 @@ pub trait Task<M: Model>: Sync {
         false
     }
 
-    /// Runs cases together that share `model` (the same parameters and
-    /// inputs) and differ in their initial states `xs`: writes case `k`'s
-    /// kept values into `outs[k]` and sets `done[k]` when it finished
-    /// exactly as [`Task::run`] would have, bit for bit. A case left not
-    /// done (one that fails, or every case, as the default does) is run
-    /// again alone by the study, so it fails as it does alone; its row is
-    /// then written again.
+    /// Runs cases together, case `k` on `models[k]` (with its parameters
+    /// and inputs) from its initial state `xs[k]`: writes case `k`'s kept
+    /// values into `outs[k]` and sets `done[k]` when it finished exactly
+    /// as [`Task::run`] would have, bit for bit. A case left not done (one
+    /// that fails, or every case, as the default does) is run again alone
+    /// by the study on a fresh model, so it fails as it does alone; its
+    /// row is then written again. `models` may come back in another order.
     fn run_group(
         &self,
-        model: &mut M,
+        models: &mut [M],
         xs: &[M::State],
         outs: &mut [&mut [f64]],
         done: &mut [bool],
     ) {
-        let _ = (model, xs, outs, done);
+        let _ = (models, xs, outs, done);
     }
 }
 

@@ -1,6 +1,9 @@
 //! Many states per call give the same bits as one call per state:
 //! `Model::derivatives_batch` (generated models: `derivatives_lanes`, four
-//! states at a time) against `derivatives` at each state, every
+//! states at a time) against `derivatives` at each state, and
+//! `Model::derivatives_each` (a model per state, each with its own
+//! parameters and inputs, as a study's cases in lockstep) against each
+//! model's `derivatives`, every
 //! derivative's bits and every error, at random states (with states that
 //! make a derivative or a user result non-finite, and state counts that
 //! leave a partial group), on each instruction-set copy, for models
@@ -45,39 +48,91 @@ fn states<M: Model>(model: &M, rng: &mut Rng, count: usize) -> Vec<M::State> {
         .collect()
 }
 
-/// Compares the batch with single calls on `model` at `count` states,
-/// with calls limited to the copy `path` (or the most capable the
-/// processor has, if less); returns (states, errors) compared.
-fn compare<M: Model>(model: &mut M, seed: u64, count: usize, path: Path) -> (usize, usize) {
+/// The outcomes of a batch: each state's error or derivatives' bits.
+fn outcomes<M: Model>(status: &[Result<(), ModelError>], dx: &[M::State]) -> Vec<Outcome> {
+    status
+        .iter()
+        .zip(dx)
+        .map(|(s, d)| s.map(|()| bits(d.as_ref())))
+        .collect()
+}
+
+/// `make()` with every parameter and input scaled by a random factor in
+/// [0.8, 1.2].
+fn varied<M: Model>(make: &impl Fn() -> M, rng: &mut Rng) -> M {
+    let mut model = make();
+    let mut vary = |values: &mut [M::Float]| {
+        for v in values {
+            *v = M::Float::from_f64(v.to_f64() * rng.uniform(0.8, 1.2));
+        }
+    };
+    let mut p = vec![M::Float::ZERO; M::PARAMETER_NAMES.len()];
+    model.parameter_values(&mut p);
+    vary(&mut p);
+    model.set_parameter_values(&p);
+    let mut u = vec![M::Float::ZERO; M::INPUT_NAMES.len()];
+    model.input_values(&mut u);
+    vary(&mut u);
+    model.set_input_values(&u);
+    model
+}
+
+/// Compares the batch with single calls on `make()` at `count` states, and
+/// `derivatives_each` with single calls on `count` models of varied
+/// parameters and inputs, with calls limited to the copy `path` (or the
+/// most capable the processor has, if less); returns (states, errors)
+/// compared.
+fn compare<M: Model>(make: &impl Fn() -> M, seed: u64, count: usize, path: Path) -> (usize, usize) {
     limit_path(path);
     let mut rng = Rng::new(seed);
-    let xs = states(model, &mut rng, count);
+    let mut model = make();
+    let xs = states(&model, &mut rng, count);
     let t = M::Float::from_f64(0.3);
-    let single: Vec<Outcome> = xs
-        .iter()
-        .map(|x| {
-            let mut dx = M::State::zeros();
-            model.derivatives(t, x, &mut dx).map(|()| bits(dx.as_ref()))
-        })
-        .collect();
+    let one = |model: &mut M, x: &M::State| {
+        let mut dx = M::State::zeros();
+        model.derivatives(t, x, &mut dx).map(|()| bits(dx.as_ref()))
+    };
+    let single: Vec<Outcome> = xs.iter().map(|x| one(&mut model, x)).collect();
     let mut dx = vec![M::State::zeros(); count];
     let mut status = vec![Ok(()); count];
     model.derivatives_batch(t, &xs, &mut dx, &mut status);
-    let batch: Vec<Outcome> = status
-        .iter()
-        .zip(&dx)
-        .map(|(s, d)| s.map(|()| bits(d.as_ref())))
-        .collect();
-    for (k, (one, many)) in single.iter().zip(&batch).enumerate() {
-        assert_eq!(one, many, "{} state {k} ({:?})", M::NAME, xs[k].as_ref());
+    for (k, (one, many)) in single.iter().zip(outcomes::<M>(&status, &dx)).enumerate() {
+        assert_eq!(*one, many, "{} state {k} ({:?})", M::NAME, xs[k].as_ref());
     }
+    let mut models: Vec<M> = (0..count).map(|_| varied(make, &mut rng)).collect();
+    let alone: Vec<Outcome> = models.iter_mut().zip(&xs).map(|(m, x)| one(m, x)).collect();
+    M::derivatives_each(&mut models, t, &xs, &mut dx, &mut status);
+    for (k, (one, each)) in alone.iter().zip(outcomes::<M>(&status, &dx)).enumerate() {
+        assert_eq!(
+            *one,
+            each,
+            "{} model and state {k} ({:?})",
+            M::NAME,
+            xs[k].as_ref()
+        );
+    }
+    // Each varied model computes other derivatives than the batch's one
+    // (where both are finite; the satellite's user code gives NaN at most
+    // of its states).
+    let both = |(a, b): (&Outcome, &Outcome)| a.is_ok() && b.is_ok();
+    let comparable = single.iter().zip(&alone).filter(|p| both(*p)).count();
+    let differ = single
+        .iter()
+        .zip(&alone)
+        .filter(|p| both(*p) && p.0 != p.1)
+        .count();
+    assert!(
+        differ == comparable || M::PARAMETER_NAMES.is_empty(),
+        "{}: {differ} of {comparable} differ",
+        M::NAME
+    );
     let errors = single.iter().filter(|o| o.is_err()).count();
     (count, errors)
 }
 
 /// [`compare`] on every copy and at two counts (a multiple of four and
 /// not); returns the states and errors compared.
-fn every_copy<M: Model>(mut model: M, seed: u64) -> (usize, usize) {
+fn every_copy<M: Model>(make: impl Fn() -> M, seed: u64) -> (usize, usize) {
     let mut total = (0, 0);
     let cases = [
         (Path::Baseline, 200),
@@ -86,7 +141,7 @@ fn every_copy<M: Model>(mut model: M, seed: u64) -> (usize, usize) {
         (Path::V4, 3),
     ];
     for (path, count) in cases {
-        let (n, e) = compare(&mut model, seed, count, path);
+        let (n, e) = compare(&make, seed, count, path);
         total = (total.0 + n, total.1 + e);
     }
     limit_path(Path::V4);
@@ -132,16 +187,16 @@ fn batch_gives_the_bits_and_errors_of_single_calls() {
 
 fn batch_matches_single_calls() {
     let runs = [
-        every_copy(models::chain_spatial7::ChainSpatial7::new(), 1),
-        every_copy(models::chain_spatial10::ChainSpatial10::new(), 2),
-        every_copy(models::chain_spatial20::ChainSpatial20::new(), 3),
-        every_copy(models::chain_planar10::ChainPlanar10::new(), 4),
-        every_copy(models::four_bar::FourBar::new(), 5),
-        every_copy(models::rolling_disc::RollingDisc::new(), 6),
-        every_copy(models::bicycle::Bicycle::new(), 7),
-        every_copy(models::satellite::Satellite::new(Thrusters), 8),
-        every_copy(models::quarter_car_bump_stop::QuarterCarBumpStop::new(), 9),
-        every_copy(models::chain_planar2_f32::ChainPlanar2F32::new(), 10),
+        every_copy(models::chain_spatial7::ChainSpatial7::new, 1),
+        every_copy(models::chain_spatial10::ChainSpatial10::new, 2),
+        every_copy(models::chain_spatial20::ChainSpatial20::new, 3),
+        every_copy(models::chain_planar10::ChainPlanar10::new, 4),
+        every_copy(models::four_bar::FourBar::new, 5),
+        every_copy(models::rolling_disc::RollingDisc::new, 6),
+        every_copy(models::bicycle::Bicycle::new, 7),
+        every_copy(|| models::satellite::Satellite::new(Thrusters), 8),
+        every_copy(models::quarter_car_bump_stop::QuarterCarBumpStop::new, 9),
+        every_copy(models::chain_planar2_f32::ChainPlanar2F32::new, 10),
     ];
     for (k, (states, errors)) in runs.iter().enumerate() {
         assert_eq!(*states, 609, "model #{k}");

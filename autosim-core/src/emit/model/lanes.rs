@@ -1,7 +1,11 @@
 //! Many states per call: `derivatives_lanes`, the `derivatives` block
 //! printed once more with every value a `Lanes<L>` (one `f64` per state,
-//! struct of arrays), and the `Model::derivatives_batch` that calls it
-//! four states at a time. Only for models with the `lanes` option (it
+//! struct of arrays) as `derivatives_lanes_with`, which reads parameters,
+//! constants, inputs and discrete variables from lane values
+//! (`lane_values`: lane `l` from the `l`-th of `L` models), and the
+//! `Model::derivatives_batch` (one model) and `Model::derivatives_each`
+//! (one model per state) that call it four states at a time. Only for
+//! models with the `lanes` option (it
 //! costs compile time: chain-spatial-10's model alone 0.8 → 8.5 s of
 //! release rustc) and `f64`: the others keep the default batch (one call
 //! per state).
@@ -9,6 +13,7 @@
 use super::functions;
 use super::versions::{Param, Signature, versions_of};
 use crate::emit::block::BlockEmitter;
+use crate::emit::lane_values;
 use crate::opt::{BlockKind, FloatType, Program};
 use proc_macro2::{Literal, TokenStream};
 use quote::{format_ident, quote};
@@ -20,9 +25,9 @@ pub(super) fn has_lanes(prog: &Program) -> bool {
     i.lanes && i.float == FloatType::F64 && !prog.states().is_empty()
 }
 
-/// The inherent items, `derivatives_lanes` (public) and its baseline copy,
-/// and the module-level items of its x86-64-v3 copy (`versions_of`,
-/// `lanes_copies`).
+/// The inherent items, `derivatives_lanes` (public), `lane_values` and
+/// `derivatives_lanes_with` with its baseline copy, and the module-level
+/// items of its x86-64-v3 copy (`versions_of`, `lanes_copies`).
 pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
     if !has_lanes(be.prog) {
         return Default::default();
@@ -40,6 +45,7 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
     let n_states = Literal::usize_unsuffixed(prog.states().len());
     let l = &be.locals.lanes;
     let lane_ty = quote!(#rt::__private::Lanes<#l>);
+    let values_ty = values_type(be);
     let functions::Args { t, x } = functions::args(prog, BlockKind::Derivatives, be.locals);
     let ldx = &be.locals.dx;
     let body = functions::body(&lanes, BlockKind::Derivatives);
@@ -47,7 +53,13 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
         "_" => TokenStream::new(),
         _ => quote!(let t = Lanes::<#l>::splat(t);),
     };
+    let v = &be.locals.values;
+    let v_pattern = match lane_values::read_by_derivatives(prog) {
+        true => quote!(#v),
+        false => quote!(_),
+    };
     let params = [
+        (v_pattern, "v", quote!(&#values_ty)),
         (t, "t", quote!(f64)),
         (x, "x", quote!(&[#lane_ty; #n_states])),
         (quote!(#ldx), "dx", quote!(&mut [#lane_ty; #n_states])),
@@ -60,7 +72,7 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
     let impl_head = super::impl_head(&prog.interface);
     let signature = Signature {
         impl_head: &impl_head,
-        name: "derivatives_lanes",
+        name: "derivatives_lanes_with",
         generics: quote!(<const #l: usize>),
         receiver: quote!(&mut self),
         params: &params,
@@ -79,6 +91,7 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
         },
     );
     let (caller, copies) = (versions.caller, versions.copies);
+    let values = values_fn(be);
     let inherent = quote! {
         /// `derivatives` at `L` states at once, in struct-of-arrays form:
         /// `x[i].0[l]` is state `i` of the `l`-th state vector, and
@@ -88,16 +101,58 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
         /// singular pivot, a non-finite derivative or user result) is that
         /// of some lane: `Model::derivatives` at each state tells which
         /// (`Model::derivatives_batch` does it).
-        pub #caller
+        pub fn derivatives_lanes<const #l: usize>(
+            &mut self,
+            t: f64,
+            x: &[#lane_ty; #n_states],
+            dx: &mut [#lane_ty; #n_states],
+        ) -> Result<(), #rt::ModelError> {
+            let v = Self::lane_values([&*self; #l]);
+            self.derivatives_lanes_with(&v, t, x, dx)
+        }
+
+        #values
+
+        /// `derivatives_lanes` with the lane values `v` (`lane_values`).
+        #caller
 
         #copies
     };
     (inherent, versions.items)
 }
 
-/// `Model::derivatives_batch` through `derivatives_lanes`, four states at
-/// a time, and `Model::LOCKSTEP` (nothing for a model without lanes: the
-/// default loop, and studies one case at a time).
+/// `[Lanes<L>; K]`, the type of the lane values.
+fn values_type(be: &BlockEmitter<'_>) -> TokenStream {
+    let (rt, l) = (&be.rt, &be.locals.lanes);
+    let len = Literal::usize_unsuffixed(lane_values::len(be.prog));
+    quote!([#rt::__private::Lanes<#l>; #len])
+}
+
+/// `lane_values`: what `derivatives_lanes_with` reads besides the time
+/// and the states, lane `l` from `models[l]`.
+fn values_fn(be: &BlockEmitter<'_>) -> TokenStream {
+    let (rt, l) = (&be.rt, &be.locals.lanes);
+    let values_ty = values_type(be);
+    let reads = lane_values::reads(be.prog, &quote!(m));
+    let model = match reads.is_empty() {
+        true => quote!(_),
+        false => quote!(m),
+    };
+    quote! {
+        /// The parameters, constants, inputs and discrete variables of
+        /// `models` as lanes: lane `l` is `models[l]`'s.
+        fn lane_values<const #l: usize>(models: [&Self; #l]) -> #values_ty {
+            let rows = models.map(|#model| [#(#reads),*]);
+            core::array::from_fn(|k| #rt::__private::Lanes(core::array::from_fn(|l| rows[l][k])))
+        }
+    }
+}
+
+/// `Model::derivatives_batch` (one model, its lane values computed once
+/// per call) and `Model::derivatives_each` (a model per state) through
+/// `derivatives_lanes_with`, four states at a time, and `Model::LOCKSTEP`
+/// (nothing for a model without lanes: the default loops, and studies one
+/// case at a time).
 pub(super) fn batch(be: &BlockEmitter<'_>) -> TokenStream {
     if !has_lanes(be.prog) {
         return TokenStream::new();
@@ -114,13 +169,32 @@ pub(super) fn batch(be: &BlockEmitter<'_>) -> TokenStream {
             dx: &mut [[f64; #n_states]],
             status: &mut [Result<(), #rt::ModelError>],
         ) {
+            let v = Self::lane_values([&*self; #rt::batch::LANES]);
             #rt::__private::in_lanes::<Self, { #rt::batch::LANES }, #n_states>(
                 self,
                 t,
                 x,
                 dx,
                 status,
-                |model, t, x, dx| model.derivatives_lanes(t, x, dx),
+                |model, t, x, dx| model.derivatives_lanes_with(&v, t, x, dx),
+            )
+        }
+
+        fn derivatives_each(
+            models: &mut [Self],
+            t: f64,
+            x: &[[f64; #n_states]],
+            dx: &mut [[f64; #n_states]],
+            status: &mut [Result<(), #rt::ModelError>],
+        ) {
+            #rt::__private::each_in_lanes::<Self, _, { #rt::batch::LANES }, #n_states>(
+                models,
+                t,
+                x,
+                dx,
+                status,
+                Self::lane_values::<{ #rt::batch::LANES }>,
+                |model, v, t, x, dx| model.derivatives_lanes_with(v, t, x, dx),
             )
         }
     }

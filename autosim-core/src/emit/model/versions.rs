@@ -76,7 +76,8 @@ pub(super) fn copies(prog: &crate::opt::Program) -> Copies {
     }
 }
 
-/// The copies of `derivatives_lanes`: those of `derivatives` but
+/// The copies of `derivatives_lanes_with` (the lanes function): those of
+/// `derivatives` but
 /// x86-64-v4, whose copy fuses the same products as x86-64-v3's (the same
 /// bits) and was no faster in lanes: `derivatives_batch` per state,
 /// x86-64-v3 against x86-64-v4 copy, 512 random states, medians of 60

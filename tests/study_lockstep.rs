@@ -18,7 +18,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use autosim::runtime::study::{
     Cases, Distribution, Keep, Method, Parallelism, Results, Simulate, Statistic, Study,
 };
-use autosim::runtime::{Model, ModelError, RunSettings};
+use autosim::runtime::{Lanes, Model, ModelError, RunSettings};
 
 autosim::model!(file = "examples/models/chain_planar_3.sim", lanes = true);
 use chain_planar3::ChainPlanar3;
@@ -170,6 +170,7 @@ impl Model for Quirky {
     }
     fn derivatives_each(
         models: &mut [Quirky],
+        _: &[Lanes<4>],
         t: f64,
         x: &[[f64; 1]],
         dx: &mut [[f64; 1]],

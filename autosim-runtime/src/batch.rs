@@ -65,24 +65,48 @@ pub fn in_lanes<M, const L: usize, const N: usize>(
     );
 }
 
-/// [`Model::derivatives_each`] through a model's lanes function (generated
-/// models' override): `models[k]` at state `x[k]`, in groups of `L` whose
-/// lane `l` reads the parameters, constants and inputs of the group's
-/// `l`-th model (`values`, the generated `lane_values`) while user code
-/// is called on the group's first model (what [`Model::LOCKSTEP`]
-/// allows). A group in which any state fails, and the models left over
-/// after the last full group, are evaluated one call each, so that each
-/// state gets exactly the result its model's [`Model::derivatives`] gives
-/// it.
+/// [`Model::lane_values`] through a model's gather of one group, `of`
+/// (generated models' override): `values[g * K..(g + 1) * K]` is
+/// `of` the `g`-th full group of `L` models, as far as `values` reaches.
 #[inline]
-pub fn each_in_lanes<M, V, const L: usize, const N: usize>(
+pub fn values_in_groups<M, const L: usize, const K: usize>(
+    models: &[M],
+    values: &mut [Lanes<L>],
+    of: impl Fn([&M; L]) -> [Lanes<L>; K],
+) {
+    if K == 0 {
+        return;
+    }
+    for (group, v) in models.chunks_exact(L).zip(values.chunks_exact_mut(K)) {
+        v.copy_from_slice(&of(core::array::from_fn(|l| &group[l])));
+    }
+}
+
+/// [`Model::derivatives_each`] through a model's lanes function `lanes`
+/// (generated models' override): `models[k]` at state `x[k]`, in groups of
+/// `L` whose lane `l` reads the values of the group's `l`-th model
+/// (`values[g * K..(g + 1) * K]`, what [`values_in_groups`] gathered)
+/// while user code is called on the group's first model (what
+/// [`Model::LOCKSTEP`] allows). A group whose values `values` does not
+/// hold, a group in which any state fails, and the models left over after
+/// the last full group are evaluated one call each, so that each state
+/// gets exactly the result its model's [`Model::derivatives`] gives it.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+pub fn each_in_lanes<M, const L: usize, const K: usize, const N: usize>(
     models: &mut [M],
+    values: &[Lanes<L>],
     t: f64,
     x: &[[f64; N]],
     dx: &mut [[f64; N]],
     status: &mut [Result<(), ModelError>],
-    values: impl Fn([&M; L]) -> V,
-    mut lanes: impl FnMut(&mut M, &V, f64, &[Lanes<L>; N], &mut [Lanes<L>; N]) -> Result<(), ModelError>,
+    mut lanes: impl FnMut(
+        &mut M,
+        &[Lanes<L>; K],
+        f64,
+        &[Lanes<L>; N],
+        &mut [Lanes<L>; N],
+    ) -> Result<(), ModelError>,
 ) where
     M: Model<Float = f64, State = [f64; N]>,
 {
@@ -92,12 +116,14 @@ pub fn each_in_lanes<M, V, const L: usize, const N: usize>(
     for g in 0..groups {
         let range = g * L..(g + 1) * L;
         let group = &mut models[range.clone()];
-        let v = values(core::array::from_fn(|l| &group[l]));
+        let v = values
+            .get(g * K..(g + 1) * K)
+            .and_then(|v| <&[Lanes<L>; K]>::try_from(v).ok());
         let soa_x: [Lanes<L>; N] =
             core::array::from_fn(|i| Lanes(core::array::from_fn(|l| x[range.start + l][i])));
-        match lanes(&mut group[0], &v, t, &soa_x, &mut soa_dx) {
-            Ok(()) => scatter(&soa_dx, &mut dx[range.clone()], &mut status[range]),
-            Err(_) => each_alone(
+        match v.map(|v| lanes(&mut group[0], v, t, &soa_x, &mut soa_dx)) {
+            Some(Ok(())) => scatter(&soa_dx, &mut dx[range.clone()], &mut status[range]),
+            _ => each_alone(
                 group,
                 t,
                 &x[range.clone()],

@@ -145,7 +145,7 @@ pub use run::{
 /// Items used by generated code. Not a public API: it may change without notice.
 #[doc(hidden)]
 pub mod __private {
-    pub use crate::batch::{each_in_lanes, in_lanes};
+    pub use crate::batch::{each_in_lanes, in_lanes, values_in_groups};
     pub use crate::float::MulAdd;
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     pub use crate::float::dispatch::{Path, limit_path, path};

@@ -1,7 +1,9 @@
 //! The interface between generated models and everything that runs them.
 
 use crate::Float;
+use crate::batch::LANES;
 use crate::event::{EventIndicator, EventOutcome};
+use crate::float::lanes::Lanes;
 
 /// A fixed-size state (or output) vector: implemented for `[F; N]` only.
 ///
@@ -256,21 +258,45 @@ pub trait Model {
         crate::batch::one_by_one(self, t, x, dx, status);
     }
 
+    /// How many values [`Model::derivatives_each`] reads from each model
+    /// besides the state, which [`Model::lane_values`] gathers: for a
+    /// generated model with the `lanes` option, its parameters, the
+    /// constants computed from them, its inputs and discrete variables.
+    /// 0 by default.
+    const LANE_VALUES: usize = 0;
+
+    /// Gathers what [`Model::derivatives_each`] reads from `models` besides
+    /// the states, for each full group of [`LANES`] models
+    /// (`models[g * LANES..(g + 1) * LANES]`): value `k` of the group's
+    /// `l`-th model into `values[g * LANE_VALUES + k].0[l]` (as far as
+    /// `values` reaches). Done once for models whose values do not change
+    /// (a study's group of cases), it spares every later call the gather.
+    /// The default writes nothing.
+    fn lane_values(models: &[Self], values: &mut [Lanes<LANES>])
+    where
+        Self: Sized,
+    {
+        let _ = (models, values);
+    }
+
     /// The derivatives of several models of this type at one time `t`,
     /// each at its own state: `dx[k]` and `status[k]` are what
     /// `models[k].derivatives` gives for `x[k]` (up to the shortest of the
-    /// four slices; nothing is allocated). What a study's cases in
-    /// lockstep call, each case on its own model (its parameters and
-    /// inputs). Generated `f64` models with the `lanes` option evaluate
-    /// [`LANES`](crate::batch::LANES) models per call of their
-    /// `derivatives_lanes`, each lane reading its own model's parameters,
-    /// constants and inputs, with the same bits as one call per model;
-    /// user code is then called on the first model of each group of
-    /// [`LANES`](crate::batch::LANES), for every lane (what
+    /// four slices; nothing is allocated). `values` is what
+    /// [`Model::lane_values`] gathered from `models` as they are now: a
+    /// group of [`LANES`] models whose values it does not hold (an empty
+    /// `values`, say) is evaluated one call per model. What a study's
+    /// cases in lockstep call, each case on its own model (its parameters
+    /// and inputs). Generated `f64` models with the `lanes` option evaluate
+    /// each full group in one call of their `derivatives_lanes`, each lane
+    /// reading its own model's parameters, constants and inputs from
+    /// `values`, with the same bits as one call per model; user code is
+    /// then called on the group's first model, for every lane (what
     /// [`Model::LOCKSTEP`] allows). The default calls
     /// [`Model::derivatives`] once per model.
     fn derivatives_each(
         models: &mut [Self],
+        values: &[Lanes<LANES>],
         t: Self::Float,
         x: &[Self::State],
         dx: &mut [Self::State],
@@ -278,6 +304,7 @@ pub trait Model {
     ) where
         Self: Sized,
     {
+        let _ = values;
         crate::batch::each_alone(models, t, x, dx, status);
     }
 

@@ -1,7 +1,7 @@
 //! What a lanes function reads besides the time and the states: one array
 //! `v` of `Lanes<L>`, lane `l` from the `l`-th model (a study's cases in
 //! lockstep each have their own parameters and inputs; one model's batch
-//! gives every lane the same), in the order the generated `lane_values`
+//! gives every lane the same), in the order the generated `values_in_lanes`
 //! fills it: the parameters, the constants computed from them, the inputs,
 //! the discrete variables. A read is one vector load, as cheap as the
 //! broadcast of a value from one model.

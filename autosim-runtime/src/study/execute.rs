@@ -173,9 +173,15 @@ where
             xs[i] = setter.apply(targets, case, &mut models[i]);
             outs[i] = &mut **out;
         }
+        M::lane_values(&models[..n], &mut setter.lane_values);
         let mut done = [false; GROUP];
-        self.task
-            .run_group(&mut models[..n], &xs[..n], &mut outs[..n], &mut done[..n]);
+        self.task.run_group(
+            &mut models[..n],
+            &setter.lane_values,
+            &xs[..n],
+            &mut outs[..n],
+            &mut done[..n],
+        );
         done
     }
 

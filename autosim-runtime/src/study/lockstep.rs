@@ -79,6 +79,9 @@ struct Lanes<'m, M: Model, const S: usize> {
     case: [usize; GROUP],
     /// Each lane's model (its case's).
     models: &'m mut [M],
+    /// What [`Model::lane_values`] gathered from the models, in their
+    /// first order: valid while every lane is there.
+    values: &'m [crate::Lanes<LANES>],
     x: [M::State; GROUP],
     /// `k[j][lane]`: stage `j`'s derivatives.
     k: [[M::State; GROUP]; S],
@@ -89,8 +92,12 @@ struct Lanes<'m, M: Model, const S: usize> {
 
 impl<'m, M: Model, const S: usize> Lanes<'m, M, S> {
     /// Lanes for the cases starting at `xs` on `models` (at most [`GROUP`],
-    /// as many as both have).
-    fn new(models: &'m mut [M], xs: &[M::State]) -> Lanes<'m, M, S> {
+    /// as many as both have), with the models' lane values.
+    fn new(
+        models: &'m mut [M],
+        values: &'m [crate::Lanes<LANES>],
+        xs: &[M::State],
+    ) -> Lanes<'m, M, S> {
         let z = M::State::zeros();
         let mut x = [z; GROUP];
         let n = xs.len().min(models.len()).min(GROUP);
@@ -99,6 +106,7 @@ impl<'m, M: Model, const S: usize> Lanes<'m, M, S> {
             n,
             case: core::array::from_fn(|l| l),
             models,
+            values,
             x,
             k: [[z; GROUP]; S],
             stage: [z; GROUP],
@@ -134,8 +142,12 @@ impl<'m, M: Model, const S: usize> Lanes<'m, M, S> {
     fn evaluate(&mut self, t: M::Float, i: usize) {
         let n = self.n;
         let states = if i == 0 { &self.x } else { &self.stage };
+        // Once a lane has left (fewer than a group), the values are stale
+        // and the lanes run one call each anyway.
+        let values = if n == GROUP { self.values } else { &[] };
         M::derivatives_each(
             &mut self.models[..n],
+            values,
             t,
             &states[..n],
             &mut self.k[i][..n],
@@ -205,13 +217,14 @@ fn emit<M: Model, const S: usize>(
 }
 
 /// Runs the cases starting at `xs` (at most [`GROUP`]) together, case `k`
-/// on `models[k]`, with `tableau`, as [`run`](crate::run()) runs each with
-/// the fixed-step stepper of that tableau; `done[k]` is set for the cases
-/// that finished (their rows in `outs[k]` written). The models of the
-/// cases that leave are swapped among `models`' first entries (the study
-/// makes fresh ones for a case it runs again).
+/// on `models[k]` (whose lane values [`Model::lane_values`] gathered into
+/// `values`), with `tableau`, as [`run`](crate::run()) runs each with the
+/// fixed-step stepper of that tableau; `done[k]` is set for the cases that
+/// finished (their rows in `outs[k]` written). The models of the cases
+/// that leave are swapped among `models`' first entries (the study makes
+/// fresh ones for a case it runs again).
 pub(super) fn simulate<M: Model, const S: usize>(
-    models: &mut [M],
+    (models, values): (&mut [M], &[crate::Lanes<LANES>]),
     tableau: &Tableau<S>,
     settings: &RunSettings<M::Float>,
     plan: &Plan,
@@ -219,7 +232,7 @@ pub(super) fn simulate<M: Model, const S: usize>(
     outs: &mut [&mut [f64]],
     done: &mut [bool],
 ) {
-    let mut lanes = Lanes::<M, S>::new(models, xs);
+    let mut lanes = Lanes::<M, S>::new(models, values, xs);
     lanes.n = lanes.n.min(outs.len()).min(done.len());
     for out in outs.iter_mut().take(lanes.n) {
         plan.begin(out);

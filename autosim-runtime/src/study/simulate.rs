@@ -10,9 +10,10 @@ use super::StudyError;
 use super::lockstep;
 use super::method::Method;
 use super::task::{CaseError, Field, Task};
+use crate::batch::LANES;
 use crate::integrate::{EULER, HEUN, RK4};
 use crate::run::Observer;
-use crate::{Float, IntegrationError, Model, RunSettings, run};
+use crate::{Float, IntegrationError, Lanes, Model, RunSettings, run};
 
 /// A summary statistic of a quantity over a run's output times (the
 /// samples the observer sees every `output_interval`, the start and the
@@ -376,6 +377,7 @@ where
     fn run_group(
         &self,
         models: &mut [M],
+        values: &[Lanes<LANES>],
         xs: &[M::State],
         outs: &mut [&mut [f64]],
         done: &mut [bool],
@@ -385,9 +387,15 @@ where
         }
         let (settings, plan) = (&self.settings, &self.plan);
         match self.method {
-            Method::Euler => lockstep::simulate(models, &EULER, settings, plan, xs, outs, done),
-            Method::Heun => lockstep::simulate(models, &HEUN, settings, plan, xs, outs, done),
-            Method::Rk4 => lockstep::simulate(models, &RK4, settings, plan, xs, outs, done),
+            Method::Euler => {
+                lockstep::simulate((models, values), &EULER, settings, plan, xs, outs, done)
+            }
+            Method::Heun => {
+                lockstep::simulate((models, values), &HEUN, settings, plan, xs, outs, done)
+            }
+            Method::Rk4 => {
+                lockstep::simulate((models, values), &RK4, settings, plan, xs, outs, done)
+            }
             _ => {}
         }
     }

@@ -5,7 +5,8 @@ use std::string::{String, ToString};
 use std::vec::Vec;
 
 use super::StudyError;
-use crate::{Float, Model};
+use crate::batch::LANES;
+use crate::{Float, Lanes, Model};
 
 /// What a column of the case table sets.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -88,11 +89,13 @@ fn unknown<M: Model>(name: &str, why: &str) -> StudyError {
 }
 
 /// Scratch space for setting a case: the model's parameter and input
-/// vectors and the setup function's values.
+/// vectors and the setup function's values; and for a group of cases in
+/// lockstep, their models' lane values ([`Model::lane_values`]).
 pub(super) struct Setter<F> {
     parameters: Vec<F>,
     inputs: Vec<F>,
     pub(super) setup: Vec<f64>,
+    pub(super) lane_values: Vec<Lanes<LANES>>,
 }
 
 impl<F: Float> Setter<F> {
@@ -101,6 +104,7 @@ impl<F: Float> Setter<F> {
             parameters: std::vec![F::ZERO; M::PARAMETER_NAMES.len()],
             inputs: std::vec![F::ZERO; M::INPUT_NAMES.len()],
             setup: std::vec![0.0; setup_len],
+            lane_values: std::vec![Lanes::ZERO; M::LANE_VALUES],
         }
     }
 

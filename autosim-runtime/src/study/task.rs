@@ -4,7 +4,8 @@
 use std::string::{String, ToString};
 use std::vec::Vec;
 
-use crate::{IntegrationError, Model, ModelError};
+use crate::batch::LANES;
+use crate::{IntegrationError, Lanes, Model, ModelError};
 
 /// A kept quantity: `len` values per case under one name (1 for a
 /// number; more for a time history or a list of eigenvalues).
@@ -79,7 +80,8 @@ pub trait Task<M: Model>: Sync {
     }
 
     /// Runs cases together, case `k` on `models[k]` (with its parameters
-    /// and inputs) from its initial state `xs[k]`: writes case `k`'s kept
+    /// and inputs; `values`, what [`Model::lane_values`] gathered from
+    /// `models`) from its initial state `xs[k]`: writes case `k`'s kept
     /// values into `outs[k]` and sets `done[k]` when it finished exactly
     /// as [`Task::run`] would have, bit for bit. A case left not done (one
     /// that fails, or every case, as the default does) is run again alone
@@ -88,11 +90,12 @@ pub trait Task<M: Model>: Sync {
     fn run_group(
         &self,
         models: &mut [M],
+        values: &[Lanes<LANES>],
         xs: &[M::State],
         outs: &mut [&mut [f64]],
         done: &mut [bool],
     ) {
-        let _ = (models, xs, outs, done);
+        let _ = (models, values, xs, outs, done);
     }
 }
 

@@ -14,7 +14,8 @@
 //! inputs and discrete variables, and an `f32` model (the default batch).
 
 use autosim::runtime::__private::{Path, limit_path};
-use autosim::runtime::{Float, Model, ModelError, StateArray};
+use autosim::runtime::batch::LANES;
+use autosim::runtime::{Float, Lanes, Model, ModelError, StateArray};
 use autosim_models_check::lanes as models;
 use autosim_test_support::Rng;
 
@@ -101,15 +102,17 @@ fn compare<M: Model>(make: &impl Fn() -> M, seed: u64, count: usize, path: Path)
     }
     let mut models: Vec<M> = (0..count).map(|_| varied(make, &mut rng)).collect();
     let alone: Vec<Outcome> = models.iter_mut().zip(&xs).map(|(m, x)| one(m, x)).collect();
-    M::derivatives_each(&mut models, t, &xs, &mut dx, &mut status);
-    for (k, (one, each)) in alone.iter().zip(outcomes::<M>(&status, &dx)).enumerate() {
-        assert_eq!(
-            *one,
-            each,
-            "{} model and state {k} ({:?})",
-            M::NAME,
-            xs[k].as_ref()
-        );
+    // With every group's values, with the first group's only (the others
+    // one call per model), with none.
+    let mut values = vec![Lanes::ZERO; M::LANE_VALUES * (count / LANES)];
+    M::lane_values(&models, &mut values);
+    let first = values.len().min(M::LANE_VALUES);
+    for values in [&values[..], &values[..first], &[]] {
+        M::derivatives_each(&mut models, values, t, &xs, &mut dx, &mut status);
+        for (k, (one, each)) in alone.iter().zip(outcomes::<M>(&status, &dx)).enumerate() {
+            let at = xs[k].as_ref();
+            assert_eq!(*one, each, "{} model and state {k} ({at:?})", M::NAME);
+        }
     }
     // Each varied model computes other derivatives than the batch's one
     // (where both are finite; the satellite's user code gives NaN at most

@@ -2,9 +2,10 @@
 //! printed once more with every value a `Lanes<L>` (one `f64` per state,
 //! struct of arrays) as `derivatives_lanes_with`, which reads parameters,
 //! constants, inputs and discrete variables from lane values
-//! (`lane_values`: lane `l` from the `l`-th of `L` models), and the
-//! `Model::derivatives_batch` (one model) and `Model::derivatives_each`
-//! (one model per state) that call it four states at a time. Only for
+//! (`values_in_lanes`: lane `l` from the `l`-th of `L` models), and the
+//! `Model::derivatives_batch` (one model) and `Model::lane_values` with
+//! `Model::derivatives_each` (one model per state) that call it four
+//! states at a time. Only for
 //! models with the `lanes` option (it
 //! costs compile time: chain-spatial-10's model alone 0.8 → 8.5 s of
 //! release rustc) and `f64`: the others keep the default batch (one call
@@ -25,7 +26,7 @@ pub(super) fn has_lanes(prog: &Program) -> bool {
     i.lanes && i.float == FloatType::F64 && !prog.states().is_empty()
 }
 
-/// The inherent items, `derivatives_lanes` (public), `lane_values` and
+/// The inherent items, `derivatives_lanes` (public), `values_in_lanes` and
 /// `derivatives_lanes_with` with its baseline copy, and the module-level
 /// items of its x86-64-v3 copy (`versions_of`, `lanes_copies`).
 pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
@@ -107,13 +108,13 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
             x: &[#lane_ty; #n_states],
             dx: &mut [#lane_ty; #n_states],
         ) -> Result<(), #rt::ModelError> {
-            let v = Self::lane_values([&*self; #l]);
+            let v = Self::values_in_lanes([&*self; #l]);
             self.derivatives_lanes_with(&v, t, x, dx)
         }
 
         #values
 
-        /// `derivatives_lanes` with the lane values `v` (`lane_values`).
+        /// `derivatives_lanes` with the lane values `v` (`values_in_lanes`).
         #caller
 
         #copies
@@ -128,8 +129,8 @@ fn values_type(be: &BlockEmitter<'_>) -> TokenStream {
     quote!([#rt::__private::Lanes<#l>; #len])
 }
 
-/// `lane_values`: what `derivatives_lanes_with` reads besides the time
-/// and the states, lane `l` from `models[l]`.
+/// `values_in_lanes`: what `derivatives_lanes_with` reads besides the
+/// time and the states, lane `l` from `models[l]`.
 fn values_fn(be: &BlockEmitter<'_>) -> TokenStream {
     let (rt, l) = (&be.rt, &be.locals.lanes);
     let values_ty = values_type(be);
@@ -141,24 +142,29 @@ fn values_fn(be: &BlockEmitter<'_>) -> TokenStream {
     quote! {
         /// The parameters, constants, inputs and discrete variables of
         /// `models` as lanes: lane `l` is `models[l]`'s.
-        fn lane_values<const #l: usize>(models: [&Self; #l]) -> #values_ty {
+        fn values_in_lanes<const #l: usize>(models: [&Self; #l]) -> #values_ty {
             let rows = models.map(|#model| [#(#reads),*]);
             core::array::from_fn(|k| #rt::__private::Lanes(core::array::from_fn(|l| rows[l][k])))
         }
     }
 }
 
-/// `Model::derivatives_batch` (one model, its lane values computed once
-/// per call) and `Model::derivatives_each` (a model per state) through
-/// `derivatives_lanes_with`, four states at a time, and `Model::LOCKSTEP`
-/// (nothing for a model without lanes: the default loops, and studies one
-/// case at a time).
+/// `Model::derivatives_batch` (one model, its lane values gathered once
+/// per call) and, a model per state, `Model::LANE_VALUES`,
+/// `Model::lane_values` (gathered once for models whose values do not
+/// change, a study's group of cases) and `Model::derivatives_each`,
+/// through `derivatives_lanes_with`, four states at a time; and
+/// `Model::LOCKSTEP` (nothing for a model without lanes: the default
+/// loops, and studies one case at a time).
 pub(super) fn batch(be: &BlockEmitter<'_>) -> TokenStream {
     if !has_lanes(be.prog) {
         return TokenStream::new();
     }
     let rt = &be.rt;
     let n_states = Literal::usize_unsuffixed(be.prog.states().len());
+    let k = Literal::usize_unsuffixed(lane_values::len(be.prog));
+    let lanes = quote!(#rt::batch::LANES);
+    let lanes_ty = quote!(#rt::Lanes<{ #lanes }>);
     quote! {
         const LOCKSTEP: bool = true;
 
@@ -169,8 +175,8 @@ pub(super) fn batch(be: &BlockEmitter<'_>) -> TokenStream {
             dx: &mut [[f64; #n_states]],
             status: &mut [Result<(), #rt::ModelError>],
         ) {
-            let v = Self::lane_values([&*self; #rt::batch::LANES]);
-            #rt::__private::in_lanes::<Self, { #rt::batch::LANES }, #n_states>(
+            let v = Self::values_in_lanes([&*self; #lanes]);
+            #rt::__private::in_lanes::<Self, { #lanes }, #n_states>(
                 self,
                 t,
                 x,
@@ -180,20 +186,31 @@ pub(super) fn batch(be: &BlockEmitter<'_>) -> TokenStream {
             )
         }
 
+        const LANE_VALUES: usize = #k;
+
+        fn lane_values(models: &[Self], values: &mut [#lanes_ty]) {
+            #rt::__private::values_in_groups::<Self, { #lanes }, #k>(
+                models,
+                values,
+                Self::values_in_lanes::<{ #lanes }>,
+            )
+        }
+
         fn derivatives_each(
             models: &mut [Self],
+            values: &[#lanes_ty],
             t: f64,
             x: &[[f64; #n_states]],
             dx: &mut [[f64; #n_states]],
             status: &mut [Result<(), #rt::ModelError>],
         ) {
-            #rt::__private::each_in_lanes::<Self, _, { #rt::batch::LANES }, #n_states>(
+            #rt::__private::each_in_lanes::<Self, { #lanes }, #k, #n_states>(
                 models,
+                values,
                 t,
                 x,
                 dx,
                 status,
-                Self::lane_values::<{ #rt::batch::LANES }>,
                 |model, v, t, x, dx| model.derivatives_lanes_with(v, t, x, dx),
             )
         }

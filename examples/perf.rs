@@ -194,8 +194,9 @@ fn many_states(rng: &mut Rng) {
             let mut m = $model;
             let xs = states::<$n>(rng, 512, None);
             let single = measure(&mut m, &xs);
-            let four = batch_ns::<_, 4, $n>(&mut m, &xs, |m, t, x, dx| m.derivatives_lanes(t, x, dx));
-            let eight = batch_ns::<_, 8, $n>(&mut m, &xs, |m, t, x, dx| m.derivatives_lanes(t, x, dx));
+            let (v4, v8) = (<$ty>::values_in_lanes([&m; 4]), <$ty>::values_in_lanes([&m; 8]));
+            let four = batch_ns::<_, 4, $n>(&mut m, &xs, |m, t, x, dx| m.derivatives_lanes_with(&v4, t, x, dx));
+            let eight = batch_ns::<_, 8, $n>(&mut m, &xs, |m, t, x, dx| m.derivatives_lanes_with(&v8, t, x, dx));
             let ops = <$ty>::DERIVATIVE_OPS;
             let flop = (ops.adds + ops.muls + ops.divs) as f64;
             println!(

@@ -23,8 +23,10 @@ pub const LANES: usize = 4;
 ///
 /// Processes as many states as the shortest of `x`, `dx`, `status` holds.
 /// Public for other lane counts than [`LANES`]: with a generated model
-/// `m`, `in_lanes::<_, 8, N>(&mut m, t, &x, &mut dx, &mut status, |m, t,
-/// x, dx| m.derivatives_lanes(t, x, dx))` evaluates eight states per call.
+/// `m` and its values gathered once, `let v = M::values_in_lanes([&m;
+/// 8]);`, `in_lanes::<_, 8, N>(&mut m, t, &x, &mut dx, &mut status, |m, t,
+/// x, dx| m.derivatives_lanes_with(&v, t, x, dx))` evaluates eight states
+/// per call.
 #[inline]
 pub fn in_lanes<M, const L: usize, const N: usize>(
     model: &mut M,

@@ -114,8 +114,12 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
 
         #values
 
-        /// `derivatives_lanes` with the lane values `v` (`values_in_lanes`).
-        #caller
+        /// `derivatives_lanes` with the values it reads besides the time
+        /// and the states given as `v`, what `values_in_lanes` gathers:
+        /// lane `l` computes what the `l`-th model's `derivatives` computes
+        /// (its user code called on `self`). Gather once for many calls:
+        /// `derivatives_lanes` gathers at every call.
+        pub #caller
 
         #copies
     };
@@ -140,9 +144,10 @@ fn values_fn(be: &BlockEmitter<'_>) -> TokenStream {
         false => quote!(m),
     };
     quote! {
-        /// The parameters, constants, inputs and discrete variables of
-        /// `models` as lanes: lane `l` is `models[l]`'s.
-        fn values_in_lanes<const #l: usize>(models: [&Self; #l]) -> #values_ty {
+        /// The parameters, the constants computed from them, the inputs
+        /// and the discrete variables of `models` as lanes (lane `l` is
+        /// `models[l]`'s): what `derivatives_lanes_with` reads.
+        pub fn values_in_lanes<const #l: usize>(models: [&Self; #l]) -> #values_ty {
             let rows = models.map(|#model| [#(#reads),*]);
             core::array::from_fn(|k| #rt::__private::Lanes(core::array::from_fn(|l| rows[l][k])))
         }

@@ -101,7 +101,9 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
         /// operations on `L` lanes in vector instructions. An error (a
         /// singular pivot, a non-finite derivative or user result) is that
         /// of some lane: `Model::derivatives` at each state tells which
-        /// (`Model::derivatives_batch` does it).
+        /// (`Model::derivatives_batch` does it). It gathers the model's
+        /// parameters, constants and inputs into lanes at every call:
+        /// `derivatives_lanes_with` takes them gathered once.
         pub fn derivatives_lanes<const #l: usize>(
             &mut self,
             t: f64,

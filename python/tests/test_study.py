@@ -60,7 +60,6 @@ def rust_results(study: autosim.Study) -> autosim.StudyResults:
     return study.read(folder)
 
 
-
 def test_a_lanes_model_runs_a_parameter_sweep_in_lockstep_with_the_bits_of_one_case_at_a_time(
     load_model: Load, repo: Path
 ) -> None:
@@ -90,6 +89,7 @@ def test_a_lanes_model_runs_a_parameter_sweep_in_lockstep_with_the_bits_of_one_c
     assert together == alone
     # Not vacuous: the cases end apart from one another.
     assert len({tuple(row) for row in together.values}) == 22
+
 
 def test_a_study_from_python_is_the_rust_study_bit_for_bit(
     study: autosim.Study, rust_results: autosim.StudyResults

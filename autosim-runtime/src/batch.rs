@@ -39,13 +39,9 @@ pub fn in_lanes<M, const L: usize, const N: usize>(
     M: Model<Float = f64, State = [f64; N]> + ?Sized,
 {
     let count = x.len().min(dx.len()).min(status.len());
-    let groups = count / L;
-    let (x, dx, status) = (&x[..count], &mut dx[..count], &mut status[..count]);
     let mut soa_dx = [Lanes::<L>::ZERO; N];
-    for g in 0..groups {
-        let range = g * L..(g + 1) * L;
-        let soa_x: [Lanes<L>; N] =
-            core::array::from_fn(|i| Lanes(core::array::from_fn(|l| x[range.start + l][i])));
+    for range in full_groups::<L>(count) {
+        let soa_x = struct_of_arrays::<L, N>(&x[range.clone()]);
         match lanes(model, t, &soa_x, &mut soa_dx) {
             Ok(()) => scatter(&soa_dx, &mut dx[range.clone()], &mut status[range]),
             Err(_) => one_by_one(
@@ -57,7 +53,7 @@ pub fn in_lanes<M, const L: usize, const N: usize>(
             ),
         }
     }
-    let rest = groups * L..count;
+    let rest = count / L * L..count;
     one_by_one(
         model,
         t,
@@ -65,6 +61,18 @@ pub fn in_lanes<M, const L: usize, const N: usize>(
         &mut dx[rest.clone()],
         &mut status[rest],
     );
+}
+
+/// The ranges of the full groups of `L` among `count` states.
+fn full_groups<const L: usize>(count: usize) -> impl Iterator<Item = core::ops::Range<usize>> {
+    (0..count / L).map(|g| g * L..(g + 1) * L)
+}
+
+/// `L` states (the first `L` of `x`) as struct of arrays: state `i` of
+/// the `l`-th in lane `l` of entry `i`.
+#[inline]
+fn struct_of_arrays<const L: usize, const N: usize>(x: &[[f64; N]]) -> [Lanes<L>; N] {
+    core::array::from_fn(|i| Lanes(core::array::from_fn(|l| x[l][i])))
 }
 
 /// [`Model::lane_values`] through a model's gather of one group, `of`
@@ -113,16 +121,13 @@ pub fn each_in_lanes<M, const L: usize, const K: usize, const N: usize>(
     M: Model<Float = f64, State = [f64; N]>,
 {
     let count = models.len().min(x.len()).min(dx.len()).min(status.len());
-    let groups = count / L;
     let mut soa_dx = [Lanes::<L>::ZERO; N];
-    for g in 0..groups {
-        let range = g * L..(g + 1) * L;
+    for (g, range) in full_groups::<L>(count).enumerate() {
         let group = &mut models[range.clone()];
         let v = values
             .get(g * K..(g + 1) * K)
             .and_then(|v| <&[Lanes<L>; K]>::try_from(v).ok());
-        let soa_x: [Lanes<L>; N] =
-            core::array::from_fn(|i| Lanes(core::array::from_fn(|l| x[range.start + l][i])));
+        let soa_x = struct_of_arrays::<L, N>(&x[range.clone()]);
         match v.map(|v| lanes(&mut group[0], v, t, &soa_x, &mut soa_dx)) {
             Some(Ok(())) => scatter(&soa_dx, &mut dx[range.clone()], &mut status[range]),
             _ => each_alone(
@@ -134,7 +139,7 @@ pub fn each_in_lanes<M, const L: usize, const K: usize, const N: usize>(
             ),
         }
     }
-    let rest = groups * L..count;
+    let rest = count / L * L..count;
     each_alone(
         &mut models[rest.clone()],
         t,

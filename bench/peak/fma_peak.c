@@ -11,6 +11,13 @@
 #include <stdint.h>
 #include <time.h>
 #include <stdlib.h>
+/* Twelve independent fused multiply-adds on registers of kind R ("ymm":
+   256-bit, "zmm": 512-bit): accumulators 0-11, operands 12 and 13. */
+#define FMA(R, N) "vfmadd231pd %%" R "12,%%" R "13,%%" R #N "\n\t"
+#define TWELVE_FMAS(R) FMA(R, 0) FMA(R, 1) FMA(R, 2) FMA(R, 3) FMA(R, 4) FMA(R, 5) \
+                       FMA(R, 6) FMA(R, 7) FMA(R, 8) FMA(R, 9) FMA(R, 10) FMA(R, 11)
+#define CLOBBERS ::: "xmm0", "xmm1", "xmm2", "xmm3", "xmm4", "xmm5", "xmm6", "xmm7", \
+                     "xmm8", "xmm9", "xmm10", "xmm11"
 static double now(void){struct timespec t;clock_gettime(CLOCK_MONOTONIC,&t);return t.tv_sec+1e-9*t.tv_nsec;}
 static int cmp(const void*a,const void*b){double x=*(const double*)a,y=*(const double*)b;return (x>y)-(x<y);}
 int main(void){
@@ -21,18 +28,10 @@ int main(void){
     for(long i=0;i<it;i++) __asm__ volatile("add $1,%0\n\tadd $1,%0\n\tadd $1,%0\n\tadd $1,%0\n\tadd $1,%0\n\tadd $1,%0\n\tadd $1,%0\n\tadd $1,%0\n\tadd $1,%0\n\tadd $1,%0":"+r"(x));
     ghz[r]=10.0*it/(now()-t0)/1e9;
     t0=now();
-    for(long i=0;i<it;i++) __asm__ volatile(
-      "vfmadd231pd %%ymm12,%%ymm13,%%ymm0\n\tvfmadd231pd %%ymm12,%%ymm13,%%ymm1\n\tvfmadd231pd %%ymm12,%%ymm13,%%ymm2\n\tvfmadd231pd %%ymm12,%%ymm13,%%ymm3\n\t"
-      "vfmadd231pd %%ymm12,%%ymm13,%%ymm4\n\tvfmadd231pd %%ymm12,%%ymm13,%%ymm5\n\tvfmadd231pd %%ymm12,%%ymm13,%%ymm6\n\tvfmadd231pd %%ymm12,%%ymm13,%%ymm7\n\t"
-      "vfmadd231pd %%ymm12,%%ymm13,%%ymm8\n\tvfmadd231pd %%ymm12,%%ymm13,%%ymm9\n\tvfmadd231pd %%ymm12,%%ymm13,%%ymm10\n\tvfmadd231pd %%ymm12,%%ymm13,%%ymm11\n\t"
-      :::"xmm0","xmm1","xmm2","xmm3","xmm4","xmm5","xmm6","xmm7","xmm8","xmm9","xmm10","xmm11");
+    for(long i=0;i<it;i++) __asm__ volatile(TWELVE_FMAS("ymm") CLOBBERS);
     fma256[r]=(now()-t0)/(12.0*it)*1e9; /* ns per 256-bit FMA */
     t0=now();
-    for(long i=0;i<it;i++) __asm__ volatile(
-      "vfmadd231pd %%zmm12,%%zmm13,%%zmm0\n\tvfmadd231pd %%zmm12,%%zmm13,%%zmm1\n\tvfmadd231pd %%zmm12,%%zmm13,%%zmm2\n\tvfmadd231pd %%zmm12,%%zmm13,%%zmm3\n\t"
-      "vfmadd231pd %%zmm12,%%zmm13,%%zmm4\n\tvfmadd231pd %%zmm12,%%zmm13,%%zmm5\n\tvfmadd231pd %%zmm12,%%zmm13,%%zmm6\n\tvfmadd231pd %%zmm12,%%zmm13,%%zmm7\n\t"
-      "vfmadd231pd %%zmm12,%%zmm13,%%zmm8\n\tvfmadd231pd %%zmm12,%%zmm13,%%zmm9\n\tvfmadd231pd %%zmm12,%%zmm13,%%zmm10\n\tvfmadd231pd %%zmm12,%%zmm13,%%zmm11\n\t"
-      :::"xmm0","xmm1","xmm2","xmm3","xmm4","xmm5","xmm6","xmm7","xmm8","xmm9","xmm10","xmm11");
+    for(long i=0;i<it;i++) __asm__ volatile(TWELVE_FMAS("zmm") CLOBBERS);
     fma512[r]=(now()-t0)/(12.0*it)*1e9;
   }
   qsort(ghz,R,8,cmp);qsort(fma256,R,8,cmp);qsort(fma512,R,8,cmp);

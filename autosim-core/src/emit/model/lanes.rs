@@ -7,8 +7,8 @@
 //! `Model::derivatives_each` (one model per state) that call it four
 //! states at a time. Only for models with the `lanes` option (it costs
 //! compile time: a release build of a crate calling chain-spatial-10's
-//! model 0.86 → 8.1 s, `bench/compile`) and `f64`: the others keep the
-//! default batch (one call per state).
+//! model 0.86 → 8.1 s on a 2-core Intel Xeon, `bench/compile`) and `f64`:
+//! the others keep the default batch (one call per state).
 
 use super::functions;
 use super::versions::{Param, Signature, versions_of};

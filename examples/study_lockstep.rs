@@ -1,7 +1,8 @@
 //! What lockstep buys a study: cases per second of a Monte Carlo over the
 //! initial state of chain-spatial-10 generated with `lanes = true` (ten
-//! random joint angles and rates; RK4, 0.5 s at h = 1 ms: 2 000
-//! derivative evaluations a case), and of one over its parameters too
+//! random joint angles and rates; 0.5 s at h = 1 ms with RK4, 2 000
+//! derivative evaluations a case, and with Adams–Bashforth–Moulton of
+//! order 4, about 1 000), and of one over its parameters too
 //! (every parameter within ±20 % of its default: each case its own
 //! model), one case at a time (`Study::lockstep(false)`) and in lockstep
 //! (groups of four cases, one `derivatives_each` call per stage: four
@@ -18,6 +19,7 @@
 use std::error::Error;
 use std::time::Instant;
 
+use autosim::runtime::integrate::AbmOrder;
 use autosim::runtime::study::{Cases, Distribution, Keep, Method, Parallelism, Simulate, Study};
 use autosim::runtime::{Model, RunSettings};
 
@@ -57,7 +59,7 @@ fn cases<M: Model<Float = f64>>(
 /// Cases per second (median of `rounds`) one at a time and in lockstep.
 fn measure<M, F>(
     make: F,
-    parameters: bool,
+    (method, parameters): (Method, bool),
     rounds: usize,
     count: u64,
 ) -> Result<(f64, f64), Box<dyn Error>>
@@ -66,7 +68,7 @@ where
     F: Fn() -> M + Sync,
 {
     let settings = RunSettings::new(0.0, 0.5, 0.001, 0.05);
-    let task = Simulate::new(settings, Method::Rk4, Keep::new().final_state())?;
+    let task = Simulate::new(settings, method, Keep::new().final_state())?;
     let cases = cases(&make(), parameters, count)?;
     let mut study = Study::new(make, cases, task)
         .progress(false)
@@ -93,19 +95,27 @@ fn main() -> Result<(), Box<dyn Error>> {
     let mut args = std::env::args().skip(1).map(|a| a.parse::<u64>());
     let rounds = args.next().transpose()?.unwrap_or(5) as usize;
     let count = args.next().transpose()?.unwrap_or(2_000);
-    println!("{count} chain-spatial-10 runs (RK4, 500 steps each), serial, median of {rounds}:");
-    for parameters in [false, true] {
+    println!("{count} chain-spatial-10 runs (500 steps each), serial, median of {rounds}:");
+    let methods = [
+        ("RK4", Method::Rk4),
+        ("ABM4", Method::AdamsBashforthMoulton(AbmOrder::Four)),
+    ];
+    for ((label, method), parameters) in methods
+        .into_iter()
+        .flat_map(|m| [false, true].map(|p| (m, p)))
+    {
         let what = match parameters {
             false => "initial states",
             true => "parameters too",
         };
-        println!("random {what}:");
+        println!("{label}, random {what}:");
+        let task = (method, parameters);
         for (name, (a, b)) in [
             (
                 "lanes = true",
                 measure(
                     lanes::chain_spatial10::ChainSpatial10::new,
-                    parameters,
+                    task,
                     rounds,
                     count,
                 )?,
@@ -114,7 +124,7 @@ fn main() -> Result<(), Box<dyn Error>> {
                 "plain",
                 measure(
                     plain::chain_spatial10::ChainSpatial10::new,
-                    parameters,
+                    task,
                     rounds,
                     count,
                 )?,

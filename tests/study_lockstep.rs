@@ -4,7 +4,9 @@
 //! `derivatives_lanes` (`lanes = true`), on a hand-written one that allows
 //! lockstep with the default batch (one `derivatives` call per state),
 //! and on a plain generated model (which runs one case at a time), with Euler,
-//! Heun and RK4, every kind of kept value, output times on and off the
+//! Heun, RK4 and Adams–Bashforth–Moulton of order 2 and 4 (each case its
+//! own history, also when projections reset some cases' histories and not
+//! the others'), every kind of kept value, output times on and off the
 //! step grid, case counts that leave a partial group, serially and on two
 //! threads. A case that fails (a non-finite state, a model error, a
 //! non-finite output, a panic) fails with the error it has alone and the
@@ -15,6 +17,7 @@
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use autosim::runtime::integrate::AbmOrder;
 use autosim::runtime::study::{
     Cases, Distribution, Keep, Method, Parallelism, Results, Simulate, Statistic, Study,
 };
@@ -26,7 +29,14 @@ use chain_planar3::ChainPlanar3;
 autosim::model!(file = "examples/models/pendulum.sim");
 use pendulum::Pendulum;
 
-const METHODS: [Method; 3] = [Method::Euler, Method::Heun, Method::Rk4];
+/// The methods that run in lockstep.
+const METHODS: [Method; 5] = [
+    Method::Euler,
+    Method::Heun,
+    Method::Rk4,
+    Method::AdamsBashforthMoulton(AbmOrder::Two),
+    Method::AdamsBashforthMoulton(AbmOrder::Four),
+];
 
 /// Runs `study` with and without lockstep (serially and on two threads)
 /// and checks the results are the same bits; returns them.
@@ -193,10 +203,10 @@ impl Model for Quirky {
     }
 }
 
-/// The study of `Quirky` over the table `columns`/`rows` with RK4 to
-/// t = 1; returns its results (the same with and without lockstep) and
+/// The study of `Quirky` over the table `columns`/`rows` with `method`
+/// to t = 1; returns its results (the same with and without lockstep) and
 /// the `derivatives_each` calls of more than one model with lockstep.
-fn quirky(columns: &[&str], rows: &[f64]) -> (Results, u64) {
+fn quirky(columns: &[&str], rows: &[f64], method: Method) -> (Results, u64) {
     let count = (rows.len() / columns.len()) as u64;
     let cases = Cases::new().rows(columns, rows).unwrap();
     let settings = RunSettings::new(0.0, 1.0, 0.01, 0.25);
@@ -209,7 +219,7 @@ fn quirky(columns: &[&str], rows: &[f64]) -> (Results, u64) {
             batches: batches.clone(),
         }
     };
-    let task = Simulate::new(settings, Method::Rk4, keep).unwrap();
+    let task = Simulate::new(settings, method, keep).unwrap();
     let study = Study::new(make, cases, task).progress(false);
     let results = same_either_way(study, count);
     (results, batches.load(Ordering::Relaxed))
@@ -220,21 +230,27 @@ fn a_failing_case_fails_as_alone_and_the_others_of_its_group_finish() {
     // 11 cases: a panic (7), a model error (-6), a blow-up (x' = x² from 3
     // passes infinity before t = 1/3), a non-finite output (√-1).
     let x0 = [0.1, 0.2, 7.0, 0.3, -6.0, 0.4, 3.0, -11.0, 0.5, 0.6, 0.7];
-    let (results, batches) = quirky(&["x"], &x0);
-    assert!(batches > 0, "no group ran in lockstep");
-    let errors = results.errors();
-    let has = |k: usize, text: &str| {
-        let e = errors[k].as_deref().unwrap_or_default();
-        assert!(e.contains(text), "case {k}: {e:?}");
-    };
-    has(2, "a deliberate panic at x = 7");
-    has(4, "singular");
-    has(6, "non-finite");
-    has(7, "not finite");
-    for k in [0, 1, 3, 5, 8, 9, 10] {
-        assert!(errors[k].is_none(), "case {k}: {:?}", errors[k]);
+    for method in [Method::Rk4, Method::AdamsBashforthMoulton(AbmOrder::Four)] {
+        let (results, batches) = quirky(&["x"], &x0, method);
+        assert!(batches > 0, "no group ran in lockstep ({method:?})");
+        let errors = results.errors();
+        let has = |k: usize, text: &str| {
+            let e = errors[k].as_deref().unwrap_or_default();
+            assert!(e.contains(text), "case {k} ({method:?}): {e:?}");
+        };
+        has(2, "a deliberate panic at x = 7");
+        has(4, "singular");
+        has(6, "non-finite");
+        has(7, "not finite");
+        for k in [0, 1, 3, 5, 8, 9, 10] {
+            assert!(
+                errors[k].is_none(),
+                "case {k} ({method:?}): {:?}",
+                errors[k]
+            );
+        }
+        assert_eq!(results.failures(), 4, "{method:?}");
     }
-    assert_eq!(results.failures(), 4);
 }
 
 #[test]
@@ -247,7 +263,110 @@ fn cases_with_different_parameters_run_together() {
         0.1, 0.1, 0.2, 0.2, 0.3, 0.3, 0.4, 0.4, //
         0.9, 0.5,
     ];
-    let (results, batches) = quirky(&["k", "x"], &rows);
+    let (results, batches) = quirky(&["k", "x"], &rows, Method::Rk4);
     assert!(batches > 0, "no group ran in lockstep");
     assert_eq!(results.failures(), 0, "{:?}", results.errors());
+}
+
+/// The oscillator `x' = v`, `v' = -k x`, whose state is projected back
+/// onto its energy at the start (`k x² + v²`, recorded by `assemble`) when
+/// it drifts by more than the tolerance: each case projects at its own
+/// steps, so an Adams group in lockstep has cases with a history and
+/// cases starting over at once. It allows lockstep with the default
+/// `derivatives_each` and counts that function's calls by size.
+struct Drifting {
+    k: f64,
+    energy: f64,
+    /// Calls of `derivatives_each` with one model, with four.
+    calls: Arc<[AtomicU64; 2]>,
+}
+
+impl Drifting {
+    fn energy(&self, x: &[f64; 2]) -> f64 {
+        self.k * x[0] * x[0] + x[1] * x[1]
+    }
+}
+
+impl Model for Drifting {
+    type Float = f64;
+    type State = [f64; 2];
+    type Outputs = [f64; 0];
+    const NAME: &'static str = "Drifting";
+    const STATE_NAMES: &'static [&'static str] = &["x", "v"];
+    const STATE_UNITS: &'static [&'static str] = &["1", "1"];
+    const PARAMETER_NAMES: &'static [&'static str] = &["k"];
+    const LOCKSTEP: bool = true;
+    fn derivatives(&mut self, _: f64, x: &[f64; 2], dx: &mut [f64; 2]) -> Result<(), ModelError> {
+        *dx = [x[1], -self.k * x[0]];
+        Ok(())
+    }
+    fn derivatives_each(
+        models: &mut [Drifting],
+        _: &[Lanes<4>],
+        t: f64,
+        x: &[[f64; 2]],
+        dx: &mut [[f64; 2]],
+        status: &mut [Result<(), ModelError>],
+    ) {
+        match models.len() {
+            1 => models[0].calls[0].fetch_add(1, Ordering::Relaxed),
+            4 => models[0].calls[1].fetch_add(1, Ordering::Relaxed),
+            _ => 0,
+        };
+        autosim::runtime::batch::each_alone(models, t, x, dx, status);
+    }
+    fn assemble(&mut self, _: f64, x: &mut [f64; 2]) -> Result<(), ModelError> {
+        self.energy = self.energy(x);
+        Ok(())
+    }
+    fn project(&mut self, _: f64, x: &mut [f64; 2], tolerance: f64) -> Result<bool, ModelError> {
+        let energy = self.energy(x);
+        if (energy - self.energy).abs() <= tolerance * self.energy {
+            return Ok(false);
+        }
+        let scale = (self.energy / energy).sqrt();
+        *x = [x[0] * scale, x[1] * scale];
+        Ok(true)
+    }
+    fn parameter_values(&self, p: &mut [f64]) {
+        p[0] = self.k;
+    }
+    fn set_parameter_values(&mut self, p: &[f64]) {
+        self.k = p[0];
+    }
+}
+
+#[test]
+fn adams_cases_keep_their_own_histories_in_lockstep() {
+    let columns = [
+        ("k", Distribution::uniform(0.01, 40.0)),
+        ("x", Distribution::uniform(-1.0, 1.0)),
+        ("v", Distribution::uniform(-1.0, 1.0)),
+    ];
+    // Tolerances between the drifts of slow and fast cases: the local
+    // error of order p is about (√k h)^(p + 1) per step.
+    for (order, tolerance) in [(AbmOrder::Two, 1e-6), (AbmOrder::Four, 1e-10)] {
+        let calls = Arc::new([AtomicU64::new(0), AtomicU64::new(0)]);
+        let make = {
+            let calls = calls.clone();
+            move || Drifting {
+                k: 1.0,
+                energy: 1.0,
+                calls: calls.clone(),
+            }
+        };
+        let settings = RunSettings::new(0.0, 2.0, 0.01, 0.1).with_projection_tolerance(tolerance);
+        let keep = Keep::new().final_state().history(&["x"]);
+        let task = Simulate::new(settings, Method::AdamsBashforthMoulton(order), keep).unwrap();
+        let cases = Cases::new().random(16, 3, &columns).unwrap();
+        let results = same_either_way(Study::new(make, cases, task), 16);
+        assert_eq!(results.failures(), 0, "{order:?}");
+        let [ones, fours] = [0, 1].map(|k| calls[k].load(Ordering::Relaxed));
+        // Both kinds of step in one group: start-up stages for some lanes
+        // alone, the rest of the evaluations for all four.
+        assert!(
+            ones > 0 && fours > 0,
+            "{order:?}: {ones} single, {fours} of four"
+        );
+    }
 }

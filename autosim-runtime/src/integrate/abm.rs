@@ -48,13 +48,7 @@ impl AbmOrder {
 /// when the model has discontinuities (each one needs a reset).
 pub struct AdamsBashforthMoulton<M: Model> {
     order: AbmOrder,
-    /// Ring buffer of past derivatives: `f[head]` is fₙ, `f[head - 1]` fₙ₋₁, ...
-    f: [M::State; 4],
-    head: usize,
-    count: usize,
-    t_end: M::Float,
-    h_last: M::Float,
-    x_end: M::State,
+    history: AbmHistory<M>,
     /// The RK4 stages' derivatives of a start-up step.
     k: [M::State; 4],
     predicted: M::State,
@@ -64,18 +58,167 @@ pub struct AdamsBashforthMoulton<M: Model> {
     startup_steps: u64,
 }
 
-impl<M: Model> AdamsBashforthMoulton<M> {
-    /// A stepper of the given order with an empty history.
-    pub fn new(order: AbmOrder) -> Self {
+/// What an Adams–Bashforth–Moulton method carries from one step to the
+/// next: the derivatives at the last points and where the last step
+/// ended (a study's lockstep keeps one per case, [`AdamsBashforthMoulton`]
+/// one).
+pub(crate) struct AbmHistory<M: Model> {
+    /// Ring buffer of past derivatives: `f[head]` is fₙ, `f[head - 1]` fₙ₋₁, ...
+    f: [M::State; 4],
+    head: usize,
+    count: usize,
+    t_end: M::Float,
+    h_last: M::Float,
+    x_end: M::State,
+}
+
+impl<M: Model> Clone for AbmHistory<M> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<M: Model> Copy for AbmHistory<M> {}
+
+impl<M: Model> AbmHistory<M> {
+    /// No derivative known yet.
+    pub(crate) fn new() -> Self {
         let z = M::State::zeros();
-        Self {
-            order,
+        AbmHistory {
             f: [z; 4],
             head: 0,
             count: 0,
             t_end: M::Float::ZERO,
             h_last: M::Float::ZERO,
             x_end: z,
+        }
+    }
+
+    /// Keeps only what is still valid for a step from `(t, x)` with `h`:
+    /// nothing if the time or the state is not where the last step ended,
+    /// the newest derivative only if the step size changed.
+    pub(crate) fn validate(&mut self, t: M::Float, x: &M::State, h: M::Float) {
+        if self.count == 0 {
+            return;
+        }
+        let tol_t = M::Float::from_f64(1e-6) * h.abs()
+            + M::Float::from_f64(16.0) * M::Float::EPSILON * t.abs().max(self.t_end.abs());
+        if (t - self.t_end).abs() > tol_t || !same(x, &self.x_end) {
+            self.count = 0;
+        } else if (h - self.h_last).abs() > M::Float::from_f64(1e-9) * h.abs() {
+            self.count = 1;
+        }
+    }
+
+    /// `true` if not even the derivative at the current point is known.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    /// `true` if the step must be a start-up (RK4) step: fewer past
+    /// derivatives than `order`'s predictor needs.
+    pub(crate) fn starts_up(&self, order: AbmOrder) -> bool {
+        self.count < order.history()
+    }
+
+    /// Records `f`, the derivative at the current point, as the newest.
+    pub(crate) fn begin(&mut self, f: &M::State) {
+        self.push_slot();
+        self.f[self.head] = *f;
+    }
+
+    /// fₙ, the derivative at the current point.
+    pub(crate) fn newest(&self) -> &M::State {
+        &self.f[self.head]
+    }
+
+    /// Forgets everything (after a failed step).
+    pub(crate) fn forget(&mut self) {
+        self.count = 0;
+    }
+
+    /// The step from `t` by `h` ended at `x` with derivative `f`.
+    pub(crate) fn accept(&mut self, t: M::Float, h: M::Float, x: &M::State, f: &M::State) {
+        self.push_slot();
+        self.f[self.head] = *f;
+        self.t_end = t + h;
+        self.h_last = h;
+        self.x_end = *x;
+    }
+
+    /// Makes the next ring slot the newest.
+    fn push_slot(&mut self) {
+        self.head = (self.head + 1) % 4;
+        self.count = (self.count + 1).min(4);
+    }
+
+    /// fₙ₋ⱼ.
+    fn past(&self, j: usize) -> &M::State {
+        &self.f[(self.head + 4 - j % 4) % 4]
+    }
+
+    /// The Adams–Bashforth predictor of a step from `x` by `h`.
+    pub(crate) fn predict(
+        &self,
+        order: AbmOrder,
+        predicted: &mut M::State,
+        x: &M::State,
+        h: M::Float,
+    ) {
+        let c = |v: f64| M::Float::from_f64(v);
+        let (f0, f1, f2, f3) = (self.past(0), self.past(1), self.past(2), self.past(3));
+        match order {
+            AbmOrder::Two => combine(predicted, x, h, &[(c(1.5), f0), (c(-0.5), f1)]),
+            AbmOrder::Four => combine(
+                predicted,
+                x,
+                h,
+                &[
+                    (c(55.0 / 24.0), f0),
+                    (c(-59.0 / 24.0), f1),
+                    (c(37.0 / 24.0), f2),
+                    (c(-9.0 / 24.0), f3),
+                ],
+            ),
+        }
+    }
+
+    /// The Adams–Moulton corrector of a step from `x` by `h`, given the
+    /// derivative `fp` at the predicted state.
+    pub(crate) fn correct(
+        &self,
+        order: AbmOrder,
+        corrected: &mut M::State,
+        x: &M::State,
+        h: M::Float,
+        fp: &M::State,
+    ) {
+        let c = |v: f64| M::Float::from_f64(v);
+        let (f0, f1, f2) = (self.past(0), self.past(1), self.past(2));
+        match order {
+            AbmOrder::Two => combine(corrected, x, h, &[(c(0.5), fp), (c(0.5), f0)]),
+            AbmOrder::Four => combine(
+                corrected,
+                x,
+                h,
+                &[
+                    (c(9.0 / 24.0), fp),
+                    (c(19.0 / 24.0), f0),
+                    (c(-5.0 / 24.0), f1),
+                    (c(1.0 / 24.0), f2),
+                ],
+            ),
+        }
+    }
+}
+
+impl<M: Model> AdamsBashforthMoulton<M> {
+    /// A stepper of the given order with an empty history.
+    pub fn new(order: AbmOrder) -> Self {
+        let z = M::State::zeros();
+        Self {
+            order,
+            history: AbmHistory::new(),
             k: [z; 4],
             predicted: z,
             f_predicted: z,
@@ -94,85 +237,31 @@ impl<M: Model> AdamsBashforthMoulton<M> {
     pub fn startup_steps(&self) -> u64 {
         self.startup_steps
     }
-
-    /// Makes the next ring slot the newest and returns it.
-    fn push_slot(&mut self) -> usize {
-        self.head = (self.head + 1) % 4;
-        self.count = (self.count + 1).min(4);
-        self.head
-    }
-
-    /// Keeps only what is still valid for a step from `(t, x)` with `h`.
-    fn validate_history(&mut self, t: M::Float, x: &M::State, h: M::Float) {
-        if self.count == 0 {
-            return;
-        }
-        let tol_t = M::Float::from_f64(1e-6) * h.abs()
-            + M::Float::from_f64(16.0) * M::Float::EPSILON * t.abs().max(self.t_end.abs());
-        if (t - self.t_end).abs() > tol_t || !same(x, &self.x_end) {
-            self.count = 0;
-        } else if (h - self.h_last).abs() > M::Float::from_f64(1e-9) * h.abs() {
-            self.count = 1;
-        }
-    }
 }
 
 clone_and_debug!(AdamsBashforthMoulton {
     "order": order,
-    "history": count,
+    "history": history,
     "evaluations": evals,
     "startup_steps": startup_steps,
 });
+
+impl<M: Model> fmt::Debug for AbmHistory<M> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        // How many past derivatives are usable: what a reader debugs.
+        fmt::Debug::fmt(&self.count, f)
+    }
+}
 
 impl<M: Model> Stepper<M> for AdamsBashforthMoulton<M> {
     fn step(&mut self, model: &mut M, t: M::Float, x: &mut M::State, h: M::Float) -> StepResult<M> {
         check_step(h)?;
         let evals_before = self.evals;
-        self.validate_history(t, x, h);
-        if self.count == 0 {
-            let slot = self.push_slot();
-            if let Err(e) = eval(model, t, x, &mut self.f[slot], &mut self.evals) {
-                self.count = 0;
-                return Err(e);
-            }
-        }
-        let result = if self.count < self.order.history() {
-            self.startup_steps += 1;
-            self.k[0] = self.f[self.head];
-            rk_step(
-                model,
-                t,
-                x,
-                h,
-                &RK4,
-                &mut self.k,
-                &mut self.corrected,
-                &mut self.evals,
-            )
-        } else {
-            self.predict_correct(model, t, x, h)
-        };
-        let result = result
-            .and_then(|()| check_finite::<M>(t + h, &self.corrected))
-            .and_then(|()| {
-                // The final E of PECE: the derivative at the new point, for the history.
-                let slot = (self.head + 1) % 4;
-                eval(
-                    model,
-                    t + h,
-                    &self.corrected,
-                    &mut self.f[slot],
-                    &mut self.evals,
-                )
-            });
+        let result = self.step_from(model, t, x, h);
         if let Err(e) = result {
-            self.count = 0;
+            self.history.forget();
             return Err(e);
         }
-        self.push_slot();
-        self.t_end = t + h;
-        self.h_last = h;
-        self.x_end = self.corrected;
         *x = self.corrected;
         Ok(StepInfo::fixed(
             h,
@@ -183,7 +272,7 @@ impl<M: Model> Stepper<M> for AdamsBashforthMoulton<M> {
         self.evals
     }
     fn reset(&mut self) {
-        self.count = 0;
+        self.history.forget();
     }
     fn name(&self) -> &'static str {
         match self.order {
@@ -200,67 +289,56 @@ impl<M: Model> Stepper<M> for AdamsBashforthMoulton<M> {
 }
 
 impl<M: Model> AdamsBashforthMoulton<M> {
-    /// P, E and C of PECE into `self.corrected`.
-    fn predict_correct(
+    /// A step from `(t, x)` by `h` into `self.corrected`, the history
+    /// advanced (left as it is if the step fails).
+    fn step_from(
         &mut self,
         model: &mut M,
         t: M::Float,
         x: &M::State,
         h: M::Float,
     ) -> Result<(), IntegrationError> {
-        let c = |v: f64| M::Float::from_f64(v);
-        let (f0, f1, f2, f3) = (
-            past(&self.f, self.head, 0),
-            past(&self.f, self.head, 1),
-            past(&self.f, self.head, 2),
-            past(&self.f, self.head, 3),
-        );
-        match self.order {
-            AbmOrder::Two => combine(&mut self.predicted, x, h, &[(c(1.5), f0), (c(-0.5), f1)]),
-            AbmOrder::Four => combine(
-                &mut self.predicted,
+        let history = &mut self.history;
+        history.validate(t, x, h);
+        if history.is_empty() {
+            eval(model, t, x, &mut self.k[0], &mut self.evals)?;
+            history.begin(&self.k[0]);
+        }
+        if history.starts_up(self.order) {
+            self.startup_steps += 1;
+            self.k[0] = *history.newest();
+            rk_step(
+                model,
+                t,
                 x,
                 h,
-                &[
-                    (c(55.0 / 24.0), f0),
-                    (c(-59.0 / 24.0), f1),
-                    (c(37.0 / 24.0), f2),
-                    (c(-9.0 / 24.0), f3),
-                ],
-            ),
+                &RK4,
+                &mut self.k,
+                &mut self.corrected,
+                &mut self.evals,
+            )?;
+        } else {
+            // P, E and C of PECE.
+            history.predict(self.order, &mut self.predicted, x, h);
+            eval(
+                model,
+                t + h,
+                &self.predicted,
+                &mut self.f_predicted,
+                &mut self.evals,
+            )?;
+            history.correct(self.order, &mut self.corrected, x, h, &self.f_predicted);
         }
+        check_finite::<M>(t + h, &self.corrected)?;
+        // The final E of PECE: the derivative at the new point, for the history.
         eval(
             model,
             t + h,
-            &self.predicted,
+            &self.corrected,
             &mut self.f_predicted,
             &mut self.evals,
         )?;
-        let fp = &self.f_predicted;
-        let (f0, f1, f2) = (
-            past(&self.f, self.head, 0),
-            past(&self.f, self.head, 1),
-            past(&self.f, self.head, 2),
-        );
-        match self.order {
-            AbmOrder::Two => combine(&mut self.corrected, x, h, &[(c(0.5), fp), (c(0.5), f0)]),
-            AbmOrder::Four => combine(
-                &mut self.corrected,
-                x,
-                h,
-                &[
-                    (c(9.0 / 24.0), fp),
-                    (c(19.0 / 24.0), f0),
-                    (c(-5.0 / 24.0), f1),
-                    (c(1.0 / 24.0), f2),
-                ],
-            ),
-        }
+        history.accept(t, h, &self.corrected, &self.f_predicted);
         Ok(())
     }
-}
-
-/// fₙ₋ⱼ from the ring buffer whose newest entry is `f[head]`.
-fn past<S>(f: &[S; 4], head: usize, j: usize) -> &S {
-    &f[(head + 4 - j % 4) % 4]
 }

@@ -47,6 +47,8 @@ mod linalg;
 mod sdirk;
 mod vector;
 
+#[cfg(feature = "study")]
+pub(crate) use abm::AbmHistory;
 pub use abm::{AbmOrder, AdamsBashforthMoulton};
 pub use dopri::{DopriSettings, DormandPrince};
 #[cfg(feature = "study")]

@@ -55,8 +55,9 @@
 //!
 //! # Lockstep
 //!
-//! A [`Simulate`] task with a fixed-step explicit method ([`Method::Euler`],
-//! [`Method::Heun`], [`Method::Rk4`]) of a model that allows it
+//! A [`Simulate`] task with a fixed-step method ([`Method::Euler`],
+//! [`Method::Heun`], [`Method::Rk4`], [`Method::AdamsBashforthMoulton`],
+//! each case with its own derivative history) of a model that allows it
 //! ([`Model::LOCKSTEP`]: models generated with the `lanes` option) and has
 //! no events or discrete variables, in a study without a
 //! [`setup`](Study::setup) function, integrates four neighbouring cases

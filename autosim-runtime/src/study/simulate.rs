@@ -7,11 +7,11 @@ use std::string::{String, ToString};
 use std::vec::Vec;
 
 use super::StudyError;
-use super::lockstep;
+use super::lockstep::{self, adams_step, runge_kutta_step};
 use super::method::Method;
 use super::task::{CaseError, Field, Task};
 use crate::batch::LANES;
-use crate::integrate::{EULER, HEUN, RK4};
+use crate::integrate::{AbmHistory, EULER, HEUN, RK4};
 use crate::run::Observer;
 use crate::{Float, IntegrationError, Lanes, Model, RunSettings, run};
 
@@ -367,10 +367,11 @@ where
         Ok(())
     }
 
-    /// Fixed-step explicit methods (Euler, Heun, RK4) of a model without
-    /// events or discrete variables (see [the study docs](super#lockstep)).
+    /// Fixed-step methods (Euler, Heun, RK4, Adams–Bashforth–Moulton) of a
+    /// model without events or discrete variables (see [the study
+    /// docs](super#lockstep)).
     fn runs_in_lockstep(&self) -> bool {
-        let fixed = matches!(self.method, Method::Euler | Method::Heun | Method::Rk4);
+        let fixed = !matches!(self.method, Method::DormandPrince { .. });
         fixed && M::EVENT_INDICATORS.is_empty() && M::DISCRETE_NAMES.is_empty()
     }
 
@@ -386,17 +387,26 @@ where
             return;
         }
         let (settings, plan) = (&self.settings, &self.plan);
+        let group = (models, values);
         match self.method {
             Method::Euler => {
-                lockstep::simulate((models, values), &EULER, settings, plan, xs, outs, done)
+                let euler = |lanes: &mut _, t, h| runge_kutta_step(lanes, &EULER, t, h);
+                lockstep::simulate(group, ((), euler), settings, plan, xs, outs, done)
             }
             Method::Heun => {
-                lockstep::simulate((models, values), &HEUN, settings, plan, xs, outs, done)
+                let heun = |lanes: &mut _, t, h| runge_kutta_step(lanes, &HEUN, t, h);
+                lockstep::simulate(group, ((), heun), settings, plan, xs, outs, done)
             }
             Method::Rk4 => {
-                lockstep::simulate((models, values), &RK4, settings, plan, xs, outs, done)
+                let rk4 = |lanes: &mut _, t, h| runge_kutta_step(lanes, &RK4, t, h);
+                lockstep::simulate(group, ((), rk4), settings, plan, xs, outs, done)
             }
-            _ => {}
+            Method::AdamsBashforthMoulton(order) => {
+                let adams = |lanes: &mut _, t, h| adams_step(lanes, order, t, h);
+                let method = (AbmHistory::new(), adams);
+                lockstep::simulate(group, method, settings, plan, xs, outs, done)
+            }
+            Method::DormandPrince { .. } => {}
         }
     }
 

@@ -24,13 +24,14 @@
 //! every lane: its results depend on its arguments alone). The study must
 //! have no setup function (which may change a model in ways the lanes
 //! cannot see). The task must say it can ([`Task::runs_in_lockstep`](super::Task)):
-//! [`Simulate`](super::Simulate) with Euler, Heun or RK4 (fixed steps,
-//! the same times for every case) of a model without events or discrete
-//! variables (whose cases would take different steps and actions).
-//! Adams–Bashforth–Moulton (fixed step, but a start-up and a history per
-//! case) and Dormand–Prince (a step size per case) run one case at a
-//! time, as do [`Modes`](super::Modes) and [`Custom`](super::Custom)
-//! tasks. [`Study::lockstep`](super::Study::lockstep) turns it off.
+//! [`Simulate`](super::Simulate) with Euler, Heun, RK4 or
+//! Adams–Bashforth–Moulton (fixed steps, the same times for every case;
+//! each Adams case keeps its own derivative history, see
+//! [`adams_step`]) of a model without events or discrete variables (whose
+//! cases would take different steps and actions). Dormand–Prince (a step
+//! size per case) runs one case at a time, as do [`Modes`](super::Modes)
+//! and [`Custom`](super::Custom) tasks.
+//! [`Study::lockstep`](super::Study::lockstep) turns it off.
 //!
 //! # Why this design
 //!
@@ -42,9 +43,11 @@
 //! with it, and the outputs, assembly and projection of each case are its
 //! own model's. Each case does the arithmetic it does alone: the same
 //! ticks (times and steps, [`fixed_ticks`], tested equal to the run
-//! driver's), the same Runge–Kutta combinations
+//! driver's), the same Runge–Kutta and Adams combinations
 //! ([`combine_lane`](crate::integrate::combine_lane) sums what the
-//! single stepper's `combine_row` sums, in the same order), and
+//! single stepper's `combine_row` sums, in the same order; an Adams lane's
+//! history is the single stepper's own type, with its own prediction,
+//! correction and checks of what it still holds), and
 //! `derivatives_each` gives each state the bits its model's `derivatives`
 //! gives it (its contract, tested for generated models in
 //! `tests/lanes.rs`). The
@@ -62,18 +65,25 @@
 
 use crate::batch::LANES;
 use crate::error::{check_finite_outputs, check_finite_parameters};
-use crate::integrate::{Tableau, check_step, combine_lane};
 use crate::run::grid::{Tick, fixed_ticks};
-use crate::{Float, Model, ModelError, RunSettings, StateArray, check_finite};
+use crate::{Model, ModelError, RunSettings, StateArray, check_finite};
 
 use super::simulate::Plan;
+
+mod adams;
+mod runge_kutta;
+
+pub(super) use adams::adams_step;
+pub(super) use runge_kutta::runge_kutta_step;
 
 /// Cases integrated together: one batch of [`LANES`] states per stage.
 pub(super) const GROUP: usize = LANES;
 
 /// The cases of a group still running (the first `n` lanes, each with its
-/// model), with the workspaces of a Runge–Kutta method of `S` stages.
-struct Lanes<'m, M: Model, const S: usize> {
+/// model), with the workspaces of a method of up to `S` stages and what
+/// it carries from step to step for each lane (`C`: nothing for
+/// Runge–Kutta methods, the derivative history for Adams methods).
+pub(super) struct Lanes<'m, M: Model, const S: usize, C: Copy> {
     n: usize,
     /// The case (index into the group) each lane runs.
     case: [usize; GROUP],
@@ -88,16 +98,29 @@ struct Lanes<'m, M: Model, const S: usize> {
     /// The stages' states, then the new states.
     stage: [M::State; GROUP],
     status: [Result<(), ModelError>; GROUP],
+    /// What each lane's method carries from step to step.
+    carry: [C; GROUP],
 }
 
-impl<'m, M: Model, const S: usize> Lanes<'m, M, S> {
+/// Where [`Lanes::evaluate`] takes the states from.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Source {
+    /// The lanes' states at the start of the step.
+    Start,
+    /// The stage states.
+    Stage,
+}
+
+impl<'m, M: Model, const S: usize, C: Copy> Lanes<'m, M, S, C> {
     /// Lanes for the cases starting at `xs` on `models` (at most [`GROUP`],
-    /// as many as both have), with the models' lane values.
+    /// as many as both have), with the models' lane values, each lane
+    /// carrying `carry` at first.
     fn new(
         models: &'m mut [M],
         values: &'m [crate::Lanes<LANES>],
         xs: &[M::State],
-    ) -> Lanes<'m, M, S> {
+        carry: C,
+    ) -> Lanes<'m, M, S, C> {
         let z = M::State::zeros();
         let mut x = [z; GROUP];
         let n = xs.len().min(models.len()).min(GROUP);
@@ -111,6 +134,7 @@ impl<'m, M: Model, const S: usize> Lanes<'m, M, S> {
             k: [[z; GROUP]; S],
             stage: [z; GROUP],
             status: [Ok(()); GROUP],
+            carry: [carry; GROUP],
         }
     }
 
@@ -121,6 +145,8 @@ impl<'m, M: Model, const S: usize> Lanes<'m, M, S> {
         self.models.swap(l, last);
         self.x.swap(l, last);
         self.stage.swap(l, last);
+        self.status.swap(l, last);
+        self.carry.swap(l, last);
         for k in &mut self.k {
             k.swap(l, last);
         }
@@ -136,12 +162,14 @@ impl<'m, M: Model, const S: usize> Lanes<'m, M, S> {
         }
     }
 
-    /// Stage `i`'s derivatives at time `t` (of the states `x` for the
-    /// first stage, `stage` for the others), one call for every lane; the
-    /// lanes that fail leave.
-    fn evaluate(&mut self, t: M::Float, i: usize) {
+    /// The derivatives at time `t` of every lane's state `from` into
+    /// `k[i]`, one call for all lanes; the lanes that fail leave.
+    fn evaluate(&mut self, t: M::Float, from: Source, i: usize) {
         let n = self.n;
-        let states = if i == 0 { &self.x } else { &self.stage };
+        let states = match from {
+            Source::Start => &self.x,
+            Source::Stage => &self.stage,
+        };
         // Once a lane has left (fewer than a group), the values are stale
         // and the lanes run one call each anyway.
         let values = if n == GROUP { self.values } else { &[] };
@@ -156,26 +184,35 @@ impl<'m, M: Model, const S: usize> Lanes<'m, M, S> {
         self.retain(|lanes, l| lanes.status[l].is_ok());
     }
 
-    /// One step of `tableau` from `t` by `h` for every lane: what the
-    /// fixed-step steppers do to one state (the step checked, the new
-    /// state checked before it replaces the old).
-    fn step(&mut self, tableau: &Tableau<S>, t: M::Float, h: M::Float) {
-        if check_step(h).is_err() {
-            self.n = 0;
-            return;
+    /// [`Lanes::evaluate`] for the lanes `picked` alone: one call for all
+    /// if it picks every lane, one call each otherwise.
+    fn evaluate_some(&mut self, t: M::Float, from: Source, i: usize, picked: [bool; GROUP]) {
+        let n = self.n;
+        if picked[..n].iter().all(|p| *p) {
+            return self.evaluate(t, from, i);
         }
-        self.evaluate(t, 0);
-        for i in 1..S {
-            for l in 0..self.n {
-                combine_lane(&mut self.stage[l], &self.x[l], h, tableau.a[i], &self.k, l);
-            }
-            self.evaluate(t + M::Float::from_f64(tableau.c[i]) * h, i);
+        for l in (0..n).filter(|&l| picked[l]) {
+            let states = match from {
+                Source::Start => &self.x,
+                Source::Stage => &self.stage,
+            };
+            M::derivatives_each(
+                &mut self.models[l..=l],
+                &[],
+                t,
+                &states[l..=l],
+                &mut self.k[i][l..=l],
+                &mut self.status[l..=l],
+            );
         }
-        for l in 0..self.n {
-            combine_lane(&mut self.stage[l], &self.x[l], h, &tableau.b, &self.k, l);
-        }
+        self.retain(|lanes, l| lanes.status[l].is_ok());
+    }
+
+    /// Each lane's new state `stage` replaces its state `x` if it is
+    /// finite at `t`; the lanes whose new state is not leave.
+    fn accept(&mut self, t: M::Float) {
         self.retain(|lanes, l| {
-            let ok = check_finite::<M>(t + h, &lanes.stage[l]).is_ok();
+            let ok = check_finite::<M>(t, &lanes.stage[l]).is_ok();
             lanes.x[l] = lanes.stage[l];
             ok
         });
@@ -184,7 +221,7 @@ impl<'m, M: Model, const S: usize> Lanes<'m, M, S> {
 
 /// What the run driver does at the start: each lane's parameters and
 /// state checked, its state assembled; the lanes that fail leave.
-fn begin<M: Model, const S: usize>(lanes: &mut Lanes<'_, M, S>, t: M::Float) {
+fn begin<M: Model, const S: usize, C: Copy>(lanes: &mut Lanes<'_, M, S, C>, t: M::Float) {
     lanes.retain(|lanes, l| {
         let model = &mut lanes.models[l];
         check_finite_parameters(model, t).is_ok()
@@ -196,8 +233,8 @@ fn begin<M: Model, const S: usize>(lanes: &mut Lanes<'_, M, S>, t: M::Float) {
 /// The outputs at `t` of every lane, checked and recorded as output `k`
 /// of its case's row; the lanes that fail leave. Returns the next entry
 /// of the plan's `at` (the same for every case).
-fn emit<M: Model, const S: usize>(
-    lanes: &mut Lanes<'_, M, S>,
+fn emit<M: Model, const S: usize, C: Copy>(
+    lanes: &mut Lanes<'_, M, S, C>,
     (plan, outs): (&Plan, &mut [&mut [f64]]),
     t: M::Float,
     (k, next_at): (u64, usize),
@@ -218,21 +255,22 @@ fn emit<M: Model, const S: usize>(
 
 /// Runs the cases starting at `xs` (at most [`GROUP`]) together, case `k`
 /// on `models[k]` (whose lane values [`Model::lane_values`] gathered into
-/// `values`), with `tableau`, as [`run`](crate::run()) runs each with the
-/// fixed-step stepper of that tableau; `done[k]` is set for the cases that
-/// finished (their rows in `outs[k]` written). The models of the cases
-/// that leave are swapped among `models`' first entries (the study makes
-/// fresh ones for a case it runs again).
-pub(super) fn simulate<M: Model, const S: usize>(
-    (models, values): (&mut [M], &[crate::Lanes<LANES>]),
-    tableau: &Tableau<S>,
+/// `values`), each lane carrying `carry` at first and stepped by `step`
+/// (the lanes, the time, the step), as [`run`](crate::run()) runs each
+/// with the fixed-step stepper `step` does for all; `done[k]` is set for
+/// the cases that finished (their rows in `outs[k]` written). The models
+/// of the cases that leave are swapped among `models`' first entries (the
+/// study makes fresh ones for a case it runs again).
+pub(super) fn simulate<'m, M: Model, const S: usize, C: Copy>(
+    (models, values): (&'m mut [M], &'m [crate::Lanes<LANES>]),
+    (carry, mut step): (C, impl FnMut(&mut Lanes<'m, M, S, C>, M::Float, M::Float)),
     settings: &RunSettings<M::Float>,
     plan: &Plan,
     xs: &[M::State],
     outs: &mut [&mut [f64]],
     done: &mut [bool],
 ) {
-    let mut lanes = Lanes::<M, S>::new(models, values, xs);
+    let mut lanes = Lanes::<M, S, C>::new(models, values, xs, carry);
     lanes.n = lanes.n.min(outs.len()).min(done.len());
     for out in outs.iter_mut().take(lanes.n) {
         plan.begin(out);
@@ -250,7 +288,7 @@ pub(super) fn simulate<M: Model, const S: usize>(
                     // The step limit: every case fails alone.
                     return Err(());
                 }
-                lanes.step(tableau, t, h);
+                step(&mut lanes, t, h);
                 let tolerance = settings.projection_tolerance;
                 lanes.retain(|lanes, l| {
                     lanes.models[l]

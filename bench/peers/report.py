@@ -64,7 +64,8 @@ text = f"""# autosim against the peers on the chain models, and the satellite
 
 `bash bench/peers/run.sh` (after the peers' own scripts in `../shared/bench`),
 {datetime.datetime.now(datetime.timezone.utc):%Y-%m-%d %H:%M} UTC, autosim at
-{os.environ.get("BENCH_GIT", "an unknown commit")}, {os.environ.get("ROUNDS", "?")} rounds.
+{os.environ.get("BENCH_GIT", "an unknown commit")}, {os.environ.get("ROUNDS", "?")} rounds, on
+{os.environ.get("BENCH_CPU", "an unrecorded CPU")} (`/proc/cpuinfo`).
 Median ns per forward-dynamics call over
 every batch (1000 calls over 1000 random states) of every round; the rounds
 interleave the programs, so load hits all alike. The best method of each

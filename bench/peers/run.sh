@@ -107,5 +107,6 @@ RS
 done
 
 echo "== 5. tables"
-BENCH_GIT="$(bench_git)" ROUNDS="$ROUNDS" BENCH_LOAD="$LOAD" AUTOSIM_RUSTFLAGS="$RUSTFLAGS_BENCH" \
+CPU="$(grep -m1 'model name' /proc/cpuinfo 2>/dev/null | cut -d: -f2 | xargs || true)"
+BENCH_GIT="$(bench_git)" ROUNDS="$ROUNDS" BENCH_LOAD="$LOAD" AUTOSIM_RUSTFLAGS="$RUSTFLAGS_BENCH" BENCH_CPU="${CPU:-an unrecorded CPU}" \
   $PY "$HERE/report.py" "$OUT" "$HERE/$RESULTS.md" "$HERE/$RESULTS.jsonl"

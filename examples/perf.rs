@@ -157,7 +157,8 @@ fn main() {
 fn batch_ns<M, const L: usize, const N: usize>(
     model: &mut M,
     xs: &[[f64; N]],
-    lanes: impl Fn(&mut M, f64, &[Lanes<L>; N], &mut [Lanes<L>; N]) -> Result<(), ModelError> + Copy,
+    lanes: impl Fn(&mut M, Lanes<L>, &[Lanes<L>; N], &mut [Lanes<L>; N]) -> Result<(), ModelError>
+    + Copy,
 ) -> f64
 where
     M: Model<Float = f64, State = [f64; N]>,

@@ -4,9 +4,10 @@
 //! `derivatives_lanes` (`lanes = true`), on a hand-written one that allows
 //! lockstep with the default batch (one `derivatives` call per state),
 //! and on a plain generated model (which runs one case at a time), with Euler,
-//! Heun, RK4 and Adams–Bashforth–Moulton of order 2 and 4 (each case its
+//! Heun, RK4, Adams–Bashforth–Moulton of order 2 and 4 (each case its
 //! own history, also when projections reset some cases' histories and not
-//! the others'), every kind of kept value, output times on and off the
+//! the others') and Dormand–Prince (each case its own steps and times,
+//! rejections and failed stages included), every kind of kept value, output times on and off the
 //! step grid, case counts that leave a partial group, serially and on two
 //! threads. A case that fails (a non-finite state, a model error, a
 //! non-finite output, a panic) fails with the error it has alone and the
@@ -29,13 +30,40 @@ use chain_planar3::ChainPlanar3;
 autosim::model!(file = "examples/models/pendulum.sim");
 use pendulum::Pendulum;
 
-/// The methods that run in lockstep.
-const METHODS: [Method; 5] = [
+autosim::model! {
+    /// A pendulum driven by a torque that varies in time: with
+    /// Dormand–Prince each lane is at its own time.
+    model DrivenPendulum;
+    settings { lanes: true }
+    parameters {
+        m = 1.3 [kg],
+        L = 0.7 [m],
+        g = 9.81 [m/s^2],
+        A = 2.0 [N m],
+        w = 3.0 [rad/s],
+    }
+    body Rod { rotate: 1, q: [q], u: [u], mass: m, cm: [0, 0, -L], inertia: 0 }
+    moment drive { on: Rod, reaction: N, about: n1, magnitude: A*sin(w*t) }
+    gravity = -g*n3;
+    output height [m] = dot(pos(Rod.cm), n3);
+}
+use driven_pendulum::DrivenPendulum;
+
+/// The methods that run in lockstep: every one.
+const METHODS: [Method; 7] = [
     Method::Euler,
     Method::Heun,
     Method::Rk4,
     Method::AdamsBashforthMoulton(AbmOrder::Two),
     Method::AdamsBashforthMoulton(AbmOrder::Four),
+    Method::DormandPrince {
+        rtol: 1e-6,
+        atol: 1e-9,
+    },
+    Method::DormandPrince {
+        rtol: 1e-3,
+        atol: 1e-6,
+    },
 ];
 
 /// Runs `study` with and without lockstep (serially and on two threads)
@@ -128,6 +156,29 @@ fn a_parameter_sweep_in_lockstep_gives_the_bits_of_one_case_at_a_time() {
 }
 
 #[test]
+fn cases_at_their_own_times_in_lockstep_give_the_bits_of_one_case_at_a_time() {
+    // Adaptive steps: each case of a group at its own time, reading it in
+    // its own lane.
+    let columns = [
+        ("A", Distribution::uniform(0.0, 8.0)),
+        ("w", Distribution::uniform(1.0, 20.0)),
+        ("q", Distribution::uniform(-2.0, 2.0)),
+        ("u", Distribution::uniform(-2.0, 2.0)),
+    ];
+    let settings = RunSettings::new(0.0, 1.0, 0.01, 0.1);
+    for method in METHODS {
+        let keep = Keep::new()
+            .final_state()
+            .statistic("height", Statistic::Max)
+            .history(&["q"]);
+        let task = Simulate::new(settings, method, keep).unwrap();
+        let cases = Cases::new().random(13, 4, &columns).unwrap();
+        let results = same_either_way(Study::new(DrivenPendulum::new, cases, task), 13);
+        assert_eq!(results.failures(), 0, "{method:?}");
+    }
+}
+
+#[test]
 fn a_failing_case_of_a_lanes_model_fails_as_alone() {
     // Speeds of 1e200 overflow the derivatives (non-finite, in the batch
     // of four and again alone).
@@ -181,7 +232,7 @@ impl Model for Quirky {
     fn derivatives_each(
         models: &mut [Quirky],
         _: &[Lanes<4>],
-        t: f64,
+        t: &[f64],
         x: &[[f64; 1]],
         dx: &mut [[f64; 1]],
         status: &mut [Result<(), ModelError>],
@@ -230,7 +281,15 @@ fn a_failing_case_fails_as_alone_and_the_others_of_its_group_finish() {
     // 11 cases: a panic (7), a model error (-6), a blow-up (x' = x² from 3
     // passes infinity before t = 1/3), a non-finite output (√-1).
     let x0 = [0.1, 0.2, 7.0, 0.3, -6.0, 0.4, 3.0, -11.0, 0.5, 0.6, 0.7];
-    for method in [Method::Rk4, Method::AdamsBashforthMoulton(AbmOrder::Four)] {
+    let dopri = Method::DormandPrince {
+        rtol: 1e-6,
+        atol: 1e-9,
+    };
+    for method in [
+        Method::Rk4,
+        Method::AdamsBashforthMoulton(AbmOrder::Four),
+        dopri,
+    ] {
         let (results, batches) = quirky(&["x"], &x0, method);
         assert!(batches > 0, "no group ran in lockstep ({method:?})");
         let errors = results.errors();
@@ -240,7 +299,16 @@ fn a_failing_case_fails_as_alone_and_the_others_of_its_group_finish() {
         };
         has(2, "a deliberate panic at x = 7");
         has(4, "singular");
-        has(6, "non-finite");
+        // Dormand–Prince shrinks its steps toward the blow-up instead.
+        let adaptive = matches!(method, Method::DormandPrince { .. });
+        has(
+            6,
+            if adaptive {
+                "step size underflow"
+            } else {
+                "non-finite"
+            },
+        );
         has(7, "not finite");
         for k in [0, 1, 3, 5, 8, 9, 10] {
             assert!(
@@ -272,8 +340,10 @@ fn cases_with_different_parameters_run_together() {
 /// onto its energy at the start (`k x² + v²`, recorded by `assemble`) when
 /// it drifts by more than the tolerance: each case projects at its own
 /// steps, so an Adams group in lockstep has cases with a history and
-/// cases starting over at once. It allows lockstep with the default
-/// `derivatives_each` and counts that function's calls by size.
+/// cases starting over at once, and a Dormand–Prince group cases with
+/// their first stage in hand and cases without. It allows lockstep with
+/// the default `derivatives_each` and counts that function's calls by
+/// size.
 struct Drifting {
     k: f64,
     energy: f64,
@@ -303,7 +373,7 @@ impl Model for Drifting {
     fn derivatives_each(
         models: &mut [Drifting],
         _: &[Lanes<4>],
-        t: f64,
+        t: &[f64],
         x: &[[f64; 2]],
         dx: &mut [[f64; 2]],
         status: &mut [Result<(), ModelError>],
@@ -337,7 +407,7 @@ impl Model for Drifting {
 }
 
 #[test]
-fn adams_cases_keep_their_own_histories_in_lockstep() {
+fn cases_keep_their_own_histories_in_lockstep() {
     let columns = [
         ("k", Distribution::uniform(0.01, 40.0)),
         ("x", Distribution::uniform(-1.0, 1.0)),
@@ -345,7 +415,16 @@ fn adams_cases_keep_their_own_histories_in_lockstep() {
     ];
     // Tolerances between the drifts of slow and fast cases: the local
     // error of order p is about (√k h)^(p + 1) per step.
-    for (order, tolerance) in [(AbmOrder::Two, 1e-6), (AbmOrder::Four, 1e-10)] {
+    let dopri = Method::DormandPrince {
+        rtol: 1e-5,
+        atol: 1e-8,
+    };
+    let methods = [
+        (Method::AdamsBashforthMoulton(AbmOrder::Two), 1e-6),
+        (Method::AdamsBashforthMoulton(AbmOrder::Four), 1e-10),
+        (dopri, 1e-9),
+    ];
+    for (method, tolerance) in methods {
         let calls = Arc::new([AtomicU64::new(0), AtomicU64::new(0)]);
         let make = {
             let calls = calls.clone();
@@ -357,16 +436,16 @@ fn adams_cases_keep_their_own_histories_in_lockstep() {
         };
         let settings = RunSettings::new(0.0, 2.0, 0.01, 0.1).with_projection_tolerance(tolerance);
         let keep = Keep::new().final_state().history(&["x"]);
-        let task = Simulate::new(settings, Method::AdamsBashforthMoulton(order), keep).unwrap();
+        let task = Simulate::new(settings, method, keep).unwrap();
         let cases = Cases::new().random(16, 3, &columns).unwrap();
         let results = same_either_way(Study::new(make, cases, task), 16);
-        assert_eq!(results.failures(), 0, "{order:?}");
+        assert_eq!(results.failures(), 0, "{method:?}");
         let [ones, fours] = [0, 1].map(|k| calls[k].load(Ordering::Relaxed));
         // Both kinds of step in one group: start-up stages for some lanes
         // alone, the rest of the evaluations for all four.
         assert!(
             ones > 0 && fours > 0,
-            "{order:?}: {ones} single, {fours} of four"
+            "{method:?}: {ones} single, {fours} of four"
         );
     }
 }

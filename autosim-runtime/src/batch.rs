@@ -1,6 +1,7 @@
 //! Derivatives at many states in one call: of one model
-//! ([`Model::derivatives_batch`]) or of several, each at its own state
-//! ([`Model::derivatives_each`], a study's cases in lockstep). Generated
+//! ([`Model::derivatives_batch`]) or of several, each at its own time
+//! and state ([`Model::derivatives_each`], a study's cases in lockstep).
+//! Generated
 //! `f64` models with the `lanes` option evaluate [`LANES`] states at a
 //! time through their `derivatives_lanes` (struct of arrays, vector
 //! instructions), the same bits as one call per state; every other model
@@ -26,7 +27,7 @@ pub const LANES: usize = 4;
 /// `m` and its values gathered once, `let v = M::values_in_lanes([&m;
 /// 8]);`, `in_lanes::<_, 8, N>(&mut m, t, &x, &mut dx, &mut status, |m, t,
 /// x, dx| m.derivatives_lanes_with(&v, t, x, dx))` evaluates eight states
-/// per call.
+/// per call (`t` there is the time in every lane).
 #[inline]
 pub fn in_lanes<M, const L: usize, const N: usize>(
     model: &mut M,
@@ -34,7 +35,12 @@ pub fn in_lanes<M, const L: usize, const N: usize>(
     x: &[[f64; N]],
     dx: &mut [[f64; N]],
     status: &mut [Result<(), ModelError>],
-    mut lanes: impl FnMut(&mut M, f64, &[Lanes<L>; N], &mut [Lanes<L>; N]) -> Result<(), ModelError>,
+    mut lanes: impl FnMut(
+        &mut M,
+        Lanes<L>,
+        &[Lanes<L>; N],
+        &mut [Lanes<L>; N],
+    ) -> Result<(), ModelError>,
 ) where
     M: Model<Float = f64, State = [f64; N]> + ?Sized,
 {
@@ -42,7 +48,7 @@ pub fn in_lanes<M, const L: usize, const N: usize>(
     let mut soa_dx = [Lanes::<L>::ZERO; N];
     for range in full_groups::<L>(count) {
         let soa_x = struct_of_arrays::<L, N>(&x[range.clone()]);
-        match lanes(model, t, &soa_x, &mut soa_dx) {
+        match lanes(model, Lanes::splat(t), &soa_x, &mut soa_dx) {
             Ok(()) => scatter(&soa_dx, &mut dx[range.clone()], &mut status[range]),
             Err(_) => one_by_one(
                 model,
@@ -93,7 +99,8 @@ pub fn values_in_groups<M, const L: usize, const K: usize>(
 }
 
 /// [`Model::derivatives_each`] through a model's lanes function `lanes`
-/// (generated models' override): `models[k]` at state `x[k]`, in groups of
+/// (generated models' override): `models[k]` at time `t[k]` and state
+/// `x[k]`, in groups of
 /// `L` whose lane `l` reads the values of the group's `l`-th model
 /// (`values[g * K..(g + 1) * K]`, what [`values_in_groups`] gathered)
 /// while user code is called on the group's first model (what
@@ -106,33 +113,35 @@ pub fn values_in_groups<M, const L: usize, const K: usize>(
 pub fn each_in_lanes<M, const L: usize, const K: usize, const N: usize>(
     models: &mut [M],
     values: &[Lanes<L>],
-    t: f64,
+    t: &[f64],
     x: &[[f64; N]],
     dx: &mut [[f64; N]],
     status: &mut [Result<(), ModelError>],
     mut lanes: impl FnMut(
         &mut M,
         &[Lanes<L>; K],
-        f64,
+        Lanes<L>,
         &[Lanes<L>; N],
         &mut [Lanes<L>; N],
     ) -> Result<(), ModelError>,
 ) where
     M: Model<Float = f64, State = [f64; N]>,
 {
-    let count = models.len().min(x.len()).min(dx.len()).min(status.len());
+    let count = models.len().min(t.len()).min(x.len());
+    let count = count.min(dx.len()).min(status.len());
     let mut soa_dx = [Lanes::<L>::ZERO; N];
     for (g, range) in full_groups::<L>(count).enumerate() {
         let group = &mut models[range.clone()];
         let v = values
             .get(g * K..(g + 1) * K)
             .and_then(|v| <&[Lanes<L>; K]>::try_from(v).ok());
+        let soa_t = Lanes(core::array::from_fn(|l| t[range.start + l]));
         let soa_x = struct_of_arrays::<L, N>(&x[range.clone()]);
-        match v.map(|v| lanes(&mut group[0], v, t, &soa_x, &mut soa_dx)) {
+        match v.map(|v| lanes(&mut group[0], v, soa_t, &soa_x, &mut soa_dx)) {
             Some(Ok(())) => scatter(&soa_dx, &mut dx[range.clone()], &mut status[range]),
             _ => each_alone(
                 group,
-                t,
+                &t[range.clone()],
                 &x[range.clone()],
                 &mut dx[range.clone()],
                 &mut status[range],
@@ -142,7 +151,7 @@ pub fn each_in_lanes<M, const L: usize, const K: usize, const N: usize>(
     let rest = count / L * L..count;
     each_alone(
         &mut models[rest.clone()],
-        t,
+        &t[rest.clone()],
         &x[rest.clone()],
         &mut dx[rest.clone()],
         &mut status[rest],
@@ -163,23 +172,24 @@ fn scatter<const L: usize, const N: usize>(
     }
 }
 
-/// One [`Model::derivatives`] call per model, each at its state: the
-/// default [`Model::derivatives_each`].
+/// One [`Model::derivatives`] call per model, each at its time and
+/// state: the default [`Model::derivatives_each`].
 #[inline]
 pub fn each_alone<M: Model>(
     models: &mut [M],
-    t: M::Float,
+    t: &[M::Float],
     x: &[M::State],
     dx: &mut [M::State],
     status: &mut [Result<(), ModelError>],
 ) {
-    for (((m, x), dx), s) in models
+    for ((((m, t), x), dx), s) in models
         .iter_mut()
+        .zip(t)
         .zip(x)
         .zip(dx.iter_mut())
         .zip(status.iter_mut())
     {
-        *s = m.derivatives(t, x, dx);
+        *s = m.derivatives(*t, x, dx);
     }
 }
 

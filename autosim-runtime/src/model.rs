@@ -279,10 +279,10 @@ pub trait Model {
         let _ = (models, values);
     }
 
-    /// The derivatives of several models of this type at one time `t`,
-    /// each at its own state: `dx[k]` and `status[k]` are what
-    /// `models[k].derivatives` gives for `x[k]` (up to the shortest of the
-    /// four slices; nothing is allocated). `values` is what
+    /// The derivatives of several models of this type, each at its own
+    /// time and state: `dx[k]` and `status[k]` are what
+    /// `models[k].derivatives` gives at time `t[k]` and state `x[k]` (up
+    /// to the shortest of the five slices; nothing is allocated). `values` is what
     /// [`Model::lane_values`] gathered from `models` as they are now: a
     /// group of [`LANES`] models whose values it does not hold (an empty
     /// `values`, say) is evaluated one call per model. What a study's
@@ -297,7 +297,7 @@ pub trait Model {
     fn derivatives_each(
         models: &mut [Self],
         values: &[Lanes<LANES>],
-        t: Self::Float,
+        t: &[Self::Float],
         x: &[Self::State],
         dx: &mut [Self::State],
         status: &mut [Result<(), ModelError>],

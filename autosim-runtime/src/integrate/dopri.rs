@@ -98,7 +98,7 @@ impl<F: Float> Default for DopriSettings<F> {
 // "Solving Ordinary Differential Equations I", DOPRI5.
 /// Stages 1–6 and the fifth-order weights. The seventh stage is the new
 /// state itself (first same as last): its derivative starts the next step.
-const DOPRI5: Tableau<6> = Tableau {
+pub(crate) const DOPRI5: Tableau<6> = Tableau {
     c: [0.0, 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0, 1.0],
     a: [
         &[],
@@ -130,7 +130,7 @@ const DOPRI5: Tableau<6> = Tableau {
 };
 /// Error weights of the seven stages: fifth-order weights minus fourth-order
 /// weights.
-const ERROR: [f64; 7] = [
+pub(crate) const ERROR: [f64; 7] = [
     71.0 / 57600.0,
     0.0,
     -71.0 / 16695.0,
@@ -176,7 +176,7 @@ pub struct DormandPrince<M: Model> {
     has_step: bool,
     /// `k[0]` holds f(t_new, dense state end) from the last accepted step.
     fsal: bool,
-    err_old: M::Float,
+    control: Control<M::Float>,
     evals: u64,
     accepted: u64,
     rejected: u64,
@@ -200,7 +200,7 @@ impl<M: Model> DormandPrince<M> {
             t_new: M::Float::ZERO,
             has_step: false,
             fsal: false,
-            err_old: M::Float::from_f64(1e-4),
+            control: Control::new(settings),
             evals: 0,
             accepted: 0,
             rejected: 0,
@@ -330,106 +330,44 @@ clone_and_debug!(DormandPrince {
 
 impl<M: Model> Stepper<M> for DormandPrince<M> {
     fn step(&mut self, model: &mut M, t: M::Float, x: &mut M::State, h: M::Float) -> StepResult<M> {
-        let zero = M::Float::ZERO;
-        let one = M::Float::ONE;
-        if !(h > zero && h.is_finite()) {
-            return Err(IntegrationError::InvalidSettings {
-                reason: "the trial step of Dormand-Prince must be positive and finite",
-            });
-        }
-        let s = self.settings;
+        check_trial_step(h)?;
         let evals_before = self.evals;
         // First same as last: k7 of the last step is f at its end point.
-        let end = self.t_new;
-        let tol_t = M::Float::from_f64(16.0) * M::Float::EPSILON * t.abs().max(end.abs());
-        let reuse = self.fsal && (t - end).abs() <= tol_t && same(x, &self.x_new);
+        let reuse = self.fsal && ends_at::<M>(t, x, self.t_new, &self.x_new);
         // Cleared first: a failed step must not leave a stale stage behind.
         self.fsal = false;
         if !reuse {
             eval(model, t, x, &mut self.k[0], &mut self.evals)?;
         }
-
-        let expo = M::Float::from_f64(0.2) - s.beta * M::Float::from_f64(0.75);
-        let mut h = h.min(s.max_step);
-        let mut rejected = 0u32;
-        let mut last_trial_t = None;
-        // Why the model could not evaluate a stage of the last trial.
-        let mut stage_failure = None;
+        self.control.begin(h);
         loop {
-            let floor = s
-                .min_step
-                .max(M::Float::from_f64(4.0) * M::Float::EPSILON * t.abs());
-            if h < floor || t + h == t {
-                if let Some(e) = stage_failure {
-                    return Err(e);
-                }
-                if let Some(t_bad) = last_trial_t {
-                    // The step shrank because the values were not finite:
-                    // name the state, it says more than the step size.
-                    check_finite::<M>(t_bad, &self.x_new)?;
-                }
-                return Err(IntegrationError::StepSizeUnderflow {
-                    t: t.to_f64(),
-                    h: h.to_f64(),
-                });
-            }
+            self.control.check_floor::<M>(t, &self.x_new)?;
+            let h = self.control.h;
             match self.stages(model, t, x, h) {
-                Ok(()) => stage_failure = None,
+                Ok(()) => self.control.stages_done(),
                 Err(e @ (IntegrationError::NonFinite { .. } | IntegrationError::Model { .. })) => {
-                    // The model could not evaluate a stage of this trial (it
-                    // overflowed, or left the states where the model is
-                    // valid, e.g. a singular mass matrix far from the
-                    // solution): retry much smaller, as for a non-finite
-                    // result; report the failure if the step underflows.
-                    stage_failure = Some(e);
-                    last_trial_t = None;
-                    h *= s.min_factor;
-                    rejected += 1;
+                    self.control.stage_failed(e);
                     self.rejected += 1;
                     continue;
                 }
                 Err(e) => return Err(e),
             }
-            let err = weighted_rms(&self.err, x, &self.x_new, s.rtol, s.atol);
-            let finite = err.is_finite()
-                && self.x_new.as_ref().iter().all(|v| v.is_finite())
-                && self.k[6].as_ref().iter().all(|v| v.is_finite());
-            if !finite {
-                // Overflow or a model blowing up: retry much smaller.
-                last_trial_t = Some(t + h);
-                h *= s.min_factor;
-                rejected += 1;
+            let Some(h_next) = self.control.judge(t, x, &self.x_new, &self.err, &self.k[6]) else {
                 self.rejected += 1;
                 continue;
-            }
-            let fac11 = err.powf(expo);
-            if err <= one {
-                let fac = (fac11 / self.err_old.powf(s.beta) / s.safety)
-                    .max(one / s.max_factor)
-                    .min(one / s.min_factor);
-                let mut h_next = (h / fac).min(s.max_step);
-                if rejected > 0 {
-                    h_next = h_next.min(h);
-                }
-                self.err_old = err.max(M::Float::from_f64(1e-4));
-                let x_old = *x;
-                self.store_dense(&x_old, t, h);
-                *x = self.x_new;
-                self.k[0] = self.k[6];
-                self.fsal = true;
-                self.accepted += 1;
-                return Ok(StepInfo {
-                    h,
-                    h_next,
-                    rejected,
-                    evaluations: evaluations_since(evals_before, self.evals),
-                });
-            }
-            last_trial_t = None;
-            let shrink = (fac11 / s.safety).min(one / s.min_factor);
-            h /= shrink;
-            rejected += 1;
-            self.rejected += 1;
+            };
+            let x_old = *x;
+            self.store_dense(&x_old, t, h);
+            *x = self.x_new;
+            self.k[0] = self.k[6];
+            self.fsal = true;
+            self.accepted += 1;
+            return Ok(StepInfo {
+                h,
+                h_next,
+                rejected: self.control.rejected,
+                evaluations: evaluations_since(evals_before, self.evals),
+            });
         }
     }
     fn evaluations(&self) -> u64 {
@@ -438,7 +376,7 @@ impl<M: Model> Stepper<M> for DormandPrince<M> {
     fn reset(&mut self) {
         self.fsal = false;
         self.has_step = false;
-        self.err_old = M::Float::from_f64(1e-4);
+        self.control.reset();
     }
     fn is_adaptive(&self) -> bool {
         true
@@ -454,5 +392,170 @@ impl<M: Model> Stepper<M> for DormandPrince<M> {
     }
     fn order(&self) -> u32 {
         5
+    }
+}
+
+/// Rejects a trial step that is not positive and finite.
+pub(crate) fn check_trial_step<F: Float>(h: F) -> Result<(), IntegrationError> {
+    if h > F::ZERO && h.is_finite() {
+        Ok(())
+    } else {
+        Err(IntegrationError::InvalidSettings {
+            reason: "the trial step of Dormand-Prince must be positive and finite",
+        })
+    }
+}
+
+/// Whether a step from `(t, x)` starts where the last accepted step ended
+/// (`(end, x_end)`), so that its last stage is this step's first (first
+/// same as last).
+pub(crate) fn ends_at<M: Model>(
+    t: M::Float,
+    x: &M::State,
+    end: M::Float,
+    x_end: &M::State,
+) -> bool {
+    let tol_t = M::Float::from_f64(16.0) * M::Float::EPSILON * t.abs().max(end.abs());
+    (t - end).abs() <= tol_t && same(x, x_end)
+}
+
+/// The step-size control of [`DormandPrince`]: the error of the last
+/// accepted step (its PI controller's memory) and the trials of the step
+/// in progress. A study's lockstep keeps one per case and drives it as
+/// the stepper does, trial by trial.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Control<F> {
+    settings: DopriSettings<F>,
+    err_old: F,
+    /// The step being tried.
+    pub(crate) h: F,
+    /// Trials of this step rejected so far.
+    pub(crate) rejected: u32,
+    /// The end of the last trial, if it was rejected for values that were
+    /// not finite.
+    last_trial_t: Option<F>,
+    /// Why the model could not evaluate a stage of the last trial.
+    stage_failure: Option<IntegrationError>,
+}
+
+impl<F: Float> Control<F> {
+    /// No step taken yet.
+    pub(crate) fn new(settings: DopriSettings<F>) -> Self {
+        Control {
+            settings,
+            err_old: F::from_f64(1e-4),
+            h: F::ZERO,
+            rejected: 0,
+            last_trial_t: None,
+            stage_failure: None,
+        }
+    }
+
+    /// Forgets the last step's error.
+    pub(crate) fn reset(&mut self) {
+        self.err_old = F::from_f64(1e-4);
+    }
+
+    /// Starts a step whose first trial is `h` (at most the largest step).
+    pub(crate) fn begin(&mut self, h: F) {
+        self.h = h.min(self.settings.max_step);
+        self.rejected = 0;
+        self.last_trial_t = None;
+        self.stage_failure = None;
+    }
+
+    /// Whether the trial from `t` is below the smallest step (or no
+    /// longer changes the time).
+    pub(crate) fn underflows(&self, t: F) -> bool {
+        let floor = self
+            .settings
+            .min_step
+            .max(F::from_f64(4.0) * F::EPSILON * t.abs());
+        self.h < floor || t + self.h == t
+    }
+
+    /// Before a trial from `t`: the error the step fails with if the
+    /// trial underflows (the stage that could not be evaluated, the state
+    /// `x_new` of the last trial if it was not finite, or the step size).
+    pub(crate) fn check_floor<M: Model<Float = F>>(
+        &self,
+        t: F,
+        x_new: &M::State,
+    ) -> Result<(), IntegrationError> {
+        if !self.underflows(t) {
+            return Ok(());
+        }
+        if let Some(e) = self.stage_failure {
+            return Err(e);
+        }
+        if let Some(t_bad) = self.last_trial_t {
+            // The step shrank because the values were not finite: name
+            // the state, it says more than the step size.
+            check_finite::<M>(t_bad, x_new)?;
+        }
+        Err(IntegrationError::StepSizeUnderflow {
+            t: t.to_f64(),
+            h: self.h.to_f64(),
+        })
+    }
+
+    /// The trial's stages were all evaluated.
+    pub(crate) fn stages_done(&mut self) {
+        self.stage_failure = None;
+    }
+
+    /// The model could not evaluate a stage of the trial (it overflowed,
+    /// or left the states where the model is valid, e.g. a singular mass
+    /// matrix far from the solution): the next trial is much smaller, as
+    /// for a non-finite result; `e` is reported if the step underflows.
+    pub(crate) fn stage_failed(&mut self, e: IntegrationError) {
+        self.stage_failure = Some(e);
+        self.last_trial_t = None;
+        self.h *= self.settings.min_factor;
+        self.rejected += 1;
+    }
+
+    /// Judges the trial from `(t, x)` to `x_new` with the error estimate
+    /// `err` and the last stage `k7`: the next step suggested if it is
+    /// accepted (`self.h` is then the step taken), `None` if it is rejected
+    /// (`self.h` is then the next trial).
+    pub(crate) fn judge<S: StateArray<F>>(
+        &mut self,
+        t: F,
+        x: &S,
+        x_new: &S,
+        err: &S,
+        k7: &S,
+    ) -> Option<F> {
+        let (s, one) = (&self.settings, F::ONE);
+        let expo = F::from_f64(0.2) - s.beta * F::from_f64(0.75);
+        let err = weighted_rms(err, x, x_new, s.rtol, s.atol);
+        let finite = err.is_finite()
+            && x_new.as_ref().iter().all(|v| v.is_finite())
+            && k7.as_ref().iter().all(|v| v.is_finite());
+        if !finite {
+            // Overflow or a model blowing up: retry much smaller.
+            self.last_trial_t = Some(t + self.h);
+            self.h *= s.min_factor;
+            self.rejected += 1;
+            return None;
+        }
+        let fac11 = err.powf(expo);
+        if err <= one {
+            let fac = (fac11 / self.err_old.powf(s.beta) / s.safety)
+                .max(one / s.max_factor)
+                .min(one / s.min_factor);
+            let mut h_next = (self.h / fac).min(s.max_step);
+            if self.rejected > 0 {
+                h_next = h_next.min(self.h);
+            }
+            self.err_old = err.max(F::from_f64(1e-4));
+            return Some(h_next);
+        }
+        self.last_trial_t = None;
+        let shrink = (fac11 / s.safety).min(one / s.min_factor);
+        self.h /= shrink;
+        self.rejected += 1;
+        None
     }
 }

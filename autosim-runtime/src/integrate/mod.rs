@@ -50,6 +50,8 @@ mod vector;
 #[cfg(feature = "study")]
 pub(crate) use abm::AbmHistory;
 pub use abm::{AbmOrder, AdamsBashforthMoulton};
+#[cfg(feature = "study")]
+pub(crate) use dopri::{Control, DOPRI5, ERROR, check_trial_step, ends_at};
 pub use dopri::{DopriSettings, DormandPrince};
 #[cfg(feature = "study")]
 pub(crate) use explicit::{EULER, HEUN, RK4, Tableau};
@@ -58,7 +60,7 @@ pub use jacobian::{Analytic, FiniteDifferences, JacobianSource};
 pub use linalg::{LuFactors, SingularMatrix};
 pub use sdirk::{Sdirk3, SdirkSettings};
 #[cfg(feature = "study")]
-pub(crate) use vector::{check_step, combine_lane};
+pub(crate) use vector::{check_step, combine_lane, evaluation_error};
 
 pub use crate::error::check_finite;
 use crate::{IntegrationError, Model};

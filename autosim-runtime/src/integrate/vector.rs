@@ -123,14 +123,26 @@ pub(crate) fn eval<M: Model>(
     evaluations: &mut u64,
 ) -> Result<(), IntegrationError> {
     *evaluations += 1;
-    model.derivatives(t, x, dx).map_err(|error| {
-        check_finite::<M>(t, x)
-            .err()
-            .unwrap_or(IntegrationError::Model {
-                t: t.to_f64(),
-                error,
-            })
-    })
+    model
+        .derivatives(t, x, dx)
+        .map_err(|error| evaluation_error::<M>(t, x, error))
+}
+
+/// What [`eval`] reports when the model fails with `error` at `(t, x)`:
+/// [`IntegrationError::NonFinite`] naming the state if `x` is not finite
+/// (the cause), [`IntegrationError::Model`] otherwise.
+#[inline]
+pub(crate) fn evaluation_error<M: Model>(
+    t: M::Float,
+    x: &M::State,
+    error: crate::ModelError,
+) -> IntegrationError {
+    check_finite::<M>(t, x)
+        .err()
+        .unwrap_or(IntegrationError::Model {
+            t: t.to_f64(),
+            error,
+        })
 }
 
 /// Rejects a step that is zero, NaN or infinite.

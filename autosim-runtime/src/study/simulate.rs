@@ -11,7 +11,7 @@ use super::lockstep::{self, adams_step, runge_kutta_step};
 use super::method::Method;
 use super::task::{CaseError, Field, Task};
 use crate::batch::LANES;
-use crate::integrate::{AbmHistory, EULER, HEUN, RK4};
+use crate::integrate::{AbmHistory, DopriSettings, EULER, HEUN, RK4};
 use crate::run::Observer;
 use crate::{Float, IntegrationError, Lanes, Model, RunSettings, run};
 
@@ -367,12 +367,10 @@ where
         Ok(())
     }
 
-    /// Fixed-step methods (Euler, Heun, RK4, Adams–Bashforth–Moulton) of a
-    /// model without events or discrete variables (see [the study
-    /// docs](super#lockstep)).
+    /// Every method, for a model without events or discrete variables
+    /// (see [the study docs](super#lockstep)).
     fn runs_in_lockstep(&self) -> bool {
-        let fixed = !matches!(self.method, Method::DormandPrince { .. });
-        fixed && M::EVENT_INDICATORS.is_empty() && M::DISCRETE_NAMES.is_empty()
+        M::EVENT_INDICATORS.is_empty() && M::DISCRETE_NAMES.is_empty()
     }
 
     fn run_group(
@@ -406,7 +404,10 @@ where
                 let method = (AbmHistory::new(), adams);
                 lockstep::simulate(group, method, settings, plan, xs, outs, done)
             }
-            Method::DormandPrince { .. } => {}
+            Method::DormandPrince { rtol, atol } => {
+                let dopri = DopriSettings::new(M::Float::from_f64(rtol), M::Float::from_f64(atol));
+                lockstep::simulate_adaptive(group, dopri, settings, plan, xs, outs, done)
+            }
         }
     }
 

@@ -78,6 +78,24 @@ pub mod lanes {
         file = "../../examples/models/chain_planar_2_f32.sim",
         lanes = true
     );
+    autosim::model! {
+        /// A pendulum driven by a torque that varies in time: each lane
+        /// must read its own time.
+        model DrivenPendulum;
+        settings { lanes: true }
+        parameters {
+            m = 1.3 [kg],
+            L = 0.7 [m],
+            g = 9.81 [m/s^2],
+            A = 2.0 [N m],
+            w = 3.0 [rad/s],
+            /// A torque rate.
+            r = 0.5 [N m/s],
+        }
+        body Rod { rotate: 1, q: [q], u: [u], mass: m, cm: [0, 0, -L], inertia: 0 }
+        moment drive { on: Rod, reaction: N, about: n1, magnitude: A*sin(w*t) + r*t }
+        gravity = -g*n3;
+    }
 }
 
 /// The models written by the build script.

@@ -101,14 +101,23 @@ fn compare<M: Model>(make: &impl Fn() -> M, seed: u64, count: usize, path: Path)
         assert_eq!(*one, many, "{} state {k} ({:?})", M::NAME, xs[k].as_ref());
     }
     let mut models: Vec<M> = (0..count).map(|_| varied(make, &mut rng)).collect();
-    let alone: Vec<Outcome> = models.iter_mut().zip(&xs).map(|(m, x)| one(m, x)).collect();
+    // Each model at its own time too.
+    let times: Vec<M::Float> = (0..count)
+        .map(|k| M::Float::from_f64(0.3 + 0.01 * k as f64))
+        .collect();
+    let alone: Vec<Outcome> = (models.iter_mut().zip(&times).zip(&xs))
+        .map(|((m, t), x)| {
+            let mut dx = M::State::zeros();
+            m.derivatives(*t, x, &mut dx).map(|()| bits(dx.as_ref()))
+        })
+        .collect();
     // With every group's values, with the first group's only (the others
     // one call per model), with none.
     let mut values = vec![Lanes::ZERO; M::LANE_VALUES * (count / LANES)];
     M::lane_values(&models, &mut values);
     let first = values.len().min(M::LANE_VALUES);
     for values in [&values[..], &values[..first], &[]] {
-        M::derivatives_each(&mut models, values, t, &xs, &mut dx, &mut status);
+        M::derivatives_each(&mut models, values, &times, &xs, &mut dx, &mut status);
         for (k, (one, each)) in alone.iter().zip(outcomes::<M>(&status, &dx)).enumerate() {
             let at = xs[k].as_ref();
             assert_eq!(*one, each, "{} model and state {k} ({at:?})", M::NAME);
@@ -200,6 +209,7 @@ fn batch_matches_single_calls() {
         every_copy(|| models::satellite::Satellite::new(Thrusters), 8),
         every_copy(models::quarter_car_bump_stop::QuarterCarBumpStop::new, 9),
         every_copy(models::chain_planar2_f32::ChainPlanar2F32::new, 10),
+        every_copy(models::driven_pendulum::DrivenPendulum::new, 11),
     ];
     for (k, (states, errors)) in runs.iter().enumerate() {
         assert_eq!(*states, 609, "model #{k}");

@@ -49,10 +49,6 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
     let functions::Args { t, x } = functions::args(prog, BlockKind::Derivatives, be.locals);
     let ldx = &be.locals.dx;
     let body = functions::body(&lanes, BlockKind::Derivatives);
-    let bind_t = match t.to_string().as_str() {
-        "_" => TokenStream::new(),
-        _ => quote!(let t = Lanes::<#l>::splat(t);),
-    };
     let v = &be.locals.values;
     let v_pattern = match lane_values::read_by_derivatives(prog) {
         true => quote!(#v),
@@ -60,7 +56,7 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
     };
     let params = [
         (v_pattern, "v", quote!(&#values_ty)),
-        (t, "t", quote!(f64)),
+        (t, "t", lane_ty.clone()),
         (x, "x", quote!(&[#lane_ty; #n_states])),
         (quote!(#ldx), "dx", quote!(&mut [#lane_ty; #n_states])),
     ]
@@ -85,7 +81,6 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
         quote! {
             #[allow(unused_imports)]
             use #rt::__private::Lanes;
-            #bind_t
             #body
             #rt::__private::check_derivatives_lanes::<Self, #l>(#ldx)
         },
@@ -110,16 +105,17 @@ pub(super) fn inherent(be: &BlockEmitter<'_>) -> (TokenStream, TokenStream) {
             dx: &mut [#lane_ty; #n_states],
         ) -> Result<(), #rt::ModelError> {
             let v = Self::values_in_lanes([&*self; #l]);
-            self.derivatives_lanes_with(&v, t, x, dx)
+            self.derivatives_lanes_with(&v, #rt::__private::Lanes::splat(t), x, dx)
         }
 
         #values
 
         /// `derivatives_lanes` with the values it reads besides the time
-        /// and the states given as `v`, what `values_in_lanes` gathers:
-        /// lane `l` computes what the `l`-th model's `derivatives` computes
-        /// (its user code called on `self`). Gather once for many calls:
-        /// `derivatives_lanes` gathers at every call.
+        /// and the states given as `v`, what `values_in_lanes` gathers,
+        /// and a time per lane: lane `l` computes what the `l`-th model's
+        /// `derivatives` computes at time `t.0[l]` (its user code called
+        /// on `self`). Gather once for many calls: `derivatives_lanes`
+        /// gathers at every call.
         pub #caller
 
         #copies
@@ -205,7 +201,7 @@ pub(super) fn batch(be: &BlockEmitter<'_>) -> TokenStream {
         fn derivatives_each(
             models: &mut [Self],
             values: &[#lanes_ty],
-            t: f64,
+            t: &[f64],
             x: &[[f64; #n_states]],
             dx: &mut [[f64; #n_states]],
             status: &mut [Result<(), #rt::ModelError>],

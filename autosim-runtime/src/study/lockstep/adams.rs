@@ -75,12 +75,11 @@ pub(in crate::study) fn adams_step<M: Model>(
             lanes.carry[l].correct(order, &mut lanes.stage[l], &lanes.x[l], h, &fp);
         }
     }
-    lanes.retain(|lanes, l| crate::check_finite::<M>(t + h, &lanes.stage[l]).is_ok());
+    lanes.accept(t + h);
     // The derivative at the new state, for the history.
-    lanes.evaluate(t + h, Source::Stage, 0);
+    lanes.evaluate(t + h, Source::Start, 0);
     for l in 0..lanes.n {
-        let (x, f) = (lanes.stage[l], lanes.k[0][l]);
+        let (x, f) = (lanes.x[l], lanes.k[0][l]);
         lanes.carry[l].accept(t, h, &x, &f);
-        lanes.x[l] = x;
     }
 }

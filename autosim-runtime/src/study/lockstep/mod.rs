@@ -71,9 +71,11 @@ use crate::{Model, ModelError, RunSettings, StateArray, check_finite};
 use super::simulate::Plan;
 
 mod adams;
+mod dormand_prince;
 mod runge_kutta;
 
 pub(super) use adams::adams_step;
+pub(super) use dormand_prince::simulate_adaptive;
 pub(super) use runge_kutta::runge_kutta_step;
 
 /// Cases integrated together: one batch of [`LANES`] states per stage.
@@ -165,47 +167,56 @@ impl<'m, M: Model, const S: usize, C: Copy> Lanes<'m, M, S, C> {
     /// The derivatives at time `t` of every lane's state `from` into
     /// `k[i]`, one call for all lanes; the lanes that fail leave.
     fn evaluate(&mut self, t: M::Float, from: Source, i: usize) {
+        self.evaluate_some(t, from, i, [true; GROUP]);
+    }
+
+    /// [`Lanes::evaluate`] for the lanes `picked` alone.
+    fn evaluate_some(&mut self, t: M::Float, from: Source, i: usize, picked: [bool; GROUP]) {
+        self.evaluate_at(&[t; GROUP], from, i, picked);
+        self.retain(|lanes, l| lanes.status[l].is_ok());
+    }
+
+    /// The derivatives of the lanes `picked`, each at its time `t[l]` and
+    /// its state `from`, into `k[i]` and their status into `status` (`Ok`
+    /// for the others; the lanes stay): one call for all if it picks
+    /// every lane, one call each otherwise.
+    fn evaluate_at(
+        &mut self,
+        t: &[M::Float; GROUP],
+        from: Source,
+        i: usize,
+        picked: [bool; GROUP],
+    ) {
         let n = self.n;
+        self.status = [Ok(()); GROUP];
         let states = match from {
             Source::Start => &self.x,
             Source::Stage => &self.stage,
         };
-        // Once a lane has left (fewer than a group), the values are stale
-        // and the lanes run one call each anyway.
-        let values = if n == GROUP { self.values } else { &[] };
-        M::derivatives_each(
-            &mut self.models[..n],
-            values,
-            t,
-            &states[..n],
-            &mut self.k[i][..n],
-            &mut self.status[..n],
-        );
-        self.retain(|lanes, l| lanes.status[l].is_ok());
-    }
-
-    /// [`Lanes::evaluate`] for the lanes `picked` alone: one call for all
-    /// if it picks every lane, one call each otherwise.
-    fn evaluate_some(&mut self, t: M::Float, from: Source, i: usize, picked: [bool; GROUP]) {
-        let n = self.n;
         if picked[..n].iter().all(|p| *p) {
-            return self.evaluate(t, from, i);
+            // Once a lane has left (fewer than a group), the values are
+            // stale and the lanes run one call each anyway.
+            let values = if n == GROUP { self.values } else { &[] };
+            M::derivatives_each(
+                &mut self.models[..n],
+                values,
+                &t[..n],
+                &states[..n],
+                &mut self.k[i][..n],
+                &mut self.status[..n],
+            );
+            return;
         }
         for l in (0..n).filter(|&l| picked[l]) {
-            let states = match from {
-                Source::Start => &self.x,
-                Source::Stage => &self.stage,
-            };
             M::derivatives_each(
                 &mut self.models[l..=l],
                 &[],
-                t,
+                &t[l..=l],
                 &states[l..=l],
                 &mut self.k[i][l..=l],
                 &mut self.status[l..=l],
             );
         }
-        self.retain(|lanes, l| lanes.status[l].is_ok());
     }
 
     /// Each lane's new state `stage` replaces its state `x` if it is
@@ -239,18 +250,34 @@ fn emit<M: Model, const S: usize, C: Copy>(
     t: M::Float,
     (k, next_at): (u64, usize),
 ) -> usize {
-    let mut y = M::Outputs::zeros();
     let mut next = next_at;
-    lanes.retain(|lanes, l| {
-        let x = &lanes.x[l];
-        let ok = lanes.models[l].outputs(t, x, &mut y).is_ok()
-            && check_finite_outputs::<M>(t, &y).is_ok();
-        if ok {
-            next = plan.record::<M>(k, next_at, outs[lanes.case[l]], x, &y);
-        }
-        ok
-    });
+    lanes.retain(
+        |lanes, l| match record(lanes, l, (plan, outs), t, (k, next_at)) {
+            Some(after) => {
+                next = after;
+                true
+            }
+            None => false,
+        },
+    );
     next
+}
+
+/// The outputs at `t` of lane `l`, checked and recorded as output `k` of
+/// its case's row (`next_at` the first entry of the plan's `at` not yet
+/// written): the next entry, or `None` if the outputs failed.
+fn record<M: Model, const S: usize, C: Copy>(
+    lanes: &mut Lanes<'_, M, S, C>,
+    l: usize,
+    (plan, outs): (&Plan, &mut [&mut [f64]]),
+    t: M::Float,
+    (k, next_at): (u64, usize),
+) -> Option<usize> {
+    let mut y = M::Outputs::zeros();
+    let x = &lanes.x[l];
+    let ok =
+        lanes.models[l].outputs(t, x, &mut y).is_ok() && check_finite_outputs::<M>(t, &y).is_ok();
+    ok.then(|| plan.record::<M>(k, next_at, outs[lanes.case[l]], x, &y))
 }
 
 /// Runs the cases starting at `xs` (at most [`GROUP`]) together, case `k`

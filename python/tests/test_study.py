@@ -60,14 +60,15 @@ def rust_results(study: autosim.Study) -> autosim.StudyResults:
     return study.read(folder)
 
 
-@pytest.mark.parametrize("method", ["rk4", "abm4"])
+@pytest.mark.parametrize("method", ["rk4", "abm4", "dopri"])
 def test_a_lanes_model_runs_a_parameter_sweep_in_lockstep_with_the_bits_of_one_case_at_a_time(
     load_model: Load, repo: Path, method: str
 ) -> None:
-    """With ``lanes=True`` an RK4 or ABM4 study runs four cases per call of
-    the lanes function, each lane with its own case's parameters, input and
-    initial state (and, with ABM4, derivative history); the results are the
-    bits of the same model without lanes, which runs one case at a time."""
+    """With ``lanes=True`` a study runs four cases per call of the lanes
+    function, each lane with its own case's parameters, input and initial
+    state (with ABM4 its own derivative history, with Dormand–Prince its
+    own steps and time); the results are the bits of the same model without
+    lanes, which runs one case at a time."""
     path = "python/tests/models/n_link_pendulum_on_cart_3.sim"
     lanes = autosim.load(repo / path, lanes=True, quiet=True)
     plain = load_model(path)

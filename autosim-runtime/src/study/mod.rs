@@ -55,9 +55,10 @@
 //!
 //! # Lockstep
 //!
-//! A [`Simulate`] task with a fixed-step method ([`Method::Euler`],
-//! [`Method::Heun`], [`Method::Rk4`], [`Method::AdamsBashforthMoulton`],
-//! each case with its own derivative history) of a model that allows it
+//! A [`Simulate`] task, with any [`Method`] (the fixed-step ones take the
+//! same times in every case, each Adams–Bashforth–Moulton case with its
+//! own derivative history; each Dormand–Prince case takes its own steps,
+//! at its own times), of a model that allows it
 //! ([`Model::LOCKSTEP`]: models generated with the `lanes` option) and has
 //! no events or discrete variables, in a study without a
 //! [`setup`](Study::setup) function, integrates four neighbouring cases

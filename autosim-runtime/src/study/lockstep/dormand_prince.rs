@@ -240,10 +240,10 @@ fn trial<M: Model>(lanes: &mut AdaptiveLanes<'_, M>) {
             }
         }
     }
-    for l in 0..n {
-        lanes.carry[l].evaluated = going[l];
-        if going[l] {
-            lanes.carry[l].control.stages_done();
+    for (case, evaluated) in lanes.carry[..n].iter_mut().zip(going) {
+        case.evaluated = evaluated;
+        if evaluated {
+            case.control.stages_done();
         }
     }
 }

@@ -2,7 +2,8 @@
 //! together, each on its own model, each stage of each step evaluating
 //! all of them in one [`Model::derivatives_each`] call (four states per
 //! call of a generated model's `derivatives_lanes`, with the `lanes`
-//! option, each lane reading its own case's parameters and inputs).
+//! option, each lane reading its own case's parameters and inputs, at its
+//! own time).
 //!
 //! # When
 //!
@@ -24,14 +25,16 @@
 //! every lane: its results depend on its arguments alone). The study must
 //! have no setup function (which may change a model in ways the lanes
 //! cannot see). The task must say it can ([`Task::runs_in_lockstep`](super::Task)):
-//! [`Simulate`](super::Simulate) with Euler, Heun, RK4 or
-//! Adams–Bashforth–Moulton (fixed steps, the same times for every case;
-//! each Adams case keeps its own derivative history, see
-//! [`adams_step`]) of a model without events or discrete variables (whose
-//! cases would take different steps and actions). Dormand–Prince (a step
-//! size per case) runs one case at a time, as do [`Modes`](super::Modes)
-//! and [`Custom`](super::Custom) tasks.
-//! [`Study::lockstep`](super::Study::lockstep) turns it off.
+//! [`Simulate`](super::Simulate), with any method, of a model without
+//! events or discrete variables (whose cases would take different steps
+//! and actions at different times). Euler, Heun, RK4 and
+//! Adams–Bashforth–Moulton take the same fixed steps in every case (each
+//! Adams case keeps its own derivative history, see [`adams_step`]);
+//! Dormand–Prince cases each take their own steps, one trial per case
+//! per round, each at its own time (see [`simulate_adaptive`]).
+//! [`Modes`](super::Modes) and [`Custom`](super::Custom) tasks run one
+//! case at a time. [`Study::lockstep`](super::Study::lockstep) turns it
+//! off.
 //!
 //! # Why this design
 //!
@@ -43,11 +46,15 @@
 //! with it, and the outputs, assembly and projection of each case are its
 //! own model's. Each case does the arithmetic it does alone: the same
 //! ticks (times and steps, [`fixed_ticks`], tested equal to the run
-//! driver's), the same Runge–Kutta and Adams combinations
+//! driver's; the adaptive driver's landing on output times, repeated per
+//! case in [`simulate_adaptive`]), the same Runge–Kutta and Adams
+//! combinations
 //! ([`combine_lane`](crate::integrate::combine_lane) sums what the
 //! single stepper's `combine_row` sums, in the same order; an Adams lane's
 //! history is the single stepper's own type, with its own prediction,
-//! correction and checks of what it still holds), and
+//! correction and checks of what it still holds, and a Dormand–Prince
+//! case's step-size control the stepper's
+//! [`Control`](crate::integrate::Control)), and
 //! `derivatives_each` gives each state the bits its model's `derivatives`
 //! gives it (its contract, tested for generated models in
 //! `tests/lanes.rs`). The

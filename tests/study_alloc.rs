@@ -5,6 +5,7 @@
 //! lanes model, initial states only).
 
 use autosim::runtime::RunSettings;
+use autosim::runtime::integrate::AbmOrder;
 use autosim::runtime::study::{
     Cases, Distribution, Keep, Method, Parallelism, Simulate, Statistic, Study,
 };
@@ -58,24 +59,38 @@ mod lanes {
 
 #[test]
 fn a_study_in_lockstep_allocates_per_chunk_not_per_case() {
-    // Initial states only, a lanes model, RK4: groups of four in lockstep.
+    // A lanes model: groups of four in lockstep, with every kind of run
+    // (fixed steps, Adams histories, adaptive steps).
     let u = Distribution::uniform(-1.0, 1.0);
-    let cases = Cases::new().random(1000, 9, &[("q", u), ("u", u)]).unwrap();
+    let columns = [("q", u), ("u", u), ("m", Distribution::uniform(1.0, 2.0))];
+    let cases = Cases::new().random(1000, 9, &columns).unwrap();
     let keep = Keep::new()
         .final_state()
         .at(&[0.5], &["height"])
         .statistic("u", Statistic::Rms)
         .history(&["q"]);
-    let task = Simulate::new(RunSettings::new(0.0, 1.0, 0.01, 0.1), Method::Rk4, keep).unwrap();
-    let study = Study::new(lanes::pendulum::Pendulum::new, cases, task)
-        .parallelism(Parallelism::Serial)
-        .progress(false);
-    let run = |n: u64| allocations(|| drop(std::hint::black_box(study.run_cases(0..n).unwrap())));
-    run(1);
-    let (few, many) = (run(10), run(1000));
-    assert!(few > 0, "the counter sees the results' arrays");
-    assert_eq!(
-        few, many,
-        "10 cases made {few} allocations, 1000 made {many}"
-    );
+    let methods = [
+        Method::Rk4,
+        Method::AdamsBashforthMoulton(AbmOrder::Four),
+        Method::DormandPrince {
+            rtol: 1e-6,
+            atol: 1e-9,
+        },
+    ];
+    for method in methods {
+        let settings = RunSettings::new(0.0, 1.0, 0.01, 0.1);
+        let task = Simulate::new(settings, method, keep.clone()).unwrap();
+        let study = Study::new(lanes::pendulum::Pendulum::new, cases.clone(), task)
+            .parallelism(Parallelism::Serial)
+            .progress(false);
+        let run =
+            |n: u64| allocations(|| drop(std::hint::black_box(study.run_cases(0..n).unwrap())));
+        run(1);
+        let (few, many) = (run(10), run(1000));
+        assert!(few > 0, "the counter sees the results' arrays");
+        assert_eq!(
+            few, many,
+            "{method:?}: 10 cases made {few} allocations, 1000 made {many}"
+        );
+    }
 }

@@ -118,8 +118,9 @@ def loads(
     new model name), ``linearize`` (generate :meth:`Model.linearize`; on by
     default here, ``None`` keeps the model's own setting), ``lanes``
     (generate the derivatives at four states per call, which
-    :meth:`Model.derivatives` then uses for 2-D arrays of states; ``None``
-    keeps the model's own setting), ``formulation``
+    :meth:`Model.derivatives` then uses for 2-D arrays of states and a
+    study of a model without events for four cases at a time, whatever its
+    method; ``None`` keeps the model's own setting), ``formulation``
     (``"auto"``, ``"mass_matrix"``, ``"recursive"``), ``small`` and
     ``lock`` (bodies or coordinates), ``outputs`` (keep only these),
     ``threshold`` (small-term threshold). ``quiet`` silences the two

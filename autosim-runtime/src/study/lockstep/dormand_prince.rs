@@ -3,9 +3,10 @@
 //! (its own step sizes, rejections and times, landing on the output
 //! times), and every round each case takes one trial step: the six stages
 //! of the four trials are six calls for the four states, each lane at its
-//! own time. A case starting a step without the first stage in hand
-//! (the first step, or after a projection changed its state) evaluates it
-//! alone first.
+//! own time. The first stage of a step is the last of the step before
+//! (first same as last); the cases without it (all at the first step, a
+//! case whose projection changed its state) evaluate it first, in one
+//! call if all of them need it, alone otherwise.
 //!
 //! Each case's step-size control is the stepper's own
 //! ([`Control`]): the same trials, the same acceptances, the same next

@@ -177,7 +177,7 @@ where
         let mut done = [false; GROUP];
         self.task.run_group(
             &mut models[..n],
-            &setter.lane_values,
+            &mut setter.lane_values,
             &xs[..n],
             &mut outs[..n],
             &mut done[..n],

@@ -376,7 +376,7 @@ where
     fn run_group(
         &self,
         models: &mut [M],
-        values: &[Lanes<LANES>],
+        values: &mut [Lanes<LANES>],
         xs: &[M::State],
         outs: &mut [&mut [f64]],
         done: &mut [bool],

@@ -86,11 +86,12 @@ pub trait Task<M: Model>: Sync {
     /// as [`Task::run`] would have, bit for bit. A case left not done (one
     /// that fails, or every case, as the default does) is run again alone
     /// by the study on a fresh model, so it fails as it does alone; its
-    /// row is then written again. `models` may come back in another order.
+    /// row is then written again. `models` and `values` may come back
+    /// changed (reordered, as lanes leave).
     fn run_group(
         &self,
         models: &mut [M],
-        values: &[Lanes<LANES>],
+        values: &mut [Lanes<LANES>],
         xs: &[M::State],
         outs: &mut [&mut [f64]],
         done: &mut [bool],

@@ -97,7 +97,7 @@ type AdaptiveLanes<'m, M> = Lanes<'m, M, 7, Adaptive<M>>;
 /// `done[k]` is set for the cases that finished (their rows in `outs[k]`
 /// written).
 pub(in crate::study) fn simulate_adaptive<M: Model>(
-    (models, values): (&mut [M], &[crate::Lanes<LANES>]),
+    (models, values): (&mut [M], &mut [crate::Lanes<LANES>]),
     dopri: DopriSettings<M::Float>,
     settings: &RunSettings<M::Float>,
     plan: &Plan,

@@ -64,8 +64,11 @@
 //! A case that fails any check the run driver makes (a derivative error,
 //! a non-finite state or output, assembly or projection, the step limit)
 //! leaves the group (the others go on, compacted, so the batch stays
-//! contiguous) and is run again alone by the study: it fails exactly as
-//! it does alone, with the same error. A panic anywhere in a group runs
+//! contiguous, its lane values moved with it) and is run again alone by
+//! the study: it fails exactly as it does alone, with the same error. A
+//! case that finishes early (Dormand–Prince) leaves too. Two or three
+//! lanes left of a full group still make one call of the lanes function
+//! (see [`Lanes::evaluate_at`]); one lane, one `derivatives` call. A panic anywhere in a group runs
 //! the whole group again, case by case. Nothing is allocated: the
 //! workspaces are arrays of [`GROUP`] states on the worker's stack, the
 //! models the study's, one per case of the group.
@@ -98,9 +101,13 @@ pub(super) struct Lanes<'m, M: Model, const S: usize, C: Copy> {
     case: [usize; GROUP],
     /// Each lane's model (its case's).
     models: &'m mut [M],
-    /// What [`Model::lane_values`] gathered from the models, in their
-    /// first order: valid while every lane is there.
-    values: &'m [crate::Lanes<LANES>],
+    /// What [`Model::lane_values`] gathered from the models, lane `l`
+    /// the `l`-th model's (the lanes that leave take theirs along; the
+    /// places past the lanes still running hold the first one's): valid
+    /// if the group started full.
+    values: &'m mut [crate::Lanes<LANES>],
+    /// The group started with [`GROUP`] cases (and `values` is theirs).
+    full: bool,
     x: [M::State; GROUP],
     /// `k[j][lane]`: stage `j`'s derivatives.
     k: [[M::State; GROUP]; S],
@@ -126,7 +133,7 @@ impl<'m, M: Model, const S: usize, C: Copy> Lanes<'m, M, S, C> {
     /// carrying `carry` at first.
     fn new(
         models: &'m mut [M],
-        values: &'m [crate::Lanes<LANES>],
+        values: &'m mut [crate::Lanes<LANES>],
         xs: &[M::State],
         carry: C,
     ) -> Lanes<'m, M, S, C> {
@@ -139,6 +146,7 @@ impl<'m, M: Model, const S: usize, C: Copy> Lanes<'m, M, S, C> {
             case: core::array::from_fn(|l| l),
             models,
             values,
+            full: n == GROUP,
             x,
             k: [[z; GROUP]; S],
             stage: [z; GROUP],
@@ -160,6 +168,14 @@ impl<'m, M: Model, const S: usize, C: Copy> Lanes<'m, M, S, C> {
             k.swap(l, last);
         }
         self.n = last;
+        if self.full && last > 0 {
+            for v in self.values.iter_mut() {
+                v.0.swap(l, last);
+                // The places past the lanes running: the first lane's.
+                let first = v.0[0];
+                v.0[last..].fill(first);
+            }
+        }
     }
 
     /// Keeps the lanes for which `ok(self, lane)` holds.
@@ -187,6 +203,12 @@ impl<'m, M: Model, const S: usize, C: Copy> Lanes<'m, M, S, C> {
     /// its state `from`, into `k[i]` and their status into `status` (`Ok`
     /// for the others; the lanes stay): one call for all if it picks
     /// every lane, one call each otherwise.
+    ///
+    /// A group that started full and has lost lanes still makes that one
+    /// call for two or three lanes: the places of the lanes gone compute
+    /// the first lane's derivative again (its values, time and state;
+    /// their results are dropped), since one call for four costs less
+    /// than two or three calls for one.
     fn evaluate_at(
         &mut self,
         t: &[M::Float; GROUP],
@@ -197,21 +219,30 @@ impl<'m, M: Model, const S: usize, C: Copy> Lanes<'m, M, S, C> {
         let n = self.n;
         self.status = [Ok(()); GROUP];
         let states = match from {
-            Source::Start => &self.x,
-            Source::Stage => &self.stage,
+            Source::Start => &mut self.x,
+            Source::Stage => &mut self.stage,
         };
         if picked[..n].iter().all(|p| *p) {
-            // Once a lane has left (fewer than a group), the values are
-            // stale and the lanes run one call each anyway.
-            let values = if n == GROUP { self.values } else { &[] };
+            let padded = self.full && n >= 2;
+            let (m, values) = match padded {
+                true => (GROUP, &*self.values),
+                false => (n, &[][..]),
+            };
+            let mut times = *t;
+            if padded {
+                let (first, rest) = states.split_at_mut(n);
+                rest.fill(first[0]);
+                times[n..].fill(t[0]);
+            }
             M::derivatives_each(
-                &mut self.models[..n],
+                &mut self.models[..m],
                 values,
-                &t[..n],
-                &states[..n],
-                &mut self.k[i][..n],
-                &mut self.status[..n],
+                &times[..m],
+                &states[..m],
+                &mut self.k[i][..m],
+                &mut self.status[..m],
             );
+            self.status[n..].fill(Ok(()));
             return;
         }
         for l in (0..n).filter(|&l| picked[l]) {
@@ -296,7 +327,7 @@ fn record<M: Model, const S: usize, C: Copy>(
 /// of the cases that leave are swapped among `models`' first entries (the
 /// study makes fresh ones for a case it runs again).
 pub(super) fn simulate<'m, M: Model, const S: usize, C: Copy>(
-    (models, values): (&'m mut [M], &'m [crate::Lanes<LANES>]),
+    (models, values): (&'m mut [M], &'m mut [crate::Lanes<LANES>]),
     (carry, mut step): (C, impl FnMut(&mut Lanes<'m, M, S, C>, M::Float, M::Float)),
     settings: &RunSettings<M::Float>,
     plan: &Plan,

@@ -104,6 +104,38 @@ def test_vectorized_derivatives_through_lanes_equal_single_calls(load_model: Loa
     assert str(failed.value) == f"row 9: {single.value}"
 
 
+DRIVEN = """
+model Driven;
+parameters { m = 1.3 [kg], L = 0.7 [m], g = 9.81 [m/s^2], A = 2.0 [N m], w = 3.0 [rad/s] }
+input torque [N m];
+body Rod { rotate: 1, q: [q], u: [u], mass: m, cm: [0, 0, -L], inertia: 0 }
+moment drive { on: Rod, reaction: N, about: n1, magnitude: A*sin(w*t) + torque }
+gravity = -g*n3;
+"""
+
+
+def test_rows_at_their_own_times_and_inputs_through_lanes_equal_single_calls() -> None:
+    """With a time or an input row per state row, a ``lanes=True`` model
+    computes four rows per call, each lane at its own time with its own
+    inputs: the bits of one call per row, and of the model without lanes."""
+    lanes = autosim.loads(DRIVEN, lanes=True, quiet=True)
+    plain = autosim.loads(DRIVEN, quiet=True)
+    rng = np.random.default_rng(5)
+    xs = rng.uniform(-1, 1, (23, lanes.n_states))
+    ts = rng.uniform(0.0, 5.0, 23)
+    us = rng.uniform(-1, 1, (23, 1))
+    for t, u in [(ts, None), (0.3, us), (ts, us)]:
+        many = lanes.derivatives(t, xs, u=u)
+        assert np.array_equal(many, plain.derivatives(t, xs, u=u))
+        for k in range(23):
+            tk = t[k] if isinstance(t, np.ndarray) else t
+            one = plain.derivatives(tk, xs[k], u=None if u is None else u[k])
+            assert np.array_equal(many[k], one)
+    # Not vacuous: the times and the inputs matter.
+    assert not np.array_equal(lanes.derivatives(ts, xs), lanes.derivatives(0.3, xs))
+    assert not np.array_equal(lanes.derivatives(0.3, xs, u=us), lanes.derivatives(0.3, xs))
+
+
 def test_mass_matrix_and_forcing_give_the_accelerations(load_model: Load) -> None:
     model = load_model("python/tests/models/n_link_pendulum_on_cart_5.sim")
     x = np.random.default_rng(2).uniform(-1, 1, model.n_states)

@@ -253,8 +253,10 @@ class Model:
         their row only. With one time and no rows of ``u`` the rows go
         through the model's ``derivatives_batch``: a model whose settings
         have ``lanes: true`` computes four rows per call in vector
-        instructions, with the same bits as one call per row. A failing
-        row raises :class:`SimulationError` naming the first such row.
+        instructions, with the same bits as one call per row; with a time
+        or inputs per row, such a model computes four rows per call too,
+        each at its own time with its own inputs. A failing row raises
+        :class:`SimulationError` naming the first such row.
         """
         xs = np.asarray(x, dtype=np.float64)
         if xs.ndim == 2:

@@ -6,7 +6,7 @@ use super::events::{Events, Flow};
 use super::{MAX_RECORDED_INPUTS, Observer, RunError, RunSettings, RunSummary};
 use crate::error::{check_finite_outputs, check_finite_parameters};
 use crate::event::MAX_DISCRETE;
-use crate::integrate::Stepper;
+use crate::integrate::{StepInfo, Stepper};
 use crate::{Float, IntegrationError, Model, StateArray, check_finite};
 
 /// The loop state of one run.
@@ -336,34 +336,20 @@ impl<M: Model> Driver<M> {
         t_out: M::Float,
         observer: &mut O,
     ) -> Result<Flow, RunError<O::Error>> {
-        let sixteen_eps = M::Float::from_f64(16.0) * M::Float::EPSILON;
         loop {
-            let remaining = t_out - self.t;
-            if remaining <= sixteen_eps * t_out.abs().max(self.t.abs()) {
+            let Some(trial) = adaptive_trial(self.t, t_out, self.h) else {
                 // Rounding only: we are there.
                 self.t = t_out;
                 return Ok(Flow::Continue);
-            }
-            // Land on the output time, stretching the step by up to 1 % rather
-            // than leaving a sliver for the next step.
-            let stretch = M::Float::from_f64(1.01);
-            let lands = self.h * stretch >= remaining;
-            let h_try = if lands { remaining } else { self.h };
+            };
             let t0 = self.t;
             self.check_limit()?;
             if let Some(events) = &mut self.events {
                 events.before_step(model, stepper, t0, x)?;
             }
-            let info = stepper.step(model, t0, x, h_try)?;
-            let landed = lands && info.h == h_try;
-            self.t = if landed { t_out } else { t0 + info.h };
-            self.h = if landed && info.rejected == 0 {
-                // A step shortened to hit the output says nothing against
-                // the longer step used before it.
-                info.h_next.max(self.h)
-            } else {
-                info.h_next
-            };
+            let info = stepper.step(model, t0, x, trial.h)?;
+            let landed;
+            (self.t, self.h, landed) = trial.accepted(t0, self.h, &info);
             self.project(model, x)?;
             self.count_step(info.h, info.rejected);
             if let Some(flow) = self.after_step(model, stepper, x, observer)? {
@@ -401,6 +387,50 @@ impl<M: Model> Driver<M> {
         events
             .settle(model, crossing.t, x, Some(crossing.index), observer)
             .map(Some)
+    }
+}
+
+/// The next trial step of an adaptive run from `t` toward the output
+/// time `t_out` (what [`Driver`] does, and a study's lockstep for each of
+/// its cases).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct AdaptiveTrial<F> {
+    /// The step to try.
+    pub(crate) h: F,
+    /// The output time the step lands on if the stepper takes it whole.
+    t_out: F,
+    lands: bool,
+}
+
+/// The trial from `t` toward `t_out` with the run's step `h`: `None` if
+/// `t` is there up to rounding; otherwise `h`, or the rest of the way to
+/// `t_out` when `h` stretched by up to 1 % reaches it (rather than
+/// leaving a sliver for the next step).
+pub(crate) fn adaptive_trial<F: Float>(t: F, t_out: F, h: F) -> Option<AdaptiveTrial<F>> {
+    let remaining = t_out - t;
+    if remaining <= F::from_f64(16.0) * F::EPSILON * t_out.abs().max(t.abs()) {
+        return None;
+    }
+    let lands = h * F::from_f64(1.01) >= remaining;
+    let h = if lands { remaining } else { h };
+    Some(AdaptiveTrial { h, t_out, lands })
+}
+
+impl<F: Float> AdaptiveTrial<F> {
+    /// After the stepper took `info` from `t0`, the run's step having been
+    /// `h`: the time reached, the run's next step, and whether the step
+    /// landed on the output time.
+    pub(crate) fn accepted(&self, t0: F, h: F, info: &StepInfo<F>) -> (F, F, bool) {
+        let landed = self.lands && info.h == self.h;
+        let t = if landed { self.t_out } else { t0 + info.h };
+        let h_next = if landed && info.rejected == 0 {
+            // A step shortened to hit the output says nothing against
+            // the longer step used before it.
+            info.h_next.max(h)
+        } else {
+            info.h_next
+        };
+        (t, h_next, landed)
     }
 }
 

@@ -5,6 +5,8 @@ use core::convert::Infallible;
 use core::fmt;
 
 mod driver;
+#[cfg(feature = "study")]
+pub(crate) use driver::{AdaptiveTrial, adaptive_trial};
 mod events;
 #[cfg(feature = "study")]
 pub(crate) mod grid;

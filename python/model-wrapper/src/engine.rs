@@ -157,7 +157,10 @@ fn derivatives_each_row<M: Model<Float = f64> + Clone>(
     let rows = x.len().checked_div(ns).unwrap_or(0);
     let mut group: [M; LANES] = core::array::from_fn(|_| model.clone());
     let mut values = vec![autosim_runtime::Lanes::ZERO; M::LANE_VALUES];
-    M::lane_values(&group, &mut values);
+    if u.is_none() {
+        // The same four models throughout: gathered once.
+        M::lane_values(&group, &mut values);
+    }
     for first in (0..rows).step_by(LANES) {
         let n = LANES.min(rows - first);
         if let Some(u) = u {

@@ -16,7 +16,8 @@ use crate::integrate::{
     Control, DOPRI5, DopriSettings, ERROR, check_trial_step, combine_lane, ends_at,
     evaluation_error,
 };
-use crate::{Float, Model, RunSettings, StateArray};
+use crate::run::{AdaptiveTrial, adaptive_trial};
+use crate::{Float, Model, RunSettings, StateArray, StepInfo};
 
 use super::super::simulate::Plan;
 use super::{GROUP, LANES, Lanes, Source, begin, record};
@@ -37,13 +38,9 @@ pub(in crate::study) struct Adaptive<M: Model> {
     /// `at` not yet written.
     output: u64,
     next_at: usize,
-    /// A step is in progress (its trials go on).
-    stepping: bool,
-    /// The step in progress: toward the output time `t_out`, landing on it
-    /// if its trial `h_try` is accepted whole (`lands`).
-    t_out: M::Float,
-    lands: bool,
-    h_try: M::Float,
+    /// The step in progress (its trials go on), as the run driver began
+    /// it.
+    stepping: Option<AdaptiveTrial<M::Float>>,
     /// The step needs its first stage evaluated.
     first_stage: bool,
     /// Every stage of this round's trial was evaluated: it is judged.
@@ -73,10 +70,7 @@ impl<M: Model> Adaptive<M> {
             steps: 0,
             output: 0,
             next_at: 0,
-            stepping: false,
-            t_out: settings.start,
-            lands: false,
-            h_try: settings.step,
+            stepping: None,
             first_stage: false,
             evaluated: false,
             fsal: false,
@@ -154,10 +148,9 @@ fn next_step<M: Model>(
     (plan, outs): (&Plan, &mut [&mut [f64]]),
     done: &mut [bool],
 ) -> bool {
-    if lanes.carry[l].stepping {
+    if lanes.carry[l].stepping.is_some() {
         return true;
     }
-    let sixteen_eps = M::Float::from_f64(16.0) * M::Float::EPSILON;
     loop {
         let c = &mut lanes.carry[l];
         if c.output > settings.output_count() {
@@ -167,27 +160,22 @@ fn next_step<M: Model>(
             return false;
         }
         let t_out = settings.output_time(c.output);
-        let remaining = t_out - c.t;
-        if remaining <= sixteen_eps * t_out.abs().max(c.t.abs()) {
+        let Some(trial) = adaptive_trial(c.t, t_out, c.h) else {
             // Rounding only: there.
             c.t = t_out;
             if !emit(lanes, l, (plan, outs)) {
                 return false;
             }
             continue;
-        }
-        // Land on the output time, stretching the step by up to 1 %.
-        c.lands = c.h * M::Float::from_f64(1.01) >= remaining;
-        c.h_try = if c.lands { remaining } else { c.h };
-        c.t_out = t_out;
-        if c.steps >= settings.max_steps || check_trial_step(c.h_try).is_err() {
+        };
+        if c.steps >= settings.max_steps || check_trial_step(trial.h).is_err() {
             return false;
         }
         let reuse = c.fsal && ends_at::<M>(c.t, &lanes.x[l], c.t_end, &c.x_end);
         c.fsal = false;
         c.first_stage = !reuse;
-        c.control.begin(c.h_try);
-        c.stepping = true;
+        c.control.begin(trial.h);
+        c.stepping = Some(trial);
         return true;
     }
 }
@@ -267,7 +255,7 @@ fn judge<M: Model>(
     let zeros = M::State::zeros();
     let mut err = zeros;
     let c = &mut lanes.carry[l];
-    let h = c.control.h;
+    let (h, rejected) = (c.control.h, c.control.rejected);
     combine_lane(&mut err, &zeros, h, &ERROR, &lanes.k, l);
     let (x, x_new) = (&lanes.x[l], &lanes.stage[l]);
     let Some(h_next) = c.control.judge(c.t, x, x_new, &err, &lanes.k[6][l]) else {
@@ -276,17 +264,19 @@ fn judge<M: Model>(
     lanes.x[l] = *x_new;
     lanes.k[0][l] = lanes.k[6][l];
     (c.fsal, c.t_end, c.x_end) = (true, c.t + h, *x_new);
-    let landed = c.lands && h == c.h_try;
-    c.t = if landed { c.t_out } else { c.t + h };
-    c.h = if landed && c.control.rejected == 0 {
-        // A step shortened to hit the output says nothing against the
-        // longer step used before it.
-        h_next.max(c.h)
-    } else {
-        h_next
+    let Some(trial) = c.stepping.take() else {
+        return false;
     };
+    // What the stepper reports for the step (`rejected`: this step's).
+    let info = StepInfo {
+        h,
+        h_next,
+        rejected,
+        evaluations: 0,
+    };
+    let landed;
+    (c.t, c.h, landed) = trial.accepted(c.t, c.h, &info);
     c.steps += 1;
-    c.stepping = false;
     let tolerance = settings.projection_tolerance;
     let projected = lanes.models[l].project(c.t, &mut lanes.x[l], tolerance);
     projected.is_ok() && (!landed || emit(lanes, l, (plan, outs)))

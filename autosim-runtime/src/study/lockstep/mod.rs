@@ -46,8 +46,9 @@
 //! with it, and the outputs, assembly and projection of each case are its
 //! own model's. Each case does the arithmetic it does alone: the same
 //! ticks (times and steps, [`fixed_ticks`], tested equal to the run
-//! driver's; the adaptive driver's landing on output times, repeated per
-//! case in [`simulate_adaptive`]), the same Runge–Kutta and Adams
+//! driver's; for each Dormand–Prince case, the adaptive driver's own
+//! trial toward the next output time, `run::adaptive_trial`), the same
+//! Runge–Kutta and Adams
 //! combinations
 //! ([`combine_lane`](crate::integrate::combine_lane) sums what the
 //! single stepper's `combine_row` sums, in the same order; an Adams lane's

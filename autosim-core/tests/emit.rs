@@ -111,13 +111,27 @@ fn generation_is_deterministic() {
 }
 
 /// `f64` models take the sines of the angles they read in pairs by the
-/// branch-free kernel; `f32` models call libm's `sincosf` for every angle
-/// (the kernel computes in `f64`, in software on a single-precision FPU).
+/// branch-free kernel, and a cosine needed alone by the branch-free lone
+/// one; `f32` models call libm's `sincosf` and `cosf` for every angle
+/// (the kernels compute in `f64`, in software on a single-precision FPU).
 #[test]
-fn sines_in_pairs_in_f64_models_only() {
+fn branch_free_sines_in_f64_models_only() {
     let f64_code = generate("chain_planar_2.sim");
     assert!(f64_code.contains("math::sin_cos_lanes([q2, q1])"));
+    assert!(f64_code.contains("math::cos_inline(q2)"));
+    assert!(!f64_code.contains("math::cos(") && !f64_code.contains("math::sin("));
     let f32_code = generate("chain_planar_2_f32.sim");
     assert!(f32_code.contains("math::sin_cos(q1)"));
-    assert!(!f32_code.contains("sin_cos_lanes") && !f32_code.contains("sin_cos_inline"));
+    assert!(f32_code.contains("math::cos(q2)"));
+    for branch_free in [
+        "sin_cos_lanes",
+        "sin_cos_inline",
+        "sin_inline",
+        "cos_inline",
+    ] {
+        assert!(
+            !f32_code.contains(branch_free),
+            "{branch_free} in an f32 model"
+        );
+    }
 }

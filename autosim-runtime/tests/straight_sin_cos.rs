@@ -1,8 +1,9 @@
-//! `Float::sin_cos_inline` (the branch-free sine and cosine big generated
-//! functions call) against libm's and the platform's `sin`/`cos`: within
-//! one unit in the last place of the reference value up to 10 rad, two up
-//! to 1e6 rad (libm's own beyond), exact special values, and `f32`
-//! through `f64`.
+//! The branch-free sines and cosines generated code calls against libm's
+//! and the platform's `sin`/`cos`: `Float::sin_cos_inline` (the pair)
+//! within one unit in the last place of the reference value up to 10 rad,
+//! two up to 1e6 rad; `Float::sin_inline` and `Float::cos_inline` (one of
+//! them alone) within two up to 1e6 rad; libm's own values beyond, exact
+//! special values, and `f32` through `f64`.
 
 use autosim_runtime::Float;
 use autosim_test_support::worst_of;
@@ -114,4 +115,69 @@ fn lanes_equal_one_call_per_angle_bit_for_bit() {
         (s[1], c[3]),
         ((-2.0f32).sin_cos_inline().0, 100f32.sin_cos_inline().1)
     );
+}
+
+/// The worst distance of `sin_inline` and `cos_inline` from libm's and the
+/// platform's values over 200 000 random angles at each scale.
+fn worst_alone_over(scales: &[f64], seed: u64) -> f64 {
+    let mut state = seed;
+    let mut worst: f64 = 0.0;
+    for scale in scales {
+        for _ in 0..200_000 {
+            let x = uniform(&mut state) * scale;
+            let (s, c) = (x.sin_inline(), x.cos_inline());
+            let (ls, lc) = libm::sincos(x);
+            for (value, reference) in [(s, ls), (c, lc), (s, x.sin()), (c, x.cos())] {
+                worst = worst_of(worst, ulps(value, reference));
+            }
+        }
+    }
+    worst
+}
+
+#[test]
+fn alone_within_two_ulps_up_to_a_million_radians() {
+    let scales = [1e-8, 1e-3, 0.5, 1.0, 1.6, 3.2, 10.0, 1e3, 1e5, 1e6, 1e7];
+    let worst = worst_alone_over(&scales, 3);
+    assert!(worst <= 2.0, "{worst} ulp");
+}
+
+#[test]
+fn alone_near_multiples_of_a_quarter_turn() {
+    // Multiples of π are where the sine's reduced angle is smallest, odd
+    // multiples of π/2 the cosine's; the others are where the polynomial
+    // is at the ends of its interval.
+    for k in -40_000i32..40_000 {
+        let x = f64::from(k) * std::f64::consts::FRAC_PI_2;
+        for x in [x, x.next_up(), x.next_down()] {
+            let (ls, lc) = libm::sincos(x);
+            let (s, c) = (x.sin_inline(), x.cos_inline());
+            assert!(ulps(s, ls) <= 2.0, "sin {x:e}: {s:e} against {ls:e}");
+            assert!(ulps(c, lc) <= 2.0, "cos {x:e}: {c:e} against {lc:e}");
+        }
+    }
+}
+
+#[test]
+fn alone_special_values() {
+    let s = (-0.0f64).sin_inline();
+    assert!(s == 0.0 && s.is_sign_negative());
+    assert_eq!((-0.0f64).cos_inline(), 1.0);
+    assert_eq!((0.0f64.sin_inline(), 0.0f64.cos_inline()), (0.0, 1.0));
+    for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        assert!(x.sin_inline().is_nan() && x.cos_inline().is_nan());
+    }
+    for x in [1e300, -3e7, 1e-12] {
+        assert_eq!((x.sin_inline(), x.cos_inline()), libm::sincos(x));
+    }
+}
+
+#[test]
+fn alone_f32_rounds_the_f64_result() {
+    let mut state = 9;
+    for _ in 0..100_000 {
+        let x = (uniform(&mut state) * 4.0) as f32;
+        let (s, c) = (f64::from(x).sin_inline(), f64::from(x).cos_inline());
+        assert_eq!((x.sin_inline(), x.cos_inline()), (s as f32, c as f32));
+    }
 }

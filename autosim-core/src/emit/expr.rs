@@ -412,11 +412,24 @@ impl ExprPrinter<'_> {
                     }
                     other => {
                         let m = &self.math;
-                        let name = ident(other.builtin_name().unwrap_or("abs"));
+                        let name = ident(self.builtin(other));
                         quote!(#m::#name(#(#xs),*))
                     }
                 }
             }
+        }
+    }
+
+    /// The runtime's math function for a builtin: in `f64` models a sine
+    /// or cosine needed alone is the runtime's branch-free one
+    /// (`sin_inline`, `cos_inline`: faster than libm's at random angles,
+    /// timings in `bench/results/compiler-choices.md`), in `f32` ones
+    /// libm's (the kernel computes in `f64`).
+    fn builtin(&self, f: Func) -> &'static str {
+        match (f, self.float) {
+            (Func::Sin, FloatType::F64) => "sin_inline",
+            (Func::Cos, FloatType::F64) => "cos_inline",
+            _ => f.builtin_name().unwrap_or("abs"),
         }
     }
 

@@ -234,7 +234,9 @@ pub mod math {
         };
     }
 
-    unary!(sin, cos, tan, asin, acos, sqrt, exp, ln, abs, sign);
+    unary!(
+        sin, cos, sin_inline, cos_inline, tan, asin, acos, sqrt, exp, ln, abs, sign
+    );
     binary!(atan2, min, max, powf);
 
     /// [`powi`](crate::float::math::powi) lane by lane.

@@ -6,6 +6,7 @@ pub(crate) mod dispatch;
 #[cfg(feature = "std")]
 pub mod fused;
 pub(crate) mod lanes;
+mod straight_sin;
 mod straight_sin_cos;
 
 /// A float type a model can compute in: `f32` or `f64`.
@@ -57,6 +58,13 @@ pub trait Float:
     /// [`Float::sin_cos_inline`] of `N` angles at once, the same values,
     /// in vector instructions where the target has them.
     fn sin_cos_inline_lanes<const N: usize>(x: [Self; N]) -> ([Self; N], [Self; N]);
+    /// Sine without branches on the angle (a fixed sequence of operations
+    /// inlined where it is called, computed in `f64`; within two units in
+    /// the last place of [`Float::sin`] up to 1e6 rad): what generated
+    /// `f64` code computes for an angle whose cosine it does not need.
+    fn sin_inline(self) -> Self;
+    /// Cosine without branches on the angle, as [`Float::sin_inline`].
+    fn cos_inline(self) -> Self;
     /// Tangent.
     fn tan(self) -> Self;
     /// Arc sine.
@@ -130,6 +138,8 @@ macro_rules! impl_float {
                 fn cos(self) -> Self => imp::$t::cos;
                 fn sin_cos(self) -> (Self, Self) => imp::$t::sin_cos;
                 fn sin_cos_inline(self) -> (Self, Self) => imp::$t::sin_cos_inline;
+                fn sin_inline(self) -> Self => imp::$t::sin_inline;
+                fn cos_inline(self) -> Self => imp::$t::cos_inline;
                 fn tan(self) -> Self => imp::$t::tan;
                 fn asin(self) -> Self => imp::$t::asin;
                 fn acos(self) -> Self => imp::$t::acos;
@@ -238,6 +248,24 @@ mod imp {
                     let (s, c) = crate::float::straight_sin_cos::sin_cos(f64::from(x));
                     (<$t>::from_f64(s), <$t>::from_f64(c))
                 }
+                /// Sine without branches on the angle, computed in `f64`.
+                #[inline(always)]
+                pub fn sin_inline(x: $t) -> $t {
+                    use crate::float::Float;
+                    use crate::float::straight_sin_cos::AsTarget;
+                    <$t>::from_f64(crate::float::straight_sin::sin_with::<AsTarget>(f64::from(
+                        x,
+                    )))
+                }
+                /// Cosine without branches on the angle, computed in `f64`.
+                #[inline(always)]
+                pub fn cos_inline(x: $t) -> $t {
+                    use crate::float::Float;
+                    use crate::float::straight_sin_cos::AsTarget;
+                    <$t>::from_f64(crate::float::straight_sin::cos_with::<AsTarget>(f64::from(
+                        x,
+                    )))
+                }
                 /// `N` sines and cosines without branches on the angles,
                 /// computed in `f64`.
                 #[inline(always)]
@@ -308,6 +336,18 @@ pub mod math {
     #[inline(always)]
     pub fn sin_cos_inline<F: Float>(x: F) -> (F, F) {
         x.sin_cos_inline()
+    }
+    /// Sine without branches on the angle (generated `f64` functions call
+    /// this for an angle whose cosine they do not need:
+    /// [`Float::sin_inline`]).
+    #[inline(always)]
+    pub fn sin_inline<F: Float>(x: F) -> F {
+        x.sin_inline()
+    }
+    /// Cosine without branches on the angle ([`Float::cos_inline`]).
+    #[inline(always)]
+    pub fn cos_inline<F: Float>(x: F) -> F {
+        x.cos_inline()
     }
     /// Sines and cosines of `N` angles without branches on them, in vector
     /// instructions where the target has them

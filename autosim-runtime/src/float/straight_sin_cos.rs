@@ -57,11 +57,11 @@ impl Rounding for AsTarget {
 }
 
 /// `1.5 · 2^52`: adding and subtracting it rounds to an integer.
-const ROUNDING: f64 = 6_755_399_441_055_744.0;
+pub(super) const ROUNDING: f64 = 6_755_399_441_055_744.0;
 /// π/2 in three parts: the first 33 bits, the next 33, the rest.
-const PI_2_HI: f64 = 1.570_796_326_734_125_6;
-const PI_2_MID: f64 = 6.077_100_506_303_966e-11;
-const PI_2_LO: f64 = 2.022_266_248_795_950_6e-21;
+pub(super) const PI_2_HI: f64 = 1.570_796_326_734_125_6;
+pub(super) const PI_2_MID: f64 = 6.077_100_506_303_966e-11;
+pub(super) const PI_2_LO: f64 = 2.022_266_248_795_950_6e-21;
 /// `(-1)^k / (2k + 3)!` for `k = 0..8`: `sin r = r + r z Σ S[k] z^k`.
 const S: [f64; 8] = [
     -1.0 / 6.0,
@@ -117,7 +117,7 @@ pub(crate) fn sin_cos_lanes_with<R: Rounding, const N: usize>(x: [f64; N]) -> ([
 
 /// Whether `x` takes the branch-free path.
 #[inline(always)]
-fn in_range(x: f64) -> bool {
+pub(super) fn in_range(x: f64) -> bool {
     (x.abs() >= 1.0e-9) & (x.abs() <= 1.0e6)
 }
 

@@ -252,19 +252,13 @@ mod imp {
                 #[inline(always)]
                 pub fn sin_inline(x: $t) -> $t {
                     use crate::float::Float;
-                    use crate::float::straight_sin_cos::AsTarget;
-                    <$t>::from_f64(crate::float::straight_sin::sin_with::<AsTarget>(f64::from(
-                        x,
-                    )))
+                    <$t>::from_f64(crate::float::straight_sin::sin(f64::from(x)))
                 }
                 /// Cosine without branches on the angle, computed in `f64`.
                 #[inline(always)]
                 pub fn cos_inline(x: $t) -> $t {
                     use crate::float::Float;
-                    use crate::float::straight_sin_cos::AsTarget;
-                    <$t>::from_f64(crate::float::straight_sin::cos_with::<AsTarget>(f64::from(
-                        x,
-                    )))
+                    <$t>::from_f64(crate::float::straight_sin::cos(f64::from(x)))
                 }
                 /// `N` sines and cosines without branches on the angles,
                 /// computed in `f64`.

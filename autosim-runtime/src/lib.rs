@@ -149,6 +149,7 @@ pub mod __private {
     pub use crate::float::MulAdd;
     #[cfg(all(feature = "std", target_arch = "x86_64"))]
     pub use crate::float::dispatch::{Path, limit_path, path};
+    pub use crate::float::dispatch::{results, results_alone};
     #[cfg(feature = "std")]
     pub use crate::float::fused;
     pub use crate::float::lanes::{

@@ -15,6 +15,10 @@ use rustc_hash::FxHashMap;
 pub enum Target<'a> {
     /// `<array>[slot] = value;`
     Array(&'a proc_macro2::Ident),
+    /// `results::set(&mut <array>[slot], value);`, for the functions with
+    /// an x86-64-v4 copy (the runtime's `results`, whose x86-64-v4 copy
+    /// writes each value alone: `float/dispatch.rs`).
+    Results(&'a proc_macro2::Ident),
     /// `<array>[slot / n][slot % n] = value;`
     Matrix(&'a proc_macro2::Ident, usize),
     /// `<array>[slot] = value;` in `Constants::new`, which has no `self`
@@ -216,6 +220,10 @@ impl BlockEmitter<'_> {
                         Target::Array(a) | Target::Constants(a) => {
                             let k = Literal::usize_unsuffixed(*slot);
                             out.extend(quote!(#a[#k] = #e;));
+                        }
+                        Target::Results(a) => {
+                            let k = Literal::usize_unsuffixed(*slot);
+                            out.extend(quote!(results::set(&mut #a[#k], #e);));
                         }
                         Target::Matrix(a, n) => {
                             let i = Literal::usize_unsuffixed(slot / n);

@@ -140,6 +140,39 @@ mod detect {
     }
 }
 
+/// How the multiversioned functions write their results,
+/// `results::set(&mut dx[3], a)` (a module, so that no name of the model
+/// can shadow it), except in the x86-64-v4 copy, which takes
+/// [`results_alone`] under that name.
+pub mod results {
+    /// `*slot = value`.
+    #[inline(always)]
+    pub fn set<T>(slot: &mut T, value: T) {
+        *slot = value;
+    }
+}
+
+/// The x86-64-v4 copy's [`results`]: each value a store of its own.
+pub mod results_alone {
+    /// Writes `value` to `slot` as a store of its own (a volatile write,
+    /// which the compiler neither merges with its neighbours nor removes).
+    ///
+    /// In a function compiled with AVX-512 (`#[target_feature]`), LLVM's
+    /// vectorizer merges runs of eight neighbouring stores (`dx[0] = u1;
+    /// … dx[7] = u8;`, the accelerations as they are finished) into
+    /// 512-bit vectors, and no stable attribute asks it for 256 bits at
+    /// most (`-C target-cpu=x86-64-v4` does); on Intel's cores a 512-bit
+    /// instruction in flight closes a vector port, and the whole function
+    /// runs slower: chain-planar-10 212 → 158 ns per call with this, in a
+    /// default-flags build on a Xeon (Sapphire Rapids), the speed of a
+    /// `-C target-cpu=native` build (`bench/results/compiler-choices.md`).
+    #[inline(always)]
+    pub fn set<T>(slot: &mut T, value: T) {
+        // SAFETY: `slot` is a valid, aligned, exclusive reference.
+        unsafe { core::ptr::write_volatile(slot, value) }
+    }
+}
+
 /// The macros where this build has three copies: `std`, x86-64, a target
 /// without AVX2 and FMA.
 #[cfg(all(
@@ -153,7 +186,8 @@ mod three_copies {
     /// `v4`) declares `module`, a child of the model's module that sees
     /// its items (`use super::*`) but imports the fused
     /// [`MulAdd`](crate::float::fused::MulAdd), `math` and `lanes_math` by
-    /// name, shadowing the model module's plain ones, and expands there
+    /// name, shadowing the model module's plain ones (and, for `v4`,
+    /// [`results_alone`](super::results_alone) as `results`), and expands there
     /// the model's `copy!` macro, which writes the whole function
     /// (signature and body) under the name `name`, `pub(super)`, with
     /// `#[target_feature]` of x86-64-v3 (or x86-64-v4).
@@ -163,6 +197,7 @@ mod three_copies {
         ($(#[$attr:meta])* v3 $($rest:tt)*) => {
             $crate::fast_path! {
                 @features "avx,avx2,fma,bmi1,bmi2,f16c,lzcnt,movbe,popcnt"
+                @results results
                 $(#[$attr])* $($rest)*
             }
         };
@@ -170,11 +205,13 @@ mod three_copies {
             $crate::fast_path! {
                 @features "avx,avx2,fma,bmi1,bmi2,f16c,lzcnt,movbe,popcnt,\
                            avx512f,avx512bw,avx512cd,avx512dq,avx512vl"
+                @results results_alone
                 $(#[$attr])* $($rest)*
             }
         };
         (
             @features $features:literal
+            @results $results:ident
             $(#[$attr:meta])*
             $copy:ident => $fast:ident in mod $module:ident for impl $($head:tt)*
         ) => {
@@ -186,6 +223,8 @@ mod three_copies {
                 use super::*;
                 #[allow(unused_imports)]
                 use $crate::__private::fused::{MulAdd, lanes_math, math};
+                #[allow(unused_imports)]
+                use $crate::__private::$results as results;
 
                 impl $($head)* {
                     $copy! {

@@ -2,7 +2,7 @@
 //! the program: `derivatives`, `outputs`, `mass_matrix`, `forcing`,
 //! `initial_state` and `Constants::new`.
 
-use super::versions::{Param, Versions, versions};
+use super::versions::{self, Copies, Param, Versions, versions};
 use crate::emit::block::{BlockEmitter, Target};
 use crate::emit::expr::Locals;
 use crate::opt::{Block, BlockKind, MassLayout, Ops, Program, Stmt};
@@ -47,14 +47,20 @@ pub(super) fn body(be: &BlockEmitter<'_>, kind: BlockKind) -> TokenStream {
     let l = be.locals;
     let block = prog.block(kind);
     let n_states = Literal::usize_unsuffixed(prog.states().len());
+    // The functions with an x86-64-v4 copy write their results by
+    // `results::set` (in that copy one store each: merged, 512-bit ones).
+    let results = |array| match !be.lanes && versions::copies(prog) == Copies::UpToV4 {
+        true => Target::Results(array),
+        false => Target::Array(array),
+    };
     match kind {
-        BlockKind::Derivatives => be.emit_checked(block, true, Target::Array(&l.dx)),
+        BlockKind::Derivatives => be.emit_checked(block, true, results(&l.dx)),
         BlockKind::MassMatrix => match prog.mass_layout {
             MassLayout::Entries => be.emit(block, true, Target::Matrix(&l.m, prog.n().max(1))),
             MassLayout::Products => be.emit(block, true, Target::Array(&l.f)),
         },
         BlockKind::Forcing => be.emit(block, true, Target::Array(&l.f)),
-        BlockKind::Common => be.emit(block, true, Target::Array(&l.s)),
+        BlockKind::Common => be.emit(block, true, results(&l.s)),
         BlockKind::Outputs => {
             let body = be.emit_checked(block, true, Target::Array(&l.y));
             if !prog.outputs_need_derivatives {

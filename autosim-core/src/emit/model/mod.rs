@@ -146,7 +146,7 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
         )]
         pub mod #module {
             #[allow(unused_imports)]
-            use #rt::__private::{MulAdd, lanes_math, math};
+            use #rt::__private::{MulAdd, lanes_math, math, results};
 
             #parameters
 

@@ -16,7 +16,8 @@
 //! multiple of π/2.
 //!
 //! Accuracy: the reduction subtracts the multiple in three parts, the
-//! first two exact for multiples below 2^20; the polynomial is the
+//! first two products exact while the multiple of π/2 is below 2^20
+//! (angles up to 1.6e6); the polynomial is the
 //! minimax odd polynomial of degree 17 for the relative error of
 //! `sin r` on `|r| ≤ π/2` (fitted by the Remez exchange in 60-digit
 //! arithmetic: error 2.8e-19 before its coefficients are rounded),

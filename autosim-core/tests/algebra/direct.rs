@@ -109,8 +109,10 @@ pub fn direct(t: &T, vals: &[f64], small: &[usize]) -> V {
         T::Atan2(y, x) => {
             let (y, x) = (d(y), d(x));
             // On the branch cut (y = 0 within rounding, x < 0) the value
-            // is ±π depending on the sign of a zero: no reference value.
-            let on_cut = x.v < 0.0 && y.v.abs() <= 64.0 * EPS * y.e;
+            // is ±π depending on the sign of a zero, and at the origin
+            // (x = ±0 too: the algebra writes `-0` as `0`) it is 0 or ±π:
+            // no reference value.
+            let on_cut = x.v <= 0.0 && y.v.abs() <= 64.0 * EPS * y.e;
             let v = if on_cut { f64::NAN } else { y.v.atan2(x.v) };
             let r2 = x.v * x.v + y.v * y.v;
             V {

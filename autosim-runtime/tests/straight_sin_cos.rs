@@ -58,17 +58,26 @@ fn within_two_ulps_up_to_a_million_radians() {
     assert!(worst <= 2.0, "{worst} ulp");
 }
 
-#[test]
-fn near_multiples_of_a_quarter_turn() {
-    // Where the reduced angle is smallest, its error counts most.
+/// `sin_cos(x)` within two units in the last place of libm's at every
+/// multiple of π/2 up to 40 000 quarter turns and its two neighbours:
+/// where a reduced angle is smallest its error counts most (multiples of
+/// π for a sine, odd multiples of π/2 for a cosine), and the others put
+/// a polynomial at the ends of its interval.
+fn within_two_ulps_near_quarter_turns(sin_cos: impl Fn(f64) -> (f64, f64)) {
     for k in -40_000i32..40_000 {
         let x = f64::from(k) * std::f64::consts::FRAC_PI_2;
         for x in [x, x.next_up(), x.next_down()] {
-            let (s, c) = x.sin_cos_inline();
+            let (s, c) = sin_cos(x);
             let (ls, lc) = libm::sincos(x);
-            assert!(ulps(s, ls) <= 2.0 && ulps(c, lc) <= 2.0, "x = {x:e}");
+            assert!(ulps(s, ls) <= 2.0, "sin {x:e}: {s:e} against {ls:e}");
+            assert!(ulps(c, lc) <= 2.0, "cos {x:e}: {c:e} against {lc:e}");
         }
     }
+}
+
+#[test]
+fn near_multiples_of_a_quarter_turn() {
+    within_two_ulps_near_quarter_turns(f64::sin_cos_inline);
 }
 
 #[test]
@@ -126,18 +135,7 @@ fn alone_within_two_ulps_up_to_a_million_radians() {
 
 #[test]
 fn alone_near_multiples_of_a_quarter_turn() {
-    // Multiples of π are where the sine's reduced angle is smallest, odd
-    // multiples of π/2 the cosine's; the others are where the polynomial
-    // is at the ends of its interval.
-    for k in -40_000i32..40_000 {
-        let x = f64::from(k) * std::f64::consts::FRAC_PI_2;
-        for x in [x, x.next_up(), x.next_down()] {
-            let (ls, lc) = libm::sincos(x);
-            let (s, c) = (x.sin_inline(), x.cos_inline());
-            assert!(ulps(s, ls) <= 2.0, "sin {x:e}: {s:e} against {ls:e}");
-            assert!(ulps(c, lc) <= 2.0, "cos {x:e}: {c:e} against {lc:e}");
-        }
-    }
+    within_two_ulps_near_quarter_turns(|x| (x.sin_inline(), x.cos_inline()));
 }
 
 #[test]

@@ -341,6 +341,41 @@ fn a_resumed_study_skips_written_shards_and_equals_an_uninterrupted_one() {
     assert!(e.to_string().contains("format"), "{e}");
 }
 
+/// The pendulum again under the same name, with Mars's gravity: another
+/// build of the model, as after editing its file or updating autosim.
+mod rebuilt {
+    autosim::model! {
+        model Pendulum;
+        settings { linearize: true }
+        parameters { m = 1.3 [kg], L = 0.7 [m], g = 3.71 [m/s^2] }
+        input torque [N m];
+        body Rod { rotate: 1, q: [q], u: [u], mass: m, cm: [0, 0, -L], inertia: 0 }
+        moment drive { on: Rod, reaction: N, about: n1, magnitude: torque }
+        gravity = -g*n3;
+        output height [m] = dot(pos(Rod.cm), n3);
+    }
+}
+
+#[test]
+fn a_folder_refuses_a_study_of_another_build_of_its_model() {
+    let dir = scratch("rebuilt");
+    pendulum_study(Method::Rk4, 3)
+        .run_in(&dir, Format::Csv, 4)
+        .unwrap();
+    let settings = RunSettings::new(0.0, 2.0, 0.01, 0.1);
+    let task = Simulate::new(settings, Method::Rk4, pendulum_keep()).unwrap();
+    let rebuilt =
+        Study::new(rebuilt::pendulum::Pendulum::new, pendulum_cases(3), task).progress(false);
+    assert_eq!(rebuilt.layout(), pendulum_study(Method::Rk4, 3).layout());
+    let e = rebuilt.run_in(&dir, Format::Csv, 4).unwrap_err();
+    assert!(
+        matches!(&e, StudyError::Mismatch { what, .. } if what.contains("generated code")),
+        "{e}"
+    );
+    assert_ne!(pendulum::FINGERPRINT, rebuilt::pendulum::FINGERPRINT);
+    assert_eq!(<Pendulum as Model>::FINGERPRINT, pendulum::FINGERPRINT);
+}
+
 /// A study's results compared with `Results::eq`, which compares bits.
 #[test]
 fn results_compare_bits_so_nan_equals_nan() {

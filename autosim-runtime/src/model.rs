@@ -181,6 +181,14 @@ pub trait Model {
 
     /// The model's name as written in its source.
     const NAME: &'static str;
+    /// A fingerprint of the model's code: generated models set it to a
+    /// hash of their generated module (its `FINGERPRINT`), so it changes
+    /// when the model or the compiler's output changes; 0 by default.
+    /// A study folder records it and refuses to be resumed by a model
+    /// with another fingerprint (the results of two builds would mix).
+    /// It does not cover the runtime library the code calls, nor user
+    /// code.
+    const FINGERPRINT: u64 = 0;
     /// Names of the states, in state order.
     const STATE_NAMES: &'static [&'static str];
     /// Units of the states (e.g. `"rad"`, `"m/s"`), in state order.

@@ -223,13 +223,16 @@ where
     }
 
     /// What identifies this study in a folder's manifest: the model's
-    /// name, the table, the columns' targets and the task (not the
-    /// functions that make the model or set up a case: a study resumed
-    /// after those change mixes old and new results).
+    /// name and [fingerprint](Model::FINGERPRINT) (a generated model's
+    /// code), the table, the columns' targets and the task. Not the
+    /// functions that make the model or set up a case, nor user code the
+    /// model calls, nor the runtime library: a study resumed after those
+    /// change mixes old and new results.
     pub fn describe(&self) -> String {
         std::format!(
-            "model {}\n{}setup {:?}\n{}\n",
+            "model {} {:016x}\n{}setup {:?}\n{}\n",
             M::NAME,
+            M::FINGERPRINT,
             self.cases.describe(),
             self.setup_columns,
             self.task.describe()

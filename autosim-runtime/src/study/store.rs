@@ -342,6 +342,10 @@ impl StudyDir {
             (self.cases == found.cases, "number of cases"),
             (self.shard_size == found.shard_size, "shard size"),
             (self.layout == found.layout, "columns"),
+            (
+                self.description.lines().next() == found.description.lines().next(),
+                "the model: its name, or its generated code (another build of it)",
+            ),
             (self.description == found.description, "description"),
         ];
         checks.iter().find(|c| !c.0).map(|c| c.1.to_string())

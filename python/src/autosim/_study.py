@@ -513,8 +513,15 @@ class Study:
         ``ValueError`` when the folder holds another study or a shard is
         missing."""
         raw, description = self.model._native.study_read(str(folder))
-        if description != self.describe():
-            raise ValueError(f"{folder} holds a different study")
+        expected = self.describe()
+        if description != expected:
+            model_line = description.partition("\n")[0] != expected.partition("\n")[0]
+            what = (
+                "the model: its name, or its generated code (another build of it)"
+                if model_line
+                else "the study"
+            )
+            raise ValueError(f"{folder} holds a different study (its manifest differs: {what})")
         return StudyResults._from_native(raw)
 
 

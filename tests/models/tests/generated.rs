@@ -323,3 +323,40 @@ fn scene_lock_and_outputs() {
     eprintln!("satellite derivatives: {full} ops; with the boom locked: {rigid} ops");
     assert!(rigid < full);
 }
+
+/// A model's fingerprint is its generated code's: the macro and the build
+/// script give the same one, `Model::FINGERPRINT` is the module's, and
+/// another model (or the same file compiled as a scene, or in `f32`) has
+/// another.
+#[test]
+fn fingerprints_follow_the_generated_code() {
+    let by_macro = [
+        via_macro::andrews::FINGERPRINT,
+        via_macro::bicycle::FINGERPRINT,
+        via_macro::four_bar::FINGERPRINT,
+        via_macro::satellite::FINGERPRINT,
+        via_macro::chain_spatial10::FINGERPRINT,
+        via_macro::chain_planar2::FINGERPRINT,
+        via_macro::chain_planar2_f32::FINGERPRINT,
+    ];
+    let by_build = [
+        via_build::andrews::FINGERPRINT,
+        via_build::bicycle::FINGERPRINT,
+        via_build::four_bar::FINGERPRINT,
+        via_build::satellite::FINGERPRINT,
+        via_build::chain_spatial10::FINGERPRINT,
+        via_build::chain_planar2::FINGERPRINT,
+        via_build::chain_planar2_f32::FINGERPRINT,
+    ];
+    assert_eq!(by_macro, by_build);
+    let mut all = by_macro.to_vec();
+    all.push(scenes::rigid_boom::FINGERPRINT);
+    all.push(scenes::four_bar_f32::FINGERPRINT);
+    all.sort_unstable();
+    all.dedup();
+    assert_eq!(all.len(), by_macro.len() + 2, "{all:x?}");
+    assert_eq!(
+        <via_build::bicycle::Bicycle as Model>::FINGERPRINT,
+        via_build::bicycle::FINGERPRINT
+    );
+}

@@ -4,6 +4,7 @@
 
 mod assembly;
 mod events;
+mod fingerprint;
 mod functions;
 mod lanes;
 mod linear;
@@ -129,6 +130,28 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
         i.model.name, i.model.name, i.model.name
     ));
 
+    let body = quote! {
+        #[allow(unused_imports)]
+        use #rt::__private::{MulAdd, lanes_math, math, results};
+
+        #parameters
+
+        #inputs
+
+        #discrete
+
+        #externs
+
+        #constants
+
+        #counts
+
+        #model_type
+
+        #model_impl
+    };
+    let fingerprint = fingerprint_const(&body);
+
     quote! {
         #module_doc
         // Names come from the model (`KB`, `IB11`); literals are the model's
@@ -145,25 +168,22 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
             clippy::neg_multiply
         )]
         pub mod #module {
-            #[allow(unused_imports)]
-            use #rt::__private::{MulAdd, lanes_math, math, results};
+            #fingerprint
 
-            #parameters
-
-            #inputs
-
-            #discrete
-
-            #externs
-
-            #constants
-
-            #counts
-
-            #model_type
-
-            #model_impl
+            #body
         }
+    }
+}
+
+/// `FINGERPRINT`: the fingerprint of the rest of the module.
+fn fingerprint_const(body: &TokenStream) -> TokenStream {
+    let hex = format!("0x{:016x}", fingerprint::fingerprint(body));
+    let value = syn::LitInt::new(&hex, proc_macro2::Span::call_site());
+    quote! {
+        /// A fingerprint of this module's generated code (FNV-1a over its
+        /// tokens): a study folder records it and refuses to resume
+        /// results of another build (`Model::FINGERPRINT`).
+        pub const FINGERPRINT: u64 = #value;
     }
 }
 
@@ -473,6 +493,7 @@ fn name_lists(i: &crate::opt::Interface) -> TokenStream {
     let name = &i.model.name;
     quote! {
         const NAME: &'static str = #name;
+        const FINGERPRINT: u64 = FINGERPRINT;
         const STATE_NAMES: &'static [&'static str] = &[#(#states),*];
         const STATE_UNITS: &'static [&'static str] = &[#(#state_units),*];
         const PARAMETER_NAMES: &'static [&'static str] = &[#(#params),*];

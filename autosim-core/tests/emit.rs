@@ -11,10 +11,40 @@ fn models_dir() -> PathBuf {
 }
 
 fn generate(file: &str) -> String {
+    generate_with(file, &EmitOptions::default())
+}
+
+fn generate_with(file: &str, options: &EmitOptions) -> String {
     let text = std::fs::read_to_string(models_dir().join(file)).expect("model file");
     let src = SourceFile::new(file, text);
     let c = compile_source(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)));
-    format_tokens(&model_tokens(&c.program, &EmitOptions::default()))
+    format_tokens(&model_tokens(&c.program, options))
+}
+
+/// The `FINGERPRINT` line of a generated module.
+fn fingerprint_line(code: &str) -> &str {
+    code.lines()
+        .find(|l| l.contains("pub const FINGERPRINT: u64 ="))
+        .expect("a FINGERPRINT constant")
+}
+
+/// The fingerprint does not depend on where the runtime is nor on the
+/// module's name (Python's and FMUs' builds write `::autosim_runtime` and
+/// their own module name), so a study of one model reads the same
+/// wherever it ran; it does depend on the model.
+#[test]
+fn the_fingerprint_is_the_models_wherever_it_is_built() {
+    let mut python = EmitOptions::with_runtime_path("::autosim_runtime").expect("a path");
+    python.module_name = Some("generated".to_string());
+    for file in ["pendulum.sim", "four_bar.sim"] {
+        let (user, other) = (generate(file), generate_with(file, &python));
+        assert_ne!(user, other);
+        assert_eq!(fingerprint_line(&user), fingerprint_line(&other), "{file}");
+    }
+    assert_ne!(
+        fingerprint_line(&generate("pendulum.sim")),
+        fingerprint_line(&generate("four_bar.sim"))
+    );
 }
 
 #[test]

@@ -150,7 +150,7 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
 
         #model_impl
     };
-    let fingerprint = fingerprint_const(&body);
+    let fingerprint = fingerprint_const(&body, &rt);
 
     quote! {
         #module_doc
@@ -175,9 +175,10 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
     }
 }
 
-/// `FINGERPRINT`: the fingerprint of the rest of the module.
-fn fingerprint_const(body: &TokenStream) -> TokenStream {
-    let hex = format!("0x{:016x}", fingerprint::fingerprint(body));
+/// `FINGERPRINT`: the fingerprint of the rest of the module (`rt`, the
+/// runtime's path, as one marker).
+fn fingerprint_const(body: &TokenStream, rt: &TokenStream) -> TokenStream {
+    let hex = format!("0x{:016x}", fingerprint::fingerprint(body, rt));
     let value = syn::LitInt::new(&hex, proc_macro2::Span::call_site());
     quote! {
         /// A fingerprint of this module's generated code (FNV-1a over its

@@ -376,6 +376,47 @@ fn a_folder_refuses_a_study_of_another_build_of_its_model() {
     assert_eq!(<Pendulum as Model>::FINGERPRINT, pendulum::FINGERPRINT);
 }
 
+/// The models a study makes are part of it: the same study of a pendulum
+/// made with another gravity is refused, and so is one made with another
+/// torque (an input the cases do not set).
+#[test]
+fn a_folder_refuses_a_study_of_models_made_otherwise() {
+    let dir = scratch("made");
+    let study = pendulum_study(Method::Rk4, 3);
+    study.run_in(&dir, Format::Csv, 4).unwrap();
+    let settings = RunSettings::new(0.0, 2.0, 0.01, 0.1);
+    let moon = || {
+        let mut m = Pendulum::new();
+        m.set_parameter_values(&[1.3, 0.7, 1.62]);
+        m
+    };
+    let task = Simulate::new(settings, Method::Rk4, pendulum_keep()).unwrap();
+    let e = Study::new(moon, pendulum_cases(3), task)
+        .progress(false)
+        .run_in(&dir, Format::Csv, 4)
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("the model as made: its parameters"),
+        "{e}"
+    );
+    let pushed = || {
+        let mut m = Pendulum::new();
+        m.set_input_values(&[0.25]);
+        m
+    };
+    let cases = || Cases::new().grid("q", &[0.1, 0.2, 0.3]).unwrap();
+    let task = || Simulate::new(settings, Method::Rk4, Keep::new().final_state()).unwrap();
+    let reference = Study::new(Pendulum::new, cases(), task()).progress(false);
+    let dir = scratch("made-inputs");
+    reference.run_in(&dir, Format::Csv, 4).unwrap();
+    let e = Study::new(pushed, cases(), task())
+        .progress(false)
+        .run_in(&dir, Format::Csv, 4)
+        .unwrap_err();
+    assert!(e.to_string().contains("inputs"), "{e}");
+    assert_eq!(reference.run_in(&dir, Format::Csv, 4).unwrap().skipped, 3);
+}
+
 /// A study's results compared with `Results::eq`, which compares bits.
 #[test]
 fn results_compare_bits_so_nan_equals_nan() {

@@ -199,6 +199,14 @@ def test_shards_on_disk_resume_and_read_back(study: autosim.Study, tmp_path: Pat
     other = study.model.study(study.cases, autosim.Keep().final_state(), t_end=2.0)
     with pytest.raises(ValueError, match="different study"):
         other.read(folder)
+    # The same study of the model with another parameter set beforehand
+    # would mix two gravities: refused.
+    moon = study.model.copy()
+    moon.parameters["g"] = 1.62
+    with pytest.raises(ValueError, match="the model as made: its parameters"):
+        reference_study(moon).run_in(folder, shard_size=16)
+    with pytest.raises(ValueError, match="the model as made"):
+        reference_study(moon).read(folder)
 
 
 def test_a_study_pickles_as_its_recipe(study: autosim.Study) -> None:

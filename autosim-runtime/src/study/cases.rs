@@ -149,7 +149,7 @@ impl Factor {
 }
 
 /// FNV-1a over the bits of `values` (a fingerprint for the manifest).
-fn hash(values: &[f64]) -> u64 {
+pub(super) fn hash(values: &[f64]) -> u64 {
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for v in values {
         for b in v.to_bits().to_le_bytes() {

@@ -224,18 +224,46 @@ where
 
     /// What identifies this study in a folder's manifest: the model's
     /// name and [fingerprint](Model::FINGERPRINT) (a generated model's
-    /// code), the table, the columns' targets and the task. Not the
-    /// functions that make the model or set up a case, nor user code the
+    /// code), what the function that makes the model gives (fingerprints
+    /// of the made model's parameter, input and discrete values and of
+    /// its initial state), the table, the columns' targets and the task.
+    /// Not what a setup function does, nor the inside of user code the
     /// model calls, nor the runtime library: a study resumed after those
     /// change mixes old and new results.
     pub fn describe(&self) -> String {
         std::format!(
-            "model {} {:016x}\n{}setup {:?}\n{}\n",
+            "model {} {:016x}\n{}\n{}setup {:?}\n{}\n",
             M::NAME,
             M::FINGERPRINT,
+            made(&(self.make_model)()),
             self.cases.describe(),
             self.setup_columns,
             self.task.describe()
         )
     }
+}
+
+/// The values a study's function that makes the model gives, as
+/// fingerprints for the manifest: `made parameters … inputs … discrete …
+/// state …`.
+fn made<M: Model>(model: &M) -> String {
+    use crate::Float;
+    let values = |n: usize, read: &dyn Fn(&mut [M::Float])| {
+        let mut v = std::vec![M::Float::ZERO; n];
+        read(&mut v);
+        cases::hash(&v.iter().map(|x| x.to_f64()).collect::<Vec<f64>>())
+    };
+    let state: Vec<f64> = model
+        .initial_state()
+        .as_ref()
+        .iter()
+        .map(|x| x.to_f64())
+        .collect();
+    std::format!(
+        "made parameters {:016x} inputs {:016x} discrete {:016x} state {:016x}",
+        values(M::PARAMETER_NAMES.len(), &|v| model.parameter_values(v)),
+        values(M::INPUT_NAMES.len(), &|v| model.input_values(v)),
+        values(M::DISCRETE_NAMES.len(), &|v| model.discrete_values(v)),
+        cases::hash(&state)
+    )
 }

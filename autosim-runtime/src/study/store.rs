@@ -344,7 +344,13 @@ impl StudyDir {
             (self.layout == found.layout, "columns"),
             (
                 self.description.lines().next() == found.description.lines().next(),
-                "the model: its name, or its generated code (another build of it)",
+                "the model: its name, or its generated code (another build of it: \
+                 another model text, load options, or version of autosim)",
+            ),
+            (
+                self.description.lines().nth(1) == found.description.lines().nth(1),
+                "the model as made: its parameters, inputs, discrete variables \
+                 or initial state",
             ),
             (self.description == found.description, "description"),
         ];

@@ -513,16 +513,27 @@ class Study:
         ``ValueError`` when the folder holds another study or a shard is
         missing."""
         raw, description = self.model._native.study_read(str(folder))
-        expected = self.describe()
-        if description != expected:
-            model_line = description.partition("\n")[0] != expected.partition("\n")[0]
-            what = (
-                "the model: its name, or its generated code (another build of it)"
-                if model_line
-                else "the study"
-            )
+        what = _difference(description, self.describe())
+        if what is not None:
             raise ValueError(f"{folder} holds a different study (its manifest differs: {what})")
         return StudyResults._from_native(raw)
+
+
+def _difference(found: str, expected: str) -> str | None:
+    """What differs between a folder's description and a study's, in the
+    words of the Rust side's refusal (the model's line first, then the
+    model as made, then the rest)."""
+    if found == expected:
+        return None
+    found_lines, expected_lines = found.split("\n"), expected.split("\n")
+    if found_lines[0] != expected_lines[0]:
+        return (
+            "the model: its name, or its generated code (another build of it: "
+            "another model text, load options, or version of autosim)"
+        )
+    if found_lines[1:2] != expected_lines[1:2]:
+        return "the model as made: its parameters, inputs, discrete variables or initial state"
+    return "the study"
 
 
 def _rebuild_study(model: Model, *args: Any) -> Study:

@@ -235,11 +235,19 @@ where
             "model {} {:016x}\n{}\n{}setup {:?}\n{}\n",
             M::NAME,
             M::FINGERPRINT,
-            made(&(self.make_model)()),
+            self.made(),
             self.cases.describe(),
             self.setup_columns,
             self.task.describe()
         )
+    }
+
+    /// [`made`] of a model the study makes (a function that panics
+    /// there is described as such: its cases fail the same way).
+    fn made(&self) -> String {
+        let made = || made(&(self.make_model)());
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(made))
+            .unwrap_or_else(|_| "made: the function that makes the model panicked".to_string())
     }
 }
 

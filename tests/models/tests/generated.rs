@@ -330,24 +330,23 @@ fn scene_lock_and_outputs() {
 /// another.
 #[test]
 fn fingerprints_follow_the_generated_code() {
-    let by_macro = [
-        via_macro::andrews::FINGERPRINT,
-        via_macro::bicycle::FINGERPRINT,
-        via_macro::four_bar::FINGERPRINT,
-        via_macro::satellite::FINGERPRINT,
-        via_macro::chain_spatial10::FINGERPRINT,
-        via_macro::chain_planar2::FINGERPRINT,
-        via_macro::chain_planar2_f32::FINGERPRINT,
-    ];
-    let by_build = [
-        via_build::andrews::FINGERPRINT,
-        via_build::bicycle::FINGERPRINT,
-        via_build::four_bar::FINGERPRINT,
-        via_build::satellite::FINGERPRINT,
-        via_build::chain_spatial10::FINGERPRINT,
-        via_build::chain_planar2::FINGERPRINT,
-        via_build::chain_planar2_f32::FINGERPRINT,
-    ];
+    macro_rules! both_paths {
+        ($($model:ident),*) => {
+            (
+                [$(via_macro::$model::FINGERPRINT),*],
+                [$(via_build::$model::FINGERPRINT),*],
+            )
+        };
+    }
+    let (by_macro, by_build) = both_paths!(
+        andrews,
+        bicycle,
+        four_bar,
+        satellite,
+        chain_spatial10,
+        chain_planar2,
+        chain_planar2_f32
+    );
     assert_eq!(by_macro, by_build);
     let mut all = by_macro.to_vec();
     all.push(scenes::rigid_boom::FINGERPRINT);

@@ -129,6 +129,68 @@ pub struct EventRecord<'a, M: Model> {
     pub inputs: &'a [M::Float],
 }
 
+/// The rates of change `dg/dt` of the first `rates.len()` event
+/// indicators at `(t, x)` along the motion: a central difference of the
+/// indicators along `(1, dx/dt)` over `±√ε·max(1, |t|)` seconds (one
+/// derivative evaluation, two of the indicators).
+///
+/// # Errors
+/// The model's error from its derivatives or indicators.
+pub fn indicator_rates<M: Model>(
+    model: &mut M,
+    t: M::Float,
+    x: &M::State,
+    rates: &mut [M::Float],
+) -> Result<(), crate::ModelError> {
+    use crate::{Float, StateArray};
+    let n = rates
+        .len()
+        .min(M::EVENT_INDICATORS.len())
+        .min(MAX_EVENT_INDICATORS);
+    if n == 0 {
+        return Ok(());
+    }
+    let mut f = M::State::zeros();
+    model.derivatives(t, x, &mut f)?;
+    let delta = M::Float::EPSILON.sqrt() * M::Float::ONE.max(t.abs());
+    let along = |sign: M::Float| {
+        let mut moved = *x;
+        for (m, d) in moved.as_mut().iter_mut().zip(f.as_ref()) {
+            *m += sign * delta * *d;
+        }
+        moved
+    };
+    let (ahead, behind) = (along(M::Float::ONE), along(-M::Float::ONE));
+    let mut g_ahead = [M::Float::ZERO; MAX_EVENT_INDICATORS];
+    let mut g_behind = [M::Float::ZERO; MAX_EVENT_INDICATORS];
+    let all = M::EVENT_INDICATORS.len().min(MAX_EVENT_INDICATORS);
+    model.event_indicators(t + delta, &ahead, &mut g_ahead[..all])?;
+    model.event_indicators(t - delta, &behind, &mut g_behind[..all])?;
+    let two_delta = delta + delta;
+    for (k, rate) in rates.iter_mut().enumerate().take(n) {
+        *rate = (g_ahead[k] - g_behind[k]) / two_delta;
+    }
+    Ok(())
+}
+
+/// Whether an indicator that just fired, now `g` and changing at `rate`
+/// after its event's action, is at zero (`|g| ≤ reach`) and heading back
+/// to `old_side`, the side it crossed from. So a bounce leaves it: the
+/// stop's indicator is zero at the impact, to the precision the crossing
+/// was located to, and the reset reverses its rate. Such an indicator is
+/// on its old side already for the next crossing, which may come within
+/// the next step (a small bounce). `reach` is what counts as zero: the
+/// indicator's value at the located crossing, or what its rate covers in
+/// the time the crossing was located to.
+pub fn returning<F: crate::Float>(g: F, rate: F, old_side: i8, reach: F) -> bool {
+    let heading_back = match old_side {
+        -1 => rate < F::ZERO,
+        1 => rate > F::ZERO,
+        _ => false,
+    };
+    heading_back && g.abs() <= reach
+}
+
 /// The sign of an indicator value: -1, +1, or 0 for zero (and NaN).
 pub(crate) fn sign<F: crate::Float>(v: F) -> i8 {
     if v > F::ZERO {

@@ -4,7 +4,9 @@
 //! and chattering stopped as [`IntegrationError::Zeno`].
 
 use super::{MAX_RECORDED_INPUTS, Observer, RunError};
-use crate::event::{EventRecord, MAX_DISCRETE, MAX_EVENT_INDICATORS, sign};
+use crate::event::{
+    EventRecord, MAX_DISCRETE, MAX_EVENT_INDICATORS, indicator_rates, returning, sign,
+};
 use crate::integrate::Stepper;
 use crate::{EventOutcome, Float, IntegrationError, Model, StateArray, check_finite};
 
@@ -21,7 +23,12 @@ use crate::{EventOutcome, Float, IntegrationError, Model, StateArray, check_fini
 /// consecutive points (a grazing crossing), and a crossing that the
 /// interpolant misses because the step's own error is larger than the
 /// excursion. Raise `interior_samples`, tighten the tolerance or shorten
-/// the step when such crossings matter.
+/// the step when such crossings matter. Except the return after a bounce:
+/// an indicator its own action left at zero with its rate pointing back
+/// to its old side is on that side at once, and a return within the next
+/// step's first sampling interval is looked for at halving distances from
+/// the event, down to the located instant's resolution; a bounce smaller
+/// than that is [`IntegrationError::Zeno`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct EventSettings<F> {
@@ -83,6 +90,17 @@ pub(super) enum Flow {
     Stopped,
 }
 
+/// Two instants with the indicator's values there, on either side of a
+/// crossing.
+type Bracket<F> = [(F, F); 2];
+
+/// How many times the located instant's resolution an indicator may be
+/// from zero after its action and still count as left at zero (the
+/// located instant is within the resolution past the crossing, and a
+/// reset that scales the rate by a restitution down to 1/64 moves the
+/// indicator back to zero within this).
+const RETURNING_MARGIN: f64 = 64.0;
+
 /// Most root-finding iterations for one crossing (each halves the bracket
 /// at worst every other iteration: far more than 2·53 are never needed).
 const MAX_ITERATIONS: u32 = 400;
@@ -94,6 +112,14 @@ pub(super) struct Events<M: Model> {
     zeno_interval: M::Float,
     /// The last known sign of every indicator (0: not known yet).
     signs: [i8; MAX_EVENT_INDICATORS],
+    /// Indicators (bit `k`) that fired and were left at zero heading
+    /// back to the side they came from (a bounce): their sign is that
+    /// side already, and until a point on it is seen, a crossing in the
+    /// first part of a step is looked for by [`Events::dip`].
+    returning: u64,
+    /// The width of the last step scanned (for the resolution of
+    /// located instants).
+    last_step: M::Float,
     /// The indicators at the start of the step.
     g_start: [M::Float; MAX_EVENT_INDICATORS],
     /// Scratch: the indicators at a point.
@@ -153,6 +179,8 @@ impl<M: Model> Events<M> {
             settings,
             zeno_interval,
             signs: [0; MAX_EVENT_INDICATORS],
+            returning: 0,
+            last_step: M::Float::ZERO,
             g_start: [M::Float::ZERO; MAX_EVENT_INDICATORS],
             g: [M::Float::ZERO; MAX_EVENT_INDICATORS],
             t_start: start,
@@ -280,6 +308,7 @@ impl<M: Model> Events<M> {
         }
         let n = self.n;
         let h = t_end - self.t_start;
+        self.last_step = h;
         let parts = self.settings.interior_samples + 1;
         let mut current = self.signs;
         let mut g_prev = self.g_start;
@@ -298,8 +327,16 @@ impl<M: Model> Events<M> {
             let g_j = self.g;
             let mut first: Option<Crossing<M::Float>> = None;
             for (k, indicator) in M::EVENT_INDICATORS.iter().enumerate().take(n) {
+                let back = self.returning & (1 << k) != 0;
+                if back && sign(g_j[k]) == current[k] {
+                    self.returning &= !(1 << k);
+                }
                 if indicator.direction.fires(current[k], sign(g_j[k])) {
-                    let bracket = [(t_prev, g_prev[k]), (t_j, g_j[k])];
+                    let mut bracket = [(t_prev, g_prev[k]), (t_j, g_j[k])];
+                    if back {
+                        self.returning &= !(1 << k);
+                        bracket = self.dip(model, stepper, k, bracket, t_end, x_end)?;
+                    }
                     let t = self.locate(model, stepper, k, bracket, t_end, x_end)?;
                     if first.as_ref().is_none_or(|c| t < c.t) {
                         first = Some(Crossing { index: k, t });
@@ -324,6 +361,54 @@ impl<M: Model> Events<M> {
         self.g_start = g_prev;
         self.f_start = Some(self.f_end);
         Ok(None)
+    }
+
+    /// The bracket of the crossing of indicator `k`, which fired at the
+    /// step's start and was left there at zero heading back to its old
+    /// side, and is on its new side again at the end of `bracket`: a
+    /// point on the old side is looked for at halving distances from the
+    /// start (a bounce smaller than the sampling), and the crossing is
+    /// between it and the point after it. None down to the time
+    /// resolution: the bounces have become too small to resolve, the
+    /// events accumulate (Zeno).
+    fn dip<S: Stepper<M> + ?Sized>(
+        &mut self,
+        model: &mut M,
+        stepper: &S,
+        k: usize,
+        bracket: Bracket<M::Float>,
+        t_end: M::Float,
+        x_end: &M::State,
+    ) -> Result<Bracket<M::Float>, IntegrationError> {
+        let [(a, _), mut after] = bracket;
+        let old_side = -sign(after.1);
+        let resolution = self.resolution(a);
+        let half = M::Float::from_f64(0.5);
+        let mut width = after.0 - a;
+        while width > resolution {
+            width *= half;
+            let t = a + width;
+            self.interpolate_or_end(stepper, t, t_end, x_end)?;
+            let point = self.point;
+            self.indicators(model, t, &point)?;
+            let g = self.g[k];
+            if sign(g) == old_side {
+                return Ok([(t, g), after]);
+            }
+            after = (t, g);
+        }
+        Err(IntegrationError::Zeno {
+            t: a.to_f64(),
+            name: M::EVENT_INDICATORS[k].name,
+            events: self.chain.saturating_add(1),
+        })
+    }
+
+    /// How close to a crossing a located instant is, at `t` (the width
+    /// [`Events::locate`] closes a bracket to, after the last step).
+    fn resolution(&self, t: M::Float) -> M::Float {
+        let eps = M::Float::from_f64(4.0) * M::Float::EPSILON * (t.abs() + self.last_step.abs());
+        self.settings.time_tolerance.max(eps)
     }
 
     /// The state at `t` into `self.point`: `x_end` itself at the step's end.
@@ -414,29 +499,31 @@ impl<M: Model> Events<M> {
     ) -> Result<Flow, RunError<O::Error>> {
         let n = self.n;
         let mut forced = forced;
-        // The indicator just fired: its sign after the action is its new
-        // one, whatever it is (an action may move it far, as a wrap-around).
-        let mut fired: Option<usize> = None;
+        // The indicator just fired and the side it came from: its sign
+        // after the action is its new one, whatever it is (an action may
+        // move it far, as a wrap-around), unless the action left it at
+        // zero heading back (`returning`).
+        let mut fired: Option<(usize, i8, M::Float)> = None;
         loop {
             self.indicators(model, t, x)?;
-            if let Some(k) = fired {
-                let s = sign(self.g[k]);
-                if s != 0 {
-                    self.signs[k] = s;
-                }
+            if let Some((k, old_side, located)) = fired {
+                self.after_action(model, t, x, (k, old_side), located)?;
             }
+            let quiet =
+                |k: usize| self.returning & (1 << k) != 0 || fired.is_some_and(|f| f.0 == k);
+            let located = forced.is_some();
             let next = forced.take().or_else(|| {
                 (0..n).find(|&k| {
-                    Some(k) != fired
+                    !quiet(k)
                         && M::EVENT_INDICATORS[k]
                             .direction
                             .fires(self.signs[k], sign(self.g[k]))
                 })
             });
             let Some(k) = next else {
-                for (s, v) in self.signs.iter_mut().zip(&self.g).take(n) {
+                for (k, (s, v)) in self.signs.iter_mut().zip(&self.g).enumerate().take(n) {
                     let v = sign(*v);
-                    if v != 0 {
+                    if v != 0 && self.returning & (1 << k) == 0 {
                         *s = v;
                     }
                 }
@@ -444,14 +531,60 @@ impl<M: Model> Events<M> {
                 return Ok(Flow::Continue);
             };
             self.count_in_chain(t, k)?;
+            // A located crossing's value: what counts as zero after the
+            // action (none for a crossing an action caused).
+            let at_crossing = if located {
+                self.g[k].abs()
+            } else {
+                M::Float::ZERO
+            };
             let outcome = self.fire(model, t, x, k, observer)?;
-            self.signs[k] = M::EVENT_INDICATORS[k].direction.side_after(self.signs[k]);
-            fired = Some(k);
+            let old_side = self.signs[k];
+            self.signs[k] = M::EVENT_INDICATORS[k].direction.side_after(old_side);
+            self.returning &= !(1 << k);
+            fired = Some((k, old_side, at_crossing));
             if outcome == EventOutcome::Stop {
                 self.terminal = Some(k);
                 return Ok(Flow::Stopped);
             }
         }
+    }
+
+    /// The sign of indicator `k` (now in `self.g`) after its action at
+    /// `(t, x)`: its new one; but left at zero (no farther from it than
+    /// `at_crossing`, its value at the located crossing, or than its rate
+    /// covers in the located instant's resolution) and heading back to
+    /// `old_side` (a bounce), `old_side`, and marked `returning`.
+    fn after_action(
+        &mut self,
+        model: &mut M,
+        t: M::Float,
+        x: &M::State,
+        (k, old_side): (usize, i8),
+        at_crossing: M::Float,
+    ) -> Result<(), IntegrationError> {
+        let g = self.g[k];
+        if sign(g) != 0 {
+            self.signs[k] = sign(g);
+        }
+        if old_side == 0 {
+            return Ok(());
+        }
+        let mut rates = [M::Float::ZERO; MAX_EVENT_INDICATORS];
+        self.evaluations += 1;
+        indicator_rates(model, t, x, &mut rates[..=k]).map_err(|error| {
+            IntegrationError::Model {
+                t: t.to_f64(),
+                error,
+            }
+        })?;
+        let resolution = self.resolution(t) * M::Float::from_f64(RETURNING_MARGIN);
+        let reach = at_crossing.max(rates[k].abs() * resolution);
+        if returning(g, rates[k], old_side, reach) {
+            self.signs[k] = old_side;
+            self.returning |= 1 << k;
+        }
+        Ok(())
     }
 
     /// Adds an event at `t` to the chain of close events; too long a chain

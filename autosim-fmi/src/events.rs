@@ -18,6 +18,7 @@
 
 use crate::Export;
 use crate::instance::{Fail, Instance, Outcome};
+use autosim_runtime::event::{MAX_EVENT_INDICATORS, indicator_rates, returning};
 use autosim_runtime::{Direction, EventOutcome, Model};
 
 /// Most events at one instant (one `fmi2NewDiscreteStates`): more means
@@ -97,8 +98,13 @@ impl<E: Export> Instance<E> {
     /// indicator exactly zero counts as crossed: the importer stopped there), one at a
     /// time in index order, the indicators evaluated again after each
     /// action (an action may cause another crossing); then every sign is
-    /// known anew. At the first call (the end of initialization) no sign
-    /// is known, so nothing fires: the signs are learned.
+    /// known anew. An indicator an action left at zero heading back to
+    /// the side it crossed from (a bounce: the reset reversed its rate)
+    /// is on that side at once, so its next crossing fires even if the
+    /// importer, which masks an indicator that starts at zero, reports it
+    /// only when it is back at zero. At the first call (the end of
+    /// initialization) no sign is known, so nothing fires: the signs are
+    /// learned.
     pub fn settle_events(&mut self) -> Outcome<Settled> {
         let n = self.event_count();
         let mut settled = Settled::default();
@@ -106,29 +112,42 @@ impl<E: Export> Instance<E> {
             return Ok(settled);
         }
         let mut g = vec![0.0; n];
-        let mut fired: Option<usize> = None;
-        for _ in 0..=MAX_EVENTS_AT_AN_INSTANT {
+        // The indicator just fired, the side it came from and what counts
+        // as zero for it; the indicators left at zero heading back.
+        let mut fired: Option<(usize, i8, f64)> = None;
+        let mut back = vec![false; n];
+        for round in 0..=MAX_EVENTS_AT_AN_INSTANT {
             self.event_indicators(&mut g)?;
-            if let Some(k) = fired
-                && sign(g[k]) != 0
-            {
-                self.signs[k] = sign(g[k]);
+            if let Some((k, old_side, at_crossing)) = fired {
+                if sign(g[k]) != 0 {
+                    self.signs[k] = sign(g[k]);
+                }
+                if self.heading_back(g[k], (k, old_side), at_crossing)? {
+                    self.signs[k] = old_side;
+                    back[k] = true;
+                }
             }
             let indicators = E::Model::EVENT_INDICATORS;
-            let next = (0..n).find(|&k| {
-                let now = side(g[k], self.signs[k]);
-                Some(k) != fired && indicators[k].direction.fires(self.signs[k], now)
-            });
+            let sides = self.sides(&g)?;
+            let quiet = |k: usize| back[k] || fired.is_some_and(|f| f.0 == k);
+            let next = (0..n)
+                .find(|&k| !quiet(k) && indicators[k].direction.fires(self.signs[k], sides[k]));
             let Some(k) = next else {
                 for (k, v) in g.iter().enumerate() {
-                    if Some(k) != fired || sign(*v) != 0 {
-                        let now = side(*v, self.signs[k]);
-                        if now != 0 {
-                            self.signs[k] = now;
-                        }
+                    let just_fired = fired.is_some_and(|f| f.0 == k);
+                    if !back[k] && (!just_fired || sign(*v) != 0) && sides[k] != 0 {
+                        self.signs[k] = sides[k];
                     }
                 }
                 return Ok(settled);
+            };
+            // The first event of the instant may be a crossing the importer
+            // located: if it is at zero there, its value there counts as
+            // zero after the action.
+            let at_crossing = if round == 0 {
+                self.at_zero(g[k], k)?
+            } else {
+                0.0
             };
             let before = self.x;
             let outcome = self.model.event(k, self.t, &mut self.x)?;
@@ -151,8 +170,10 @@ impl<E: Export> Instance<E> {
                     }
                 )
             });
-            self.signs[k] = side_after(indicators[k].direction, self.signs[k]);
-            fired = Some(k);
+            let old_side = self.signs[k];
+            self.signs[k] = side_after(indicators[k].direction, old_side);
+            back[k] = false;
+            fired = Some((k, old_side, at_crossing));
             if outcome == EventOutcome::Stop {
                 settled.terminate = true;
                 self.terminated = true;
@@ -165,6 +186,73 @@ impl<E: Export> Instance<E> {
         )))
     }
 }
+
+impl<E: Export> Instance<E> {
+    /// The rate of indicator `k` at the current time and state (0 past
+    /// the runtime's [`MAX_EVENT_INDICATORS`]).
+    fn rate(&mut self, k: usize) -> Outcome<f64> {
+        if k >= MAX_EVENT_INDICATORS {
+            return Ok(0.0);
+        }
+        let mut rates = [0.0; MAX_EVENT_INDICATORS];
+        self.assemble()?;
+        indicator_rates(&mut self.model, self.t, &self.x, &mut rates[..=k])?;
+        Ok(rates[k])
+    }
+
+    /// The side of each indicator, now `g`: its sign; exactly zero (the
+    /// importer stopped on the crossing), the sign of its rate, the side
+    /// it is going to (the opposite of the side last known if the rate is
+    /// zero too).
+    fn sides(&mut self, g: &[f64]) -> Outcome<Vec<i8>> {
+        let mut rates = [0.0; MAX_EVENT_INDICATORS];
+        let zero = g.iter().take(MAX_EVENT_INDICATORS).any(|v| *v == 0.0);
+        if zero {
+            let n = g.len().min(MAX_EVENT_INDICATORS);
+            self.assemble()?;
+            indicator_rates(&mut self.model, self.t, &self.x, &mut rates[..n])?;
+        }
+        Ok(g.iter()
+            .enumerate()
+            .map(|(k, v)| match (sign(*v), rates.get(k).map(|r| sign(*r))) {
+                (0, Some(s)) if s != 0 => s,
+                _ => side(*v, self.signs[k]),
+            })
+            .collect())
+    }
+
+    /// What counts as zero for indicator `k`, now `g`: `|g|` if its rate
+    /// reaches zero from there within the resolution of a located
+    /// crossing (`RESOLUTION`·max(1, |t|) seconds), else 0.
+    fn at_zero(&mut self, g: f64, k: usize) -> Outcome<f64> {
+        let rate = self.rate(k)?;
+        let within = g.abs() <= rate.abs() * RESOLUTION * self.t.abs().max(1.0);
+        Ok(if within { g.abs() } else { 0.0 })
+    }
+
+    /// Whether indicator `k`, now `g` after its action, is at zero (no
+    /// farther from it than `at_crossing`, or than its rate covers in the
+    /// resolution) heading back to `old_side`
+    /// (`autosim_runtime::event::returning`).
+    fn heading_back(
+        &mut self,
+        g: f64,
+        (k, old_side): (usize, i8),
+        at_crossing: f64,
+    ) -> Outcome<bool> {
+        if old_side == 0 {
+            return Ok(false);
+        }
+        let rate = self.rate(k)?;
+        let reach = at_crossing.max(rate.abs() * RESOLUTION * self.t.abs().max(1.0));
+        Ok(returning(g, rate, old_side, reach))
+    }
+}
+
+/// The relative time resolution of a crossing the importer located, for
+/// [`Instance::heading_back`] (a root finder's tolerance is a few hundred
+/// roundings of the time at most).
+const RESOLUTION: f64 = 1e-12;
 
 /// What `modelDescription.xml` says about a model's events: its event
 /// indicators and its discrete variables with their units and start

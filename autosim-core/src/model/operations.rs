@@ -69,6 +69,12 @@ const BUILTINS: [Func; 12] = [
     Func::Max,
 ];
 
+/// Whether `name` is a built-in function or an operation (so a bare
+/// `vel` is a call with its arguments left out).
+pub(crate) fn is_function(name: &str) -> bool {
+    Func::builtin(name).is_some() || OPERATIONS.iter().any(|(n, ..)| *n == name)
+}
+
 impl Resolver<'_> {
     /// The value of a call `func(args)`.
     pub(super) fn eval_call(

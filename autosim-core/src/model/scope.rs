@@ -188,7 +188,12 @@ impl<'a> Resolver<'a> {
     pub fn unknown(&mut self, name: &ast::Name, what: &str) {
         let known = self.known_names();
         let mut d = Diagnostic::error(name.span, format!("unknown {what} `{}`", name.text));
-        if let Some(s) = did_you_mean(&name.text, known.iter().map(String::as_str)) {
+        if super::operations::is_function(&name.text) {
+            d = d.help(format!(
+                "`{0}` is a function: call it with its arguments, `{0}(...)` (the language reference's \"Expressions\")",
+                name.text
+            ));
+        } else if let Some(s) = did_you_mean(&name.text, known.iter().map(String::as_str)) {
             d = d.help(format!("did you mean `{s}`?"));
         }
         self.push(d);

@@ -148,6 +148,25 @@ fn a_failed_reaction_does_not_hide_the_other_mistakes_of_a_load() {
 }
 
 #[test]
+fn a_function_named_without_its_arguments_is_pointed_out() {
+    for (name, call) in [("vel", "vel(...)"), ("sin", "sin(...)")] {
+        let got = resolved(&format!(
+            "{HEADER}moment m {{ on: B, about: b1, magnitude: -2*{name} }}"
+        ));
+        assert!(
+            got.contains(&format!("error: unknown name `{name}`")),
+            "{got}"
+        );
+        assert!(
+            got.contains(&format!(
+                "`{name}` is a function: call it with its arguments, `{call}`"
+            )),
+            "{got}"
+        );
+    }
+}
+
+#[test]
 fn quaternion_body_with_a_locked_translation_does_not_panic() {
     // Locking a translation of a quaternion body indexed its (absent)
     // rotation axes.

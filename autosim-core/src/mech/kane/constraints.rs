@@ -344,6 +344,17 @@ impl System {
                 let e = self.why_no_pivot(m, nominal, excluded, i);
                 return Err(LocatedError::new(item(i), e));
             };
+            // A named dependent is taken whatever its coefficient: zero at
+            // the nominal state, nothing could be solved for it there.
+            if forced_pick.is_some() && !(v[i][j].abs() > 1e-10 * scale) {
+                let others = (0..cols).any(|c| !col_done[c] && v[i][c].abs() > 1e-10 * scale);
+                let e = if others {
+                    named_dependent_at_zero()
+                } else {
+                    self.why_no_pivot(m, nominal, excluded, i)
+                };
+                return Err(LocatedError::new(item(i), e));
+            }
             row_done[i] = true;
             col_done[j] = true;
             order.push((i, j));
@@ -409,6 +420,18 @@ impl System {
                 "remove it: it repeats the others (a position constraint's time derivative is already a speed constraint: do not declare that again)",
             )
         }
+    }
+}
+
+/// The error of a dependent named with `dependent:` that this constraint
+/// does not determine at the initial configuration (its coefficient is
+/// zero there, after the constraints before it).
+fn named_dependent_at_zero() -> ModelError {
+    ModelError::Option {
+        item: String::new(),
+        key: "dependent",
+        message: "the dependent named with `dependent:` cannot be solved from this constraint at the initial configuration: its coefficient is zero there".to_string(),
+        help: "name another dependent (or none: the compiler chooses), or start from another configuration (the coordinates' `initial:`)".to_string(),
     }
 }
 

@@ -111,3 +111,112 @@ fn a_pressed_stop_follows_the_closed_form_then_ends_in_zeno() {
     check("RK4 h = 1 ms", &mut Rk4::new(), 1e-3, 1e-8);
     check("RK4 h = 10 ms", &mut Rk4::new(), 1e-2, 1e-5);
 }
+
+mod table {
+    autosim::model! {
+        /// A ball bouncing on a table driven as `A sin(w t)`: its impacts
+        /// pile up where the table overtakes the ever lower bounces.
+        model TableBall;
+        parameters { g = 9.81 [m/s^2], e = 0.7, A = 0.05 [m], w = 6 [rad/s], m = 0.2 [kg] }
+        body Ball { translate: 3, q: [h], u: [v], mass: m, inertia: 0, initial: [1] }
+        gravity = -g*n3;
+        let table = A*sin(w*t);
+        let table_speed = A*w*cos(w*t);
+        event impact [m] {
+            indicator: h - table,
+            direction: falling,
+            reset: { v: table_speed - e*(v - table_speed) },
+        }
+        output gap [m] = h - table;
+    }
+}
+
+/// The ball on the moving table: impact instants by bisection on the
+/// exact flight (a parabola) against the exact table, after each the
+/// relative speed reversed and scaled.
+fn table_impacts(count: usize) -> Vec<f64> {
+    let (g, e, a, w) = (9.81, 0.7, 0.05, 6.0);
+    let table = |t: f64| a * (w * t).sin();
+    let table_speed = |t: f64| a * w * (w * t).cos();
+    let (mut t0, mut h0, mut v0) = (0.0, 1.0, 0.0);
+    let mut times = Vec::new();
+    while times.len() < count {
+        let gap = |t: f64| {
+            let s = t - t0;
+            h0 + v0 * s - 0.5 * g * s * s - table(t)
+        };
+        // The first sign change after t0, by small steps, then bisection.
+        let mut a_t = t0 + 1e-9;
+        let step = 1e-4;
+        while gap(a_t + step) > 0.0 {
+            a_t += step;
+        }
+        let mut b_t = a_t + step;
+        for _ in 0..200 {
+            let mid = 0.5 * (a_t + b_t);
+            if gap(mid) > 0.0 { a_t = mid } else { b_t = mid }
+        }
+        let t = b_t;
+        let v = v0 - g * (t - t0);
+        times.push(t);
+        (t0, h0, v0) = (t, table(t), table_speed(t) - e * (v - table_speed(t)));
+    }
+    times
+}
+
+#[test]
+fn a_ball_on_a_moving_table_ends_in_zeno_never_below_it() {
+    use table::table_ball::TableBall;
+    let expected = table_impacts(8);
+    for (what, result) in [
+        ("Dormand-Prince 1e-12", {
+            let mut dopri = DormandPrince::new(DopriSettings::new(1e-12, 1e-12)).unwrap();
+            table_run(&mut dopri, 1e-3)
+        }),
+        ("RK4 h = 1 ms", table_run(&mut Rk4::new(), 1e-3)),
+    ] {
+        let (recording, result) = result;
+        let impacts: Vec<f64> = recording.events().iter().map(|e| e.t).collect();
+        let worst = expected
+            .iter()
+            .zip(&impacts)
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        let lowest = recording.columns()[2]
+            .values
+            .iter()
+            .fold(f64::INFINITY, |m, &x| m.min(x));
+        println!(
+            "{what}: {} impacts, the first 8 within {worst:.1e} s; lowest gap {lowest:.1e} m; {result:?}",
+            impacts.len()
+        );
+        assert!(worst < 1e-7, "{what}: {worst:e}");
+        assert!(
+            lowest > -1e-9,
+            "{what}: the ball went {lowest} m into the table"
+        );
+        assert!(
+            matches!(
+                result,
+                Err(RunError::Integration(IntegrationError::Zeno { .. }))
+            ),
+            "{what}: {result:?}"
+        );
+    }
+    let _ = TableBall::new();
+}
+
+fn table_run<S: Stepper<table::table_ball::TableBall>>(
+    stepper: &mut S,
+    step: f64,
+) -> (
+    Recording<table::table_ball::TableBall>,
+    Result<(), RunError<std::convert::Infallible>>,
+) {
+    let mut ball = table::table_ball::TableBall::new();
+    let mut x = ball.initial_state();
+    let settings = RunSettings::new(0.0, 3.0, step, 0.01);
+    let mut recording = Recording::new();
+    let result = run(&mut ball, stepper, &mut x, &settings, &mut recording).map(|_| ());
+    (recording, result)
+}

@@ -97,13 +97,55 @@ fn bounce_times_and_apex_heights_match_the_analytic_ones() {
     }
 }
 
+/// A coarse `time_tolerance` locates each bounce to that width (the
+/// state moved to the far end of the bracket, inside the floor by up to
+/// the speed times the width) and goes on bouncing.
+#[test]
+fn a_coarse_time_tolerance_locates_bounces_to_its_width() {
+    use autosim::runtime::run::EventSettings;
+    for tolerance in [1e-3, 1e-5] {
+        let mut ball = BouncingBall::with_parameters(Parameters {
+            e: 0.8,
+            v_min: 0.01,
+            ..Parameters::default()
+        });
+        let mut x = ball.initial_state();
+        let events = EventSettings {
+            time_tolerance: tolerance,
+            ..EventSettings::default()
+        };
+        let settings = RunSettings::new(0.0, 3.7, 1e-3, 0.37).with_events(events);
+        let mut recording = Recording::new();
+        let mut dopri = DormandPrince::new(DopriSettings::new(1e-10, 1e-10)).unwrap();
+        run(&mut ball, &mut dopri, &mut x, &settings, &mut recording).unwrap();
+        let bounces: Vec<f64> = recording
+            .events()
+            .iter()
+            .filter(|e| e.name == "bounce")
+            .map(|e| e.t)
+            .collect();
+        assert!(bounces.len() >= 10, "{tolerance}: {bounces:?}");
+        for (k, t) in bounces.iter().take(10).enumerate() {
+            let exact = bounce_time(0.8, k as i32 + 1);
+            // Each bounce's bracket is at most the tolerance wide, and the
+            // instants after it inherit the earlier ones' offsets.
+            assert!(
+                (t - exact).abs() < 10.0 * tolerance,
+                "{tolerance}: bounce {k} at {t}, exact {exact}"
+            );
+        }
+    }
+}
+
 #[test]
 fn a_ball_without_a_minimum_rebound_speed_ends_with_the_zeno_error() {
     let mut dopri = DormandPrince::new(DopriSettings::new(1e-10, 1e-10)).unwrap();
     // e = 0.9 from 1 m: infinitely many bounces before t1 (1 + 2e/(1-e)).
     let limit = (2.0 * H0 / G).sqrt() * (1.0 + 2.0 * 0.9 / 0.1);
     match bounce(&mut dopri, 0.9, 0.0, 1e-3, 20.0) {
-        Err(RunError::Integration(IntegrationError::Zeno { t, name, events })) => {
+        Err(RunError::Integration(IntegrationError::Zeno {
+            t, name, events, ..
+        })) => {
             println!("Zeno at {t} s (limit {limit} s) after {events} events of `{name}`");
             assert_eq!(name, "bounce");
             assert!(t < limit && t > 7.0, "{t} against {limit}");

@@ -106,9 +106,10 @@ pub enum IntegrationError {
     /// events followed each other, each within
     /// [`EventSettings::zeno_interval`](crate::run::EventSettings::zeno_interval)
     /// of the one before, as a bouncing ball without a minimum rebound speed
-    /// does before it comes to rest. Fix the model (e.g. stop the bounces
-    /// below a minimum speed: a second event, or a condition in the action)
-    /// or, if the events are real, raise the limits.
+    /// does before it comes to rest; or (`unresolved`) a bounce became too
+    /// small to resolve in time before that. Fix the model (e.g. stop the
+    /// bounces below a minimum speed: a second event, or a condition in the
+    /// action) or, if the events are real and resolved, raise the limits.
     Zeno {
         /// Time of the last event.
         t: f64,
@@ -116,6 +117,10 @@ pub enum IntegrationError {
         name: &'static str,
         /// Events in the chain.
         events: u32,
+        /// The chain ended in a bounce too small to resolve (its return
+        /// within the rounding of the time, or its crossing in the
+        /// rounding of the indicator), not at the limit of its length.
+        unresolved: bool,
     },
     /// The run reached its step limit before the stop time.
     TooManySteps {
@@ -181,9 +186,20 @@ impl core::fmt::Display for IntegrationError {
                 f,
                 "cannot interpolate at t = {t}: outside the last step [{start}, {end}]"
             ),
-            IntegrationError::Zeno { t, name, events } => write!(
+            IntegrationError::Zeno {
+                t,
+                name,
+                events,
+                unresolved: true,
+            } => write!(
                 f,
-                "events chatter at t = {t}: {events} events each within the Zeno interval of the one before, the last one {name}; stop the chattering in the model (e.g. a minimum rebound speed) or raise EventSettings::zeno_events"
+                "events chatter at t = {t}: after {events} close events the next {name} is too small to resolve (its return within the rounding of the time or of the indicator); stop the chattering in the model (e.g. a minimum rebound speed)"
+            ),
+            IntegrationError::Zeno {
+                t, name, events, ..
+            } => write!(
+                f,
+                "events chatter at t = {t}: {events} events each within the Zeno interval of the one before, the last one {name}; stop the chattering in the model (e.g. a minimum rebound speed) or raise the limit (`zeno_events`)"
             ),
             IntegrationError::TooManySteps { t, steps } => write!(
                 f,

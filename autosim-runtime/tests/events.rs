@@ -305,7 +305,9 @@ fn zeno_chattering_ends_with_a_typed_error_naming_the_event() {
         let mut ball = Ball::new(0.9, 0.0);
         let (result, recording) = record(&mut ball, stepper.as_mut(), &settings);
         match result {
-            Err(RunError::Integration(IntegrationError::Zeno { t, name, events })) => {
+            Err(RunError::Integration(IntegrationError::Zeno {
+                t, name, events, ..
+            })) => {
                 println!(
                     "{}: Zeno at t = {t} after {events} close events ({name})",
                     stepper.name()

@@ -63,6 +63,8 @@ def test_bounce_times_and_apex_heights_match_the_analytic_ones(ball: autosim.Mod
     np.testing.assert_allclose(bounces.x_after[:, 1], -e * bounces.x_before[:, 1], rtol=1e-15)
     np.testing.assert_array_equal(bounces.x_after[:, 0], bounces.x_before[:, 0])
     assert sim.stopped_by is None and sim.t[-1] == 3.7
+    with pytest.raises(KeyError, match="did you mean 'bounce'"):
+        sim.events.only("bounse")
 
 
 @pytest.mark.parametrize("method", ["rk4", "abm4", "heun", "sdirk3"])

@@ -82,6 +82,10 @@ pub enum TrimError {
         iterations: usize,
         /// `(state, dx/dt)` of every steady state.
         residuals: Vec<(String, f64)>,
+        /// No step along Newton's direction lowered the residuals (a
+        /// local minimum of their size that is not a solution), before
+        /// `max_iterations`.
+        stalled: bool,
     },
     /// The Jacobian of the residuals by the unknowns is singular (or so
     /// nearly that its Newton step would go more than 1e8 times the
@@ -109,6 +113,16 @@ impl fmt::Display for TrimError {
             TrimError::NotConverged {
                 iterations,
                 residuals,
+                stalled: true,
+            } => write!(
+                f,
+                "trim stalled after {iterations} iterations (no step lowers the residuals: a local minimum of their size, not a solution; start elsewhere): {}",
+                list(residuals)
+            ),
+            TrimError::NotConverged {
+                iterations,
+                residuals,
+                ..
             } => write!(
                 f,
                 "trim did not converge in {iterations} iterations: {}",
@@ -273,6 +287,7 @@ pub fn trim<M: Linearize<Float = f64>>(
             return Err(TrimError::NotConverged {
                 iterations: iteration + 1,
                 residuals: named::<M>(&lay, &r),
+                stalled: true,
             });
         }
     }
@@ -286,6 +301,7 @@ pub fn trim<M: Linearize<Float = f64>>(
     Err(TrimError::NotConverged {
         iterations: spec.max_iterations,
         residuals: named::<M>(&lay, &r),
+        stalled: false,
     })
 }
 

@@ -338,6 +338,9 @@ impl<M: Model> Events<M> {
                         bracket = self.dip(model, stepper, k, bracket, t_end, x_end)?;
                     }
                     let t = self.locate(model, stepper, k, bracket, t_end, x_end)?;
+                    if back {
+                        self.check_return(model, stepper, (k, t), sign(g_j[k]), (t_end, x_end))?;
+                    }
                     if first.as_ref().is_none_or(|c| t < c.t) {
                         first = Some(Crossing { index: k, t });
                     }
@@ -382,7 +385,7 @@ impl<M: Model> Events<M> {
     ) -> Result<Bracket<M::Float>, IntegrationError> {
         let [(a, _), mut after] = bracket;
         let old_side = -sign(after.1);
-        let resolution = self.resolution(a);
+        let resolution = self.rounding(a);
         let half = M::Float::from_f64(0.5);
         let mut width = after.0 - a;
         while width > resolution {
@@ -397,18 +400,53 @@ impl<M: Model> Events<M> {
             }
             after = (t, g);
         }
-        Err(IntegrationError::Zeno {
-            t: a.to_f64(),
-            name: M::EVENT_INDICATORS[k].name,
-            events: self.chain.saturating_add(1),
-        })
+        Err(self.unresolved(a, k))
     }
 
-    /// How close to a crossing a located instant is, at `t` (the width
-    /// [`Events::locate`] closes a bracket to, after the last step).
-    fn resolution(&self, t: M::Float) -> M::Float {
-        let eps = M::Float::from_f64(4.0) * M::Float::EPSILON * (t.abs() + self.last_step.abs());
-        self.settings.time_tolerance.max(eps)
+    /// A bounce's return located at `t` for indicator `k` must head to
+    /// `new_side` there; heading back, the crossing is in the rounding of
+    /// the indicator (a bounce too small to resolve: its reset would send
+    /// the state the wrong way).
+    fn check_return<S: Stepper<M> + ?Sized>(
+        &mut self,
+        model: &mut M,
+        stepper: &S,
+        (k, t): (usize, M::Float),
+        new_side: i8,
+        (t_end, x_end): (M::Float, &M::State),
+    ) -> Result<(), IntegrationError> {
+        self.interpolate_or_end(stepper, t, t_end, x_end)?;
+        let point = self.point;
+        let mut rates = [M::Float::ZERO; MAX_EVENT_INDICATORS];
+        self.evaluations += 1;
+        indicator_rates(model, t, &point, &mut rates[..=k]).map_err(|error| {
+            IntegrationError::Model {
+                t: t.to_f64(),
+                error,
+            }
+        })?;
+        if sign(rates[k]) == new_side {
+            Ok(())
+        } else {
+            Err(self.unresolved(t, k))
+        }
+    }
+
+    /// The Zeno error of a bounce of indicator `k` at `t` too small to
+    /// resolve.
+    fn unresolved(&self, t: M::Float, k: usize) -> IntegrationError {
+        IntegrationError::Zeno {
+            t: t.to_f64(),
+            name: M::EVENT_INDICATORS[k].name,
+            events: self.chain.saturating_add(1),
+            unresolved: true,
+        }
+    }
+
+    /// The rounding of the time at `t`, after the last step: the width
+    /// [`Events::locate`] closes a bracket to by default.
+    fn rounding(&self, t: M::Float) -> M::Float {
+        M::Float::from_f64(4.0) * M::Float::EPSILON * (t.abs() + self.last_step.abs())
     }
 
     /// The state at `t` into `self.point`: `x_end` itself at the step's end.
@@ -578,8 +616,17 @@ impl<M: Model> Events<M> {
                 error,
             }
         })?;
-        let resolution = self.resolution(t) * M::Float::from_f64(RETURNING_MARGIN);
-        let reach = at_crossing.max(rates[k].abs() * resolution);
+        // A crossing located to a coarser time tolerance is not at zero:
+        // its value there does not count.
+        let rounding = self.rounding(t);
+        let located_to_rounding = self.settings.time_tolerance <= rounding;
+        let at_crossing = if located_to_rounding {
+            at_crossing
+        } else {
+            M::Float::ZERO
+        };
+        let reach =
+            at_crossing.max(rates[k].abs() * rounding * M::Float::from_f64(RETURNING_MARGIN));
         if returning(g, rates[k], old_side, reach) {
             self.signs[k] = old_side;
             self.returning |= 1 << k;
@@ -604,6 +651,7 @@ impl<M: Model> Events<M> {
                 t: t.to_f64(),
                 name: M::EVENT_INDICATORS[k].name,
                 events: self.chain,
+                unresolved: false,
             });
         }
         Ok(())

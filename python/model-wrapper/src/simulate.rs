@@ -198,7 +198,9 @@ pub fn simulate<M: Generated>(
 fn failure(e: RunError<Infallible>) -> Failure {
     let message = e.to_string();
     match e {
-        RunError::Integration(IntegrationError::Zeno { t, name, events }) => Failure::Zeno {
+        RunError::Integration(IntegrationError::Zeno {
+            t, name, events, ..
+        }) => Failure::Zeno {
             message,
             event: name,
             t,

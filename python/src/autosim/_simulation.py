@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ._values import as_vector
+from ._values import as_vector, unknown_name
 
 if TYPE_CHECKING:  # pragma: no cover
     from ._model import Inputs, Model
@@ -23,7 +23,8 @@ class EventLog:
     """The events of one run in the order they fired: ``t`` (k,), ``name``
     (k names), the state just before and just after each event's action
     (``x_before``, ``x_after``, (k, n_states)) and the discrete variables
-    (``d_before``, ``d_after``, (k, n_discrete))."""
+    (``d_before``, ``d_after``, (k, n_discrete)); ``declared``, the names of
+    the model's events (fired or not)."""
 
     t: np.ndarray
     name: tuple[str, ...]
@@ -31,12 +32,16 @@ class EventLog:
     x_after: np.ndarray
     d_before: np.ndarray
     d_after: np.ndarray
+    declared: tuple[str, ...] = ()
 
     def __len__(self) -> int:
         return len(self.name)
 
     def only(self, name: str) -> EventLog:
-        """The events named ``name`` (in the order they fired)."""
+        """The events named ``name`` (in the order they fired; none if it
+        did not fire). ``KeyError`` if the model has no event of that name."""
+        if self.declared and name not in self.declared:
+            raise unknown_name("event", name, self.declared)
         keep = np.array([n == name for n in self.name], dtype=bool).reshape(-1)
         return EventLog(
             self.t[keep],
@@ -45,6 +50,7 @@ class EventLog:
             self.x_after[keep],
             self.d_before[keep],
             self.d_after[keep],
+            self.declared,
         )
 
 
@@ -215,4 +221,7 @@ def simulate(
 
 def _event_log(log: Mapping[str, Any], model: Model) -> EventLog:
     names = tuple(model.events[k].name for k in log["index"])
-    return EventLog(log["t"], names, log["x_before"], log["x_after"], log["d_before"], log["d_after"])
+    declared = tuple(e.name for e in model.events)
+    return EventLog(
+        log["t"], names, log["x_before"], log["x_after"], log["d_before"], log["d_after"], declared
+    )

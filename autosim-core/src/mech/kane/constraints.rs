@@ -346,7 +346,8 @@ impl System {
             };
             // A named dependent is taken whatever its coefficient: zero at
             // the nominal state, nothing could be solved for it there.
-            if forced_pick.is_some() && !(v[i][j].abs() > 1e-10 * scale) {
+            let weak = v[i][j].is_nan() || v[i][j].abs() <= 1e-10 * scale;
+            if forced_pick.is_some() && weak {
                 let others = (0..cols).any(|c| !col_done[c] && v[i][c].abs() > 1e-10 * scale);
                 let e = if others {
                     named_dependent_at_zero()

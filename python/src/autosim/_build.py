@@ -251,9 +251,12 @@ def _build_crate(
         shutil.copyfile(lock_template, folder / "Cargo.lock")
     target = root / "target"
     if not quiet:
+        first = not (target / "release").exists()
+        note = (
+            "; the first model of a cache also compiles PyO3 and nalgebra (under a minute)" if first else ""
+        )
         print(
-            f"autosim: building the native module of {data['name']} ({path}); "
-            "the first model of a cache also compiles PyO3 and nalgebra (under a minute)",
+            f"autosim: building the native module of {data['name']} ({path}){note}",
             file=sys.stderr,
             flush=True,
         )

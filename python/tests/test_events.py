@@ -65,6 +65,10 @@ def test_bounce_times_and_apex_heights_match_the_analytic_ones(ball: autosim.Mod
     assert sim.stopped_by is None and sim.t[-1] == 3.7
     with pytest.raises(KeyError, match="did you mean 'bounce'"):
         sim.events.only("bounse")
+    with pytest.raises(ValueError, match="zeno_events must be at least 1, not 0"):
+        ball.simulate(1.0, zeno_events=0)
+    with pytest.raises(ValueError, match="event_samples must be in 0..=1000, not -1"):
+        ball.simulate(1.0, event_samples=-1)
 
 
 @pytest.mark.parametrize("method", ["rk4", "abm4", "heun", "sdirk3"])

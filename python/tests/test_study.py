@@ -185,6 +185,8 @@ def test_mistakes_are_value_errors_naming_the_thing(load_model: Load) -> None:
         model.study(autosim.Cases(), keep, t_end=1.0, method="sdirk3")
     with pytest.raises(ValueError, match="not all in the table"):
         model.study(autosim.Cases().grid("m", [1.0, 2.0]), keep, t_end=1.0).run((1, 3))
+    with pytest.raises(ValueError, match="threads must be None"):
+        model.study(autosim.Cases().grid("m", [1.0]), keep, t_end=1.0).run(threads=0)
 
 
 def test_shards_on_disk_resume_and_read_back(study: autosim.Study, tmp_path: Path) -> None:

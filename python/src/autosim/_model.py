@@ -461,8 +461,10 @@ class Model:
         for name, value in (("event_tolerance", event_tolerance), ("zeno_interval", zeno_interval)):
             if not (value >= 0 and np.isfinite(value)):
                 raise ValueError(f"{name} must be finite and not negative, not {value}")
-        if not 0 <= event_samples <= 1000 or zeno_events < 1:
-            raise ValueError("event_samples must be in 0..=1000 and zeno_events at least 1")
+        if not 0 <= event_samples <= 1000:
+            raise ValueError(f"event_samples must be in 0..=1000, not {event_samples}")
+        if zeno_events < 1:
+            raise ValueError(f"zeno_events must be at least 1, not {zeno_events}")
         events = (float(event_tolerance), int(event_samples), int(zeno_events), float(zeno_interval))
         return simulate(
             self, t_end, x0, t0, method, rtol, atol, h, t_eval, inputs, max_steps, discrete0, events

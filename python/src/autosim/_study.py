@@ -381,6 +381,8 @@ class Study:
         )
 
     def _spec(self, threads: int | None, progress: bool) -> dict[str, Any]:
+        if threads is not None and not (isinstance(threads, int) and threads >= 1):
+            raise ValueError(f"threads must be None (every core) or at least 1, not {threads!r}")
         interval = self.t_end - self.t0 if self.output_interval is None else self.output_interval
         return {
             "factors": list(self.cases.factors),

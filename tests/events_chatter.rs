@@ -11,6 +11,7 @@
 use autosim::runtime::integrate::{DopriSettings, DormandPrince, Rk4};
 use autosim::runtime::io::Recording;
 use autosim::runtime::{IntegrationError, Model, RunError, RunSettings, Stepper, run};
+use std::convert::Infallible;
 
 autosim::model! {
     /// A cart on a spring that pulls it towards `x_rest`, beyond a stop at
@@ -50,35 +51,41 @@ fn impact_times(p: &Parameters, count: usize) -> (Vec<f64>, f64) {
     (times, limit)
 }
 
-/// Runs the cart to `stop` with `stepper`: the impacts recorded, or the
-/// error that ended the run.
-fn press<S: Stepper<PressedCart>>(
+/// Runs `model` from its initial state to `stop` with `stepper` at
+/// `step`: the recording, and the error that ended the run if one did.
+fn run_recorded<M: Model<Float = f64>, S: Stepper<M>>(
+    mut model: M,
     stepper: &mut S,
     step: f64,
     stop: f64,
-) -> (
-    Recording<PressedCart>,
-    Result<(), RunError<std::convert::Infallible>>,
-) {
-    let mut cart = PressedCart::new();
-    let mut x = cart.initial_state();
+) -> (Recording<M>, Result<(), RunError<Infallible>>) {
+    let mut x = model.initial_state();
     let settings = RunSettings::new(0.0, stop, step, 0.01);
     let mut recording = Recording::new();
-    let result = run(&mut cart, stepper, &mut x, &settings, &mut recording).map(|_| ());
+    let result = run(&mut model, stepper, &mut x, &settings, &mut recording).map(|_| ());
     (recording, result)
+}
+
+/// The recorded events' instants and their largest difference from the
+/// first of them `expected`.
+fn instants<M: Model>(recording: &Recording<M>, expected: &[f64]) -> (Vec<f64>, f64) {
+    let instants: Vec<f64> = recording.events().iter().map(|e| e.t).collect();
+    let worst = expected
+        .iter()
+        .zip(&instants)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    (instants, worst)
 }
 
 fn check<S: Stepper<PressedCart>>(what: &str, stepper: &mut S, step: f64, within: f64) {
     let p = Parameters::default();
     let (expected, limit) = impact_times(&p, 12);
-    let (recording, result) = press(stepper, step, 3.0);
-    let impacts: Vec<f64> = recording.events().iter().map(|e| e.t).collect();
-    let worst = expected
-        .iter()
-        .zip(&impacts)
-        .map(|(a, b)| (a - b).abs())
-        .fold(0.0, f64::max);
-    let past_stop = recording.columns()[0]
+    let (recording, result) = run_recorded(PressedCart::new(), stepper, step, 3.0);
+    let (impacts, worst) = instants(&recording, &expected);
+    let past_stop = recording
+        .column("x")
+        .unwrap()
         .values
         .iter()
         .fold(f64::NEG_INFINITY, |m, &x| m.max(x - p.x_stop));
@@ -168,21 +175,21 @@ fn table_impacts(count: usize) -> Vec<f64> {
 fn a_ball_on_a_moving_table_ends_in_zeno_never_below_it() {
     use table::table_ball::TableBall;
     let expected = table_impacts(8);
-    for (what, result) in [
-        ("Dormand-Prince 1e-12", {
-            let mut dopri = DormandPrince::new(DopriSettings::new(1e-12, 1e-12)).unwrap();
-            table_run(&mut dopri, 1e-3)
-        }),
-        ("RK4 h = 1 ms", table_run(&mut Rk4::new(), 1e-3)),
+    let mut dopri = DormandPrince::new(DopriSettings::new(1e-12, 1e-12)).unwrap();
+    for (what, (recording, result)) in [
+        (
+            "Dormand-Prince 1e-12",
+            run_recorded(TableBall::new(), &mut dopri, 1e-3, 3.0),
+        ),
+        (
+            "RK4 h = 1 ms",
+            run_recorded(TableBall::new(), &mut Rk4::new(), 1e-3, 3.0),
+        ),
     ] {
-        let (recording, result) = result;
-        let impacts: Vec<f64> = recording.events().iter().map(|e| e.t).collect();
-        let worst = expected
-            .iter()
-            .zip(&impacts)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
-        let lowest = recording.columns()[2]
+        let (impacts, worst) = instants(&recording, &expected);
+        let lowest = recording
+            .column("gap")
+            .unwrap()
             .values
             .iter()
             .fold(f64::INFINITY, |m, &x| m.min(x));
@@ -203,20 +210,4 @@ fn a_ball_on_a_moving_table_ends_in_zeno_never_below_it() {
             "{what}: {result:?}"
         );
     }
-    let _ = TableBall::new();
-}
-
-fn table_run<S: Stepper<table::table_ball::TableBall>>(
-    stepper: &mut S,
-    step: f64,
-) -> (
-    Recording<table::table_ball::TableBall>,
-    Result<(), RunError<std::convert::Infallible>>,
-) {
-    let mut ball = table::table_ball::TableBall::new();
-    let mut x = ball.initial_state();
-    let settings = RunSettings::new(0.0, 3.0, step, 0.01);
-    let mut recording = Recording::new();
-    let result = run(&mut ball, stepper, &mut x, &settings, &mut recording).map(|_| ());
-    (recording, result)
 }

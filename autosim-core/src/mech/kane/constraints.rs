@@ -224,6 +224,7 @@ impl System {
             .collect();
         let excluded: Vec<usize> = prescribed.iter().map(|p| p.speed).collect();
         let item = |i: usize| ItemRef::Constraint(eqs.positions[i]);
+        self.check_named_rows(&g, nominal, &forced, &excluded, item)?;
         // Assembly moves the dependent coordinates: choose them among the
         // coordinates without a declared `initial:` where that closes the
         // constraints, so a declared value stays as written.
@@ -344,18 +345,6 @@ impl System {
                 let e = self.why_no_pivot(m, nominal, excluded, i);
                 return Err(LocatedError::new(item(i), e));
             };
-            // A named dependent is taken whatever its coefficient: zero at
-            // the nominal state, nothing could be solved for it there.
-            let weak = v[i][j].is_nan() || v[i][j].abs() <= 1e-10 * scale;
-            if forced_pick.is_some() && weak {
-                let others = (0..cols).any(|c| !col_done[c] && v[i][c].abs() > 1e-10 * scale);
-                let e = if others {
-                    named_dependent_at_zero()
-                } else {
-                    self.why_no_pivot(m, nominal, excluded, i)
-                };
-                return Err(LocatedError::new(item(i), e));
-            }
             row_done[i] = true;
             col_done[j] = true;
             order.push((i, j));
@@ -370,6 +359,43 @@ impl System {
             }
         }
         Ok(order)
+    }
+
+    /// A row of `g` whose dependent is named (`forced`) is taken without
+    /// pivoting: one that is zero at the nominal state (every coordinate
+    /// but the `excluded`) is singular there whatever the dependent, as
+    /// pivoting would have found. (A named dependent whose own coefficient
+    /// alone is zero there is left to assembly, which starts from guesses.)
+    fn check_named_rows(
+        &self,
+        g: &[Vec<ExprId>],
+        nominal: &Bindings,
+        forced: &[Option<usize>],
+        excluded: &[usize],
+        item: impl Fn(usize) -> ItemRef,
+    ) -> Result<(), LocatedError> {
+        let values: Vec<Vec<f64>> = g
+            .iter()
+            .map(|r| {
+                r.iter()
+                    .map(|e| self.arena.eval(*e, nominal, &mut NoUserFunctions))
+                    .collect()
+            })
+            .collect();
+        let scale = values.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
+        for (i, row) in values.iter().enumerate() {
+            // NaN (user code the compiler cannot evaluate) is not zero.
+            let mut live = row
+                .iter()
+                .enumerate()
+                .filter(|(j, _)| !excluded.contains(j));
+            let zero = live.all(|(_, x)| x.abs() <= 1e-10 * scale);
+            if forced[i].is_some() && zero {
+                let e = self.why_no_pivot(g, nominal, excluded, i);
+                return Err(LocatedError::new(item(i), e));
+            }
+        }
+        Ok(())
     }
 
     /// Why row `i` of `m` found no pivot at the nominal state: the row is
@@ -421,18 +447,6 @@ impl System {
                 "remove it: it repeats the others (a position constraint's time derivative is already a speed constraint: do not declare that again)",
             )
         }
-    }
-}
-
-/// The error of a dependent named with `dependent:` that this constraint
-/// does not determine at the initial configuration (its coefficient is
-/// zero there, after the constraints before it).
-fn named_dependent_at_zero() -> ModelError {
-    ModelError::Option {
-        item: String::new(),
-        key: "dependent",
-        message: "the dependent named with `dependent:` cannot be solved from this constraint at the initial configuration: its coefficient is zero there".to_string(),
-        help: "name another dependent (or none: the compiler chooses), or start from another configuration (the coordinates' `initial:`)".to_string(),
     }
 }
 

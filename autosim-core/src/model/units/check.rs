@@ -203,7 +203,7 @@ impl<'r, 'a> Checker<'r, 'a> {
             value = match op {
                 BinOp::Add | BinOp::Sub => {
                     let b = self.expr(rhs);
-                    self.sum(op, value, b, whole, span)
+                    self.sum(op, (value, b), (whole, rhs), span)
                 }
                 BinOp::Mul => {
                     let b = self.expr(rhs);
@@ -219,15 +219,31 @@ impl<'r, 'a> Checker<'r, 'a> {
         value
     }
 
-    /// `a + b` or `a - b`: both sides the same dimension.
-    fn sum(&mut self, op: BinOp, a: Measure, b: Measure, whole: &Expr, span: Span) -> Measure {
+    /// `a + b` or `a - b` (`whole`, its last term `term`): both sides the
+    /// same dimension.
+    fn sum(
+        &mut self,
+        op: BinOp,
+        (a, b): (Measure, Measure),
+        (whole, term): (&Expr, &Expr),
+        span: Span,
+    ) -> Measure {
         self.one_unit(a, b, |l, r| {
             let verb = match op {
                 BinOp::Add => format!("adds {l} to {r}"),
                 _ => format!("subtracts {r} from {l}"),
             };
-            Diagnostic::error(span, format!("`{}` {verb}", short(whole)))
-                .help("the terms of a sum must have one unit: check the formula, and the units declared for the names it uses")
+            let mut d = Diagnostic::error(span, format!("`{}` {verb}", short(whole)))
+                .help("the terms of a sum must have one unit: check the formula, and the units declared for the names it uses");
+            if let Expr::Binary { lhs, .. } = whole
+                && matches!(lhs.as_ref(), Expr::Binary { op: BinOp::Add | BinOp::Sub, .. })
+            {
+                d = d.help(format!(
+                    "the term `{}` is in {r}, the terms before it in {l}",
+                    short(term)
+                ));
+            }
+            d
         })
     }
 

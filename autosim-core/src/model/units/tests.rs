@@ -298,6 +298,27 @@ fn models_are_checked() {
     assert!(wrong.is_empty(), "{wrong}");
 }
 
+/// In a sum of more than two terms the message names the term whose unit
+/// differs from the terms before it.
+#[test]
+fn a_long_sum_names_its_odd_term() {
+    let got = resolved(&format!(
+        "{HEAD}force f {{ on: B, along: n1, magnitude: -k*x - c*v + m }}"
+    ));
+    assert!(
+        got.contains("error: `-k*x - c*v + m` adds N to kg"),
+        "{got}"
+    );
+    assert!(
+        got.contains("help: the term `m` is in kg, the terms before it in N"),
+        "{got}"
+    );
+    let two = resolved(&format!(
+        "{HEAD}force f {{ on: B, along: n1, magnitude: m + x }}"
+    ));
+    assert!(!two.contains("the terms before it"), "{two}");
+}
+
 #[test]
 fn a_parameter_in_a_unit_with_a_factor_is_converted() {
     let file = SourceFile::new(

@@ -417,19 +417,31 @@ impl<M: Model> Events<M> {
     ) -> Result<(), IntegrationError> {
         self.interpolate_or_end(stepper, t, t_end, x_end)?;
         let point = self.point;
+        if sign(self.rate(model, t, &point, k)?) == new_side {
+            Ok(())
+        } else {
+            Err(self.unresolved(t, k))
+        }
+    }
+
+    /// The rate of indicator `k` at `(t, x)` ([`indicator_rates`]: one
+    /// derivative evaluation, counted).
+    fn rate(
+        &mut self,
+        model: &mut M,
+        t: M::Float,
+        x: &M::State,
+        k: usize,
+    ) -> Result<M::Float, IntegrationError> {
         let mut rates = [M::Float::ZERO; MAX_EVENT_INDICATORS];
         self.evaluations += 1;
-        indicator_rates(model, t, &point, &mut rates[..=k]).map_err(|error| {
+        indicator_rates(model, t, x, &mut rates[..=k]).map_err(|error| {
             IntegrationError::Model {
                 t: t.to_f64(),
                 error,
             }
         })?;
-        if sign(rates[k]) == new_side {
-            Ok(())
-        } else {
-            Err(self.unresolved(t, k))
-        }
+        Ok(rates[k])
     }
 
     /// The Zeno error of a bounce of indicator `k` at `t` too small to
@@ -608,14 +620,7 @@ impl<M: Model> Events<M> {
         if old_side == 0 {
             return Ok(());
         }
-        let mut rates = [M::Float::ZERO; MAX_EVENT_INDICATORS];
-        self.evaluations += 1;
-        indicator_rates(model, t, x, &mut rates[..=k]).map_err(|error| {
-            IntegrationError::Model {
-                t: t.to_f64(),
-                error,
-            }
-        })?;
+        let rate = self.rate(model, t, x, k)?;
         // A crossing located to a coarser time tolerance is not at zero:
         // its value there does not count.
         let rounding = self.rounding(t);
@@ -625,9 +630,8 @@ impl<M: Model> Events<M> {
         } else {
             M::Float::ZERO
         };
-        let reach =
-            at_crossing.max(rates[k].abs() * rounding * M::Float::from_f64(RETURNING_MARGIN));
-        if returning(g, rates[k], old_side, reach) {
+        let reach = at_crossing.max(rate.abs() * rounding * M::Float::from_f64(RETURNING_MARGIN));
+        if returning(g, rate, old_side, reach) {
             self.signs[k] = old_side;
             self.returning |= 1 << k;
         }

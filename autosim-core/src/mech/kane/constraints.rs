@@ -296,14 +296,7 @@ impl System {
     ) -> Result<Vec<(usize, usize)>, LocatedError> {
         let rows = m.len();
         let cols = m.first().map_or(0, Vec::len);
-        let mut v: Vec<Vec<f64>> = m
-            .iter()
-            .map(|r| {
-                r.iter()
-                    .map(|e| self.arena.eval(*e, nominal, &mut NoUserFunctions))
-                    .collect()
-            })
-            .collect();
+        let mut v = self.values_at(m, nominal);
         let mut weight = vec![vec![1.0; cols]; rows];
         for (i, r) in m.iter().enumerate() {
             for (j, e) in r.iter().enumerate() {
@@ -361,6 +354,18 @@ impl System {
         Ok(order)
     }
 
+    /// The numbers the entries of `m` take at `nominal` (NaN where they
+    /// call user code).
+    fn values_at(&self, m: &[Vec<ExprId>], nominal: &Bindings) -> Vec<Vec<f64>> {
+        m.iter()
+            .map(|r| {
+                r.iter()
+                    .map(|e| self.arena.eval(*e, nominal, &mut NoUserFunctions))
+                    .collect()
+            })
+            .collect()
+    }
+
     /// A row of `g` whose dependent is named (`forced`) is taken without
     /// pivoting: one that is zero at the nominal state (every coordinate
     /// but the `excluded`) is singular there whatever the dependent, as
@@ -374,14 +379,7 @@ impl System {
         excluded: &[usize],
         item: impl Fn(usize) -> ItemRef,
     ) -> Result<(), LocatedError> {
-        let values: Vec<Vec<f64>> = g
-            .iter()
-            .map(|r| {
-                r.iter()
-                    .map(|e| self.arena.eval(*e, nominal, &mut NoUserFunctions))
-                    .collect()
-            })
-            .collect();
+        let values = self.values_at(g, nominal);
         let scale = values.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
         for (i, row) in values.iter().enumerate() {
             // NaN (user code the compiler cannot evaluate) is not zero.

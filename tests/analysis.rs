@@ -312,3 +312,16 @@ fn runs_record_the_inputs() {
     );
     assert!(text.lines().nth(1).unwrap().contains(",0.02,"));
 }
+
+/// An undamped mode's damping ratio is zero, never `-0` (which prints as
+/// `-0.0` in a `Debug` listing of the modes).
+#[test]
+fn an_undamped_mode_has_a_damping_ratio_of_plain_zero() {
+    let a = nalgebra::DMatrix::from_row_slice(2, 2, &[0.0, 1.0, -4.0, 0.0]);
+    let modes = LinearSystem::from_matrices(a, &["x", "v"]).modes();
+    assert_eq!(modes.len(), 1);
+    assert_eq!(modes[0].eigenvalue.re, 0.0);
+    assert_eq!(modes[0].natural_frequency, 2.0);
+    let zeta = modes[0].damping_ratio;
+    assert!(zeta == 0.0 && zeta.is_sign_positive(), "{:?}", modes[0]);
+}

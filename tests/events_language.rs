@@ -168,3 +168,50 @@ fn the_resting_mode_ends_the_bounces() {
     assert_eq!(BouncingBall::DISCRETE_NAMES, ["resting"]);
     assert_eq!(BouncingBall::EVENT_INDICATORS.len(), 2);
 }
+
+/// A study's columns set the discrete variables' initial values (a mode
+/// to start in) and its `Keep` reads them at the output times, as the
+/// events leave them. Checked against free fall: from rest at `H0`,
+/// `h(t) = H0 - g t²/2` before the first bounce at `t1 = sqrt(2 H0/g)`;
+/// resting from the start, `h = H0` throughout; with `v_min` above the
+/// impact speed, the first bounce leaves the ball resting.
+#[test]
+fn a_study_sets_and_keeps_the_discrete_variables() {
+    use autosim::runtime::study::{Cases, Keep, Method, Simulate, Statistic, Study};
+    let cases = Cases::new()
+        .grid("resting", &[0.0, 1.0])
+        .unwrap()
+        .grid("v_min", &[0.01, 10.0])
+        .unwrap();
+    let keep = Keep::new()
+        .at(&[0.3], &["h"])
+        .statistic("resting", Statistic::Max)
+        .history(&["resting"]);
+    let settings = RunSettings::new(0.0, 0.6, 1e-3, 0.15);
+    let method = Method::DormandPrince {
+        rtol: 1e-12,
+        atol: 1e-12,
+    };
+    let task = Simulate::new(settings, method, keep).unwrap();
+    let results = Study::new(BouncingBall::new, cases, task)
+        .progress(false)
+        .run_cases(0..4)
+        .unwrap();
+    assert_eq!(results.failures(), 0);
+    let (h, most, history) = (
+        results.field("h@0.3").unwrap(),
+        results.field("max:resting").unwrap(),
+        results.field("history:resting").unwrap(),
+    );
+    let falling = H0 - G * 0.3 * 0.3 / 2.0;
+    let t1 = (2.0 * H0 / G).sqrt();
+    assert!((0.45..0.6).contains(&t1));
+    // Cases: (resting 0, v_min 0.01), (0, 10), (1, 0.01), (1, 10).
+    assert!((h[0] - falling).abs() < 1e-12 && (h[1] - falling).abs() < 1e-12);
+    assert_eq!((h[2], h[3]), (H0, H0));
+    // Outputs at 0, 0.15, 0.3, 0.45 (before t1) and 0.6 (after).
+    assert_eq!(&history[..5], &[0.0; 5], "bouncing on at 0.01 m/s");
+    assert_eq!(&history[5..10], &[0.0, 0.0, 0.0, 0.0, 1.0]);
+    assert_eq!(&history[10..], &[1.0; 10]);
+    assert_eq!(most, [0.0, 1.0, 1.0, 1.0]);
+}

@@ -262,7 +262,7 @@ fn bad_columns_and_quantities_are_named() {
     let e = keep(Keep::new().history(&["speed"])).unwrap_err();
     assert!(
         e.to_string()
-            .contains("`speed` is not a state or output of model Pendulum"),
+            .contains("`speed` is not a state, output or discrete variable of model Pendulum"),
         "{e}"
     );
     let e = keep(Keep::new().at(&[0.25], &["q"])).unwrap_err();

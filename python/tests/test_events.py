@@ -47,8 +47,9 @@ def test_the_model_lists_its_discrete_variables_and_events(ball: autosim.Model) 
         ("bounce", "falling", False, "m"),
         ("apex", "falling", False, "m/s"),
     ]
-    assert "Discrete variables:" in type(ball).__doc__
-    assert "bounce (falling)" in type(ball).__doc__
+    doc = type(ball).__doc__ or ""
+    assert "Discrete variables:" in doc
+    assert "bounce (falling)" in doc
 
 
 def test_bounce_times_and_apex_heights_match_the_analytic_ones(ball: autosim.Model) -> None:
@@ -92,7 +93,8 @@ def scipy_bounce_times(e: float, n: int) -> np.ndarray:
 
     floor.terminal = True  # type: ignore[attr-defined]
     floor.direction = -1  # type: ignore[attr-defined]
-    t, y, times = 0.0, np.array([H0, 0.0]), []
+    t, y = 0.0, np.array([H0, 0.0])
+    times: list[float] = []
     while len(times) < n:
         run = solve_ivp(
             lambda _t, s: [s[1], -G], (t, t + 10.0), y, method="DOP853", events=floor, rtol=1e-13, atol=1e-13
@@ -180,3 +182,50 @@ def test_chattering_raises_the_zeno_error_naming_the_event(ball: autosim.Model) 
     assert 7.0 < error.t < limit and error.events == 101
     with pytest.raises(ValueError, match="zeno_events"):
         ball.simulate(1.0, zeno_events=0)
+
+
+STOP = """
+/// A mass on a spring `k`; a second spring `k_stop` acts while `engaged`.
+model EndStop;
+parameters { m = 2 [kg], k = 50 [N/m], k_stop = 150 [N/m], c = 0 [N*s/m] }
+/// 1 while the mass presses the stop's spring, 0 otherwise.
+discrete engaged = 0;
+body Mass { translate: 1, q: [x], u: [v], mass: m, inertia: 0 }
+input push [N] = 0;
+force spring { on: Mass.cm, vector: -(k + engaged*k_stop)*x*n1 }
+force damper { on: Mass.cm, vector: -c*v*n1 }
+force pushed { on: Mass.cm, vector: push*n1 }
+/// The stop engages when the mass reaches it.
+event contact [m] { indicator: x, direction: rising, set: { engaged: 1 } }
+output spring_force [N] = (k + engaged*k_stop)*x;
+"""
+
+
+def test_evaluations_read_the_discrete_values_given_and_only_for_that_call() -> None:
+    stop = autosim.loads(STOP, quiet=True, linearize=True)
+    x = stop.state(x=0.1, v=0.0)
+    # Free: a = -k x / m; engaged: a = -(k + k_stop) x / m (Newton, by hand).
+    assert stop.derivatives(0.0, x)[1] == pytest.approx(-50.0 * 0.1 / 2.0, rel=1e-15)
+    engaged = stop.derivatives(0.0, x, discrete={"engaged": 1.0})
+    assert engaged[1] == pytest.approx(-200.0 * 0.1 / 2.0, rel=1e-15)
+    np.testing.assert_array_equal(stop.derivatives(0.0, x, discrete=[1.0]), engaged)
+    assert list(stop.initial_discrete()) == [0.0], "the model's own values are untouched"
+    rows = stop.derivatives(0.0, np.array([x, 2 * x]), discrete={"engaged": 1.0})
+    np.testing.assert_array_equal(rows[0], engaged)
+    assert stop.outputs(0.0, x, discrete=[1.0])[0] == pytest.approx(20.0, rel=1e-15)
+    assert stop.forcing(0.0, x, discrete=[1.0])[0] == pytest.approx(-20.0, rel=1e-15)
+    assert stop.mass_matrix(0.0, x, discrete=[1.0])[0, 0] == 2.0
+    # The natural frequency of each mode: sqrt(k/m), then sqrt((k + k_stop)/m).
+    for value, k in ((0.0, 50.0), (1.0, 200.0)):
+        eigenvalues, _ = stop.modes(discrete={"engaged": value})
+        np.testing.assert_allclose(np.abs(eigenvalues.imag), np.sqrt(k / 2.0), rtol=1e-12)
+        assert stop.linearize(discrete=[value]).C[0, 0] == pytest.approx(k, rel=1e-15)
+    # Trim: the push that holds the engaged mass at x = 0.1 is (k + k_stop) x.
+    held = stop.copy()
+    trimmed = held.trim(x, free_states=[], free_inputs=["push"], steady=["v"], discrete={"engaged": 1.0})
+    assert trimmed.inputs["push"] == pytest.approx(20.0, rel=1e-12)
+    with pytest.raises(KeyError, match="did you mean 'engaged'"):
+        stop.derivatives(0.0, x, discrete={"engage": 1.0})
+    with pytest.raises(ValueError, match="discrete"):
+        stop.linearize(discrete=[1.0, 0.0])
+    assert list(stop.initial_discrete()) == [0.0], "a failed call restores nothing it did not change"

@@ -7,7 +7,7 @@ from __future__ import annotations
 import json
 import pydoc
 from pathlib import Path
-from typing import Callable
+from typing import Any, Callable
 
 import numpy as np
 import pytest
@@ -31,7 +31,7 @@ def test_names_units_and_help(load_model: Load) -> None:
     assert model.input_names == ("torque",)
     assert model.output_names == ("height",)
     assert model.output_units == ("m",)
-    text = pydoc.render_doc(model, renderer=pydoc.plaintext)
+    text = pydoc.render_doc(model, renderer=pydoc.plaintext)  # type: ignore[attr-defined]
     for line in ("q [rad]", "m = 1.3 [kg]  Bob mass.", "torque = 0 [N m]", "height [m]"):
         assert line in text, line
 
@@ -124,7 +124,8 @@ def test_rows_at_their_own_times_and_inputs_through_lanes_equal_single_calls() -
     xs = rng.uniform(-1, 1, (23, lanes.n_states))
     ts = rng.uniform(0.0, 5.0, 23)
     us = rng.uniform(-1, 1, (23, 1))
-    for t, u in [(ts, None), (0.3, us), (ts, us)]:
+    cases: list[tuple[Any, Any]] = [(ts, None), (0.3, us), (ts, us)]
+    for t, u in cases:
         many = lanes.derivatives(t, xs, u=u)
         assert np.array_equal(many, plain.derivatives(t, xs, u=u))
         for k in range(23):
@@ -188,7 +189,7 @@ def test_inputs_constant_table_and_callable(load_model: Load) -> None:
     model = load_model(PENDULUM)
     times = np.linspace(0.0, 2.0, 21)
     constant = model.simulate(2.0, t_eval=times, inputs=0.5)
-    table = model.simulate(2.0, t_eval=times, inputs=([0.0, 2.0], [[0.5], [0.5]]))
+    table = model.simulate(2.0, t_eval=times, inputs=(np.array([0.0, 2.0]), np.array([[0.5], [0.5]])))
     function = model.simulate(2.0, t_eval=times, inputs=lambda t: [0.5])
     assert np.max(np.abs(table.x - constant.x)) < 1e-12
     assert np.max(np.abs(function.x - constant.x)) < 1e-12

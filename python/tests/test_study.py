@@ -175,7 +175,7 @@ def test_mistakes_are_value_errors_naming_the_thing(load_model: Load) -> None:
     keep = autosim.Keep().final_state()
     with pytest.raises(ValueError, match="column `mass`"):
         model.study(autosim.Cases().grid("mass", [1.0]), keep, t_end=1.0)
-    with pytest.raises(ValueError, match="`speed` is not a state or output"):
+    with pytest.raises(ValueError, match="`speed` is not a state, output or discrete variable"):
         model.study(autosim.Cases(), autosim.Keep().history(["speed"]), t_end=1.0)
     with pytest.raises(ValueError, match="not an output time"):
         model.study(autosim.Cases(), autosim.Keep().at([0.3], ["q"]), t_end=1.0, output_interval=0.25)
@@ -308,3 +308,47 @@ def test_loopback_scheduler_and_workers_without_a_compiler_get_the_model_from_it
                 p.wait(timeout=20)
             except subprocess.TimeoutExpired:
                 p.kill()
+
+
+def test_a_study_of_a_model_with_events_sets_and_keeps_its_discrete_variables(load_model: Load) -> None:
+    """The bouncing ball from 1 m: in free fall ``h(t) = 1 - g t²/2`` until
+    the first bounce at ``t1 = sqrt(2/g) = 0.4515 s``; resting from the
+    start it stays at 1 m; with ``v_min`` above the impact speed the first
+    bounce leaves it resting (the same cases as the Rust test
+    ``a_study_sets_and_keeps_the_discrete_variables``)."""
+    ball = load_model("examples/models/bouncing_ball.sim")
+    cases = autosim.Cases().grid("resting", [0.0, 1.0]).grid("v_min", [0.01, 10.0])
+    keep = autosim.Keep().at([0.3], ["h"]).statistic("resting", "max").history(["resting"])
+    results = ball.study(cases, keep, t_end=0.6, output_interval=0.15, rtol=1e-12, atol=1e-12).run()
+    assert results.failures == 0
+    np.testing.assert_allclose(results["h@0.3"], [1 - 9.81 * 0.09 / 2] * 2 + [1.0] * 2, rtol=0, atol=1e-12)
+    assert results["history:resting"].tolist() == [[0.0] * 5, [0.0] * 4 + [1.0], [1.0] * 5, [1.0] * 5]
+    assert results["max:resting"].tolist() == [0.0, 1.0, 1.0, 1.0]
+    # The event options are the study's: the bounces of e = 0.5 come to
+    # rest after about nine, their flights (0.9 s · 0.5^k) closer than
+    # 0.1 s from the fourth on: a chain longer than `zeno_events` = 2
+    # within `zeno_interval` = 0.1 s fails the case, the defaults do not.
+    ball.parameters["e"] = 0.5
+    bounces = autosim.Cases().grid("v_min", [0.01])
+    rest = autosim.Keep().at([3.0], ["resting"])
+    assert ball.study(bounces, rest, t_end=3.0).run()["resting@3"].tolist() == [1.0]
+    chatter = ball.study(bounces, rest, t_end=3.0, zeno_events=2, zeno_interval=0.1).run()
+    assert chatter.failures == 1 and "Zeno" in str(chatter.errors[0]), chatter.errors
+    # A coarse `event_tolerance` places the bounce within its width:
+    # elastic, the ball rises at g t1 after t1, slowing by g.
+    t1 = np.sqrt(2 / 9.81)
+    exact = 9.81 * t1 - 9.81 * (0.5 - t1)
+    errors = []
+    for tolerance in (0.0, 1e-3):
+        elastic = ball.study(
+            autosim.Cases().grid("e", [1.0]),
+            autosim.Keep().at([0.5], ["v"]),
+            t_end=0.5,
+            event_tolerance=tolerance,
+            rtol=1e-12,
+            atol=1e-12,
+        ).run()
+        errors.append(abs(elastic["v@0.5"][0] - exact))
+    assert errors[0] < 1e-9 and 1e-9 < errors[1] < 2 * 9.81 * 1e-3, errors
+    with pytest.raises(ValueError, match="zeno_events"):
+        ball.study(cases, keep, t_end=0.6, zeno_events=0)

@@ -101,7 +101,8 @@ impl LinearSystem {
             }
             let l = if real { Complex::new(l.re, 0.0) } else { l };
             let wn = l.norm();
-            let zeta = if wn > 0.0 { -l.re / wn } else { 0.0 };
+            // An undamped mode's ratio is 0, not the -0 of `-0.0 / wn`.
+            let zeta = if l.re == 0.0 { 0.0 } else { -l.re / wn };
             let tau = (real && l.re != 0.0).then(|| -1.0 / l.re);
             let shape = self
                 .eigenvector(l)

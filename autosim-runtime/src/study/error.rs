@@ -32,8 +32,9 @@ pub enum StudyError {
         /// What it names (`parameter`, `input`, `state`, `setup`).
         kinds: Vec<&'static str>,
     },
-    /// A quantity to keep is not a state or output of the model.
-    #[error("`{name}` is not a state or output of model {model}; it has: {}", known.join(", "))]
+    /// A quantity to keep is not a state, output or discrete variable of
+    /// the model.
+    #[error("`{name}` is not a state, output or discrete variable of model {model}; it has: {}", known.join(", "))]
     UnknownQuantity {
         /// The name given.
         name: String,

@@ -124,10 +124,11 @@ pub enum Parallelism {
 
 /// A study: a model, a table of cases, and a task run for each case.
 ///
-/// The columns of the table set the model's parameters, inputs and
-/// initial states by name (`parameter:NAME`, `input:NAME`, `state:NAME`
-/// when a name is ambiguous); columns read by a [`setup`](Study::setup)
-/// function can set anything else.
+/// The columns of the table set the model's parameters, inputs, initial
+/// states and discrete variables' initial values by name
+/// (`parameter:NAME`, `input:NAME`, `state:NAME`, `discrete:NAME` when a
+/// name is ambiguous); columns read by a [`setup`](Study::setup) function
+/// can set anything else.
 pub struct Study<M: Model, F, T> {
     make_model: F,
     cases: Cases,

@@ -11,6 +11,7 @@ use super::lockstep::{self, adams_step, runge_kutta_step};
 use super::method::Method;
 use super::task::{CaseError, Field, Task};
 use crate::batch::LANES;
+use crate::event::MAX_DISCRETE;
 use crate::integrate::{AbmHistory, DopriSettings, EULER, HEUN, RK4};
 use crate::run::Observer;
 use crate::{Float, IntegrationError, Lanes, Model, RunSettings, run};
@@ -44,7 +45,8 @@ impl Statistic {
     }
 }
 
-/// What a simulation study keeps of each run, by state or output name.
+/// What a simulation study keeps of each run, by the name of a state, an
+/// output or a discrete variable (its value at each output time).
 /// Each item is one [`Field`] of the results, named as shown.
 ///
 /// ```
@@ -75,7 +77,8 @@ impl Keep {
         self
     }
 
-    /// Keep `quantities` (states or outputs) at each of `times`, which must
+    /// Keep `quantities` (states, outputs or discrete variables) at each
+    /// of `times`, which must
     /// be output times of the run (the start, the stop, or
     /// `start + k·output_interval`): a field `<quantity>@<time>` each.
     pub fn at(mut self, times: &[f64], quantities: &[&str]) -> Keep {
@@ -87,7 +90,8 @@ impl Keep {
         self
     }
 
-    /// Keep a statistic of a state or output over the output times: a field
+    /// Keep a statistic of a state, output or discrete variable over the
+    /// output times: a field
     /// `<statistic>:<quantity>` (`min`, `max`, `mean`, `rms`, `maxabs`).
     pub fn statistic(mut self, quantity: &str, statistic: Statistic) -> Keep {
         self.statistics.push((quantity.to_string(), statistic));
@@ -104,19 +108,24 @@ impl Keep {
     }
 }
 
-/// A state or an output, by index.
+/// A state, an output or a discrete variable, by index.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Quantity {
     State(usize),
     Output(usize),
+    Discrete(usize),
 }
 
 impl Quantity {
     fn of<M: Model>(name: &str) -> Result<Quantity, StudyError> {
+        // The run driver reports the first `MAX_DISCRETE` discrete variables.
+        let discrete = &M::DISCRETE_NAMES[..M::DISCRETE_NAMES.len().min(MAX_DISCRETE)];
         if let Some(k) = M::STATE_NAMES.iter().position(|n| *n == name) {
             Ok(Quantity::State(k))
         } else if let Some(k) = M::OUTPUT_NAMES.iter().position(|n| *n == name) {
             Ok(Quantity::Output(k))
+        } else if let Some(k) = discrete.iter().position(|n| *n == name) {
+            Ok(Quantity::Discrete(k))
         } else {
             Err(StudyError::UnknownQuantity {
                 name: name.to_string(),
@@ -124,16 +133,19 @@ impl Quantity {
                 known: M::STATE_NAMES
                     .iter()
                     .chain(M::OUTPUT_NAMES)
+                    .chain(discrete)
                     .map(|s| s.to_string())
                     .collect(),
             })
         }
     }
 
-    fn value<M: Model>(self, x: &M::State, y: &M::Outputs) -> f64 {
+    /// The value in state `x`, outputs `y` and discrete variables `d`.
+    fn value<M: Model>(self, x: &M::State, y: &M::Outputs, d: &[f64]) -> f64 {
         match self {
             Quantity::State(k) => x.as_ref()[k].to_f64(),
             Quantity::Output(k) => y.as_ref()[k].to_f64(),
+            Quantity::Discrete(k) => d[k],
         }
     }
 }
@@ -260,6 +272,8 @@ fn plan<M: Model>(settings: &RunSettings<M::Float>, keep: &Keep) -> Result<Plan,
 struct Recorder<'a, M> {
     plan: &'a Plan,
     out: &'a mut [f64],
+    /// The discrete variables at the output being observed.
+    discrete: [f64; MAX_DISCRETE],
     /// Output index of the next call.
     k: u64,
     /// Next entry of `plan.at`.
@@ -270,8 +284,18 @@ struct Recorder<'a, M> {
 impl<M: Model> Observer<M> for Recorder<'_, M> {
     type Error = core::convert::Infallible;
 
+    fn observe_discrete(&mut self, values: &[M::Float]) -> Result<(), Self::Error> {
+        for (d, v) in self.discrete.iter_mut().zip(values) {
+            *d = v.to_f64();
+        }
+        Ok(())
+    }
+
     fn observe(&mut self, _t: M::Float, x: &M::State, y: &M::Outputs) -> Result<(), Self::Error> {
-        self.next_at = self.plan.record::<M>(self.k, self.next_at, self.out, x, y);
+        let d = &self.discrete[..M::DISCRETE_NAMES.len().min(MAX_DISCRETE)];
+        self.next_at = self
+            .plan
+            .record::<M>(self.k, self.next_at, self.out, (x, y, d));
         self.k += 1;
         Ok(())
     }
@@ -289,26 +313,25 @@ impl Plan {
         }
     }
 
-    /// Records output `k` (the state `x`, the outputs `y`) in a case's
-    /// row; `next_at` is the first entry of `at` not yet written. Returns
-    /// the next one.
+    /// Records output `k` (the state `x`, the outputs `y`, the discrete
+    /// variables `d`) in a case's row; `next_at` is the first entry of
+    /// `at` not yet written. Returns the next one.
     pub(super) fn record<M: Model>(
         &self,
         k: u64,
         mut next_at: usize,
         out: &mut [f64],
-        x: &M::State,
-        y: &M::Outputs,
+        (x, y, d): (&M::State, &M::Outputs, &[f64]),
     ) -> usize {
         while let Some((at_k, q, slot)) = self.at.get(next_at) {
             if *at_k != k {
                 break;
             }
-            out[*slot] = q.value::<M>(x, y);
+            out[*slot] = q.value::<M>(x, y, d);
             next_at += 1;
         }
         for (q, s, slot) in &self.statistics {
-            let v = q.value::<M>(x, y);
+            let v = q.value::<M>(x, y, d);
             let o = &mut out[*slot];
             *o = match s {
                 Statistic::Min => o.min(v),
@@ -319,7 +342,7 @@ impl Plan {
             };
         }
         for (q, first) in &self.history {
-            out[*first + k as usize] = q.value::<M>(x, y);
+            out[*first + k as usize] = q.value::<M>(x, y, d);
         }
         next_at
     }
@@ -357,6 +380,7 @@ where
         let mut recorder = Recorder {
             plan,
             out: &mut *out,
+            discrete: [0.0; MAX_DISCRETE],
             k: 0,
             next_at: 0,
             model: PhantomData,

@@ -14,13 +14,15 @@ pub(super) enum Target {
     Parameter(usize),
     Input(usize),
     State(usize),
+    /// A discrete variable's value at the start.
+    Discrete(usize),
     /// The k-th value passed to the study's setup function.
     Setup(usize),
 }
 
-/// Resolves every column: `parameter:NAME`, `input:NAME` or `state:NAME`
-/// name one kind; a bare name must be exactly one parameter, input, state
-/// or setup column.
+/// Resolves every column: `parameter:NAME`, `input:NAME`, `state:NAME` or
+/// `discrete:NAME` name one kind; a bare name must be exactly one
+/// parameter, input, state, discrete variable or setup column.
 pub(super) fn resolve<M: Model>(
     columns: &[String],
     setup: &[String],
@@ -44,16 +46,17 @@ type Kind = (&'static str, &'static [&'static str], fn(usize) -> Target);
 
 fn resolve_one<M: Model>(column: &str, setup: &[String]) -> Result<Target, StudyError> {
     let find = |names: &[&str], name: &str| names.iter().position(|n| *n == name);
-    let kinds: [Kind; 3] = [
+    let kinds: [Kind; 4] = [
         ("parameter", M::PARAMETER_NAMES, Target::Parameter),
         ("input", M::INPUT_NAMES, Target::Input),
         ("state", M::STATE_NAMES, Target::State),
+        ("discrete", M::DISCRETE_NAMES, Target::Discrete),
     ];
     if let Some((kind, name)) = column.split_once(':') {
         let Some((_, names, target)) = kinds.iter().find(|k| k.0 == kind) else {
             return Err(unknown::<M>(
                 column,
-                "the prefix must be `parameter:`, `input:` or `state:`",
+                "the prefix must be `parameter:`, `input:`, `state:` or `discrete:`",
             ));
         };
         return find(names, name).map(target).ok_or_else(|| {
@@ -71,7 +74,7 @@ fn resolve_one<M: Model>(column: &str, setup: &[String]) -> Result<Target, Study
         [(_, target)] => Ok(*target),
         [] => Err(unknown::<M>(
             column,
-            "it is not a parameter, input or state of the model, nor a column the setup function reads",
+            "it is not a parameter, input, state or discrete variable of the model, nor a column the setup function reads",
         )),
         many => Err(StudyError::AmbiguousColumn {
             name: column.to_string(),
@@ -88,12 +91,13 @@ fn unknown<M: Model>(name: &str, why: &str) -> StudyError {
     }
 }
 
-/// Scratch space for setting a case: the model's parameter and input
-/// vectors and the setup function's values; and for a group of cases in
-/// lockstep, their models' lane values ([`Model::lane_values`]).
+/// Scratch space for setting a case: the model's parameter, input and
+/// discrete vectors and the setup function's values; and for a group of
+/// cases in lockstep, their models' lane values ([`Model::lane_values`]).
 pub(super) struct Setter<F> {
     parameters: Vec<F>,
     inputs: Vec<F>,
+    discrete: Vec<F>,
     pub(super) setup: Vec<f64>,
     pub(super) lane_values: Vec<Lanes<LANES>>,
 }
@@ -103,12 +107,14 @@ impl<F: Float> Setter<F> {
         Setter {
             parameters: std::vec![F::ZERO; M::PARAMETER_NAMES.len()],
             inputs: std::vec![F::ZERO; M::INPUT_NAMES.len()],
+            discrete: std::vec![F::ZERO; M::DISCRETE_NAMES.len()],
             setup: std::vec![0.0; setup_len],
             lane_values: std::vec![Lanes::ZERO; M::LANE_VALUES],
         }
     }
 
-    /// Sets the case's parameters and inputs on `model`, and returns the
+    /// Sets the case's parameters, inputs and discrete variables on
+    /// `model`, and returns the
     /// model's initial state (with those parameters) with the case's
     /// initial states set; collects the setup values.
     pub(super) fn apply<M: Model<Float = F>>(
@@ -120,16 +126,21 @@ impl<F: Float> Setter<F> {
         let has = |f: fn(&Target) -> bool| targets.iter().any(f);
         let parameters = has(|t| matches!(t, Target::Parameter(_)));
         let inputs = has(|t| matches!(t, Target::Input(_)));
+        let discrete = has(|t| matches!(t, Target::Discrete(_)));
         if parameters {
             model.parameter_values(&mut self.parameters);
         }
         if inputs {
             model.input_values(&mut self.inputs);
         }
+        if discrete {
+            model.discrete_values(&mut self.discrete);
+        }
         for (t, v) in targets.iter().zip(values) {
             match *t {
                 Target::Parameter(k) => self.parameters[k] = F::from_f64(*v),
                 Target::Input(k) => self.inputs[k] = F::from_f64(*v),
+                Target::Discrete(k) => self.discrete[k] = F::from_f64(*v),
                 Target::Setup(k) => self.setup[k] = *v,
                 Target::State(_) => {}
             }
@@ -139,6 +150,9 @@ impl<F: Float> Setter<F> {
         }
         if inputs {
             model.set_input_values(&self.inputs);
+        }
+        if discrete {
+            model.set_discrete_values(&self.discrete);
         }
         initial_state(targets, values, model)
     }

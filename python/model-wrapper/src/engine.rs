@@ -53,6 +53,9 @@ pub trait Engine: Send + Sync {
     /// The discrete variables' values (declaration order): their initial
     /// values, which the equations read outside a simulation.
     fn discrete(&self) -> Vec<f64>;
+    /// Sets every discrete variable (what the equations read until the
+    /// next call).
+    fn set_discrete(&mut self, values: &[f64]);
     /// `dx/dt` at `(t, x)` with the current inputs.
     fn derivatives(&mut self, t: f64, x: &[f64], dx: &mut [f64]) -> Result<(), ModelError>;
     /// Outputs at `(t, x)` with the current inputs.
@@ -257,6 +260,10 @@ impl<M: Generated> Engine for Adapter<M> {
         let mut v = vec![0.0; M::DISCRETE_NAMES.len()];
         self.0.discrete_values(&mut v);
         v
+    }
+
+    fn set_discrete(&mut self, values: &[f64]) {
+        self.0.set_discrete_values(values);
     }
 
     fn derivatives(&mut self, t: f64, x: &[f64], dx: &mut [f64]) -> Result<(), ModelError> {

@@ -275,9 +275,17 @@ impl NativeModel {
         PyArray1::from_vec(py, self.engine.initial_state())
     }
 
-    /// The discrete variables' initial values (declaration order).
+    /// The discrete variables' values (declaration order): their initial
+    /// values unless `set_discrete` changed them.
     fn discrete<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
         PyArray1::from_vec(py, self.engine.discrete())
+    }
+
+    /// Sets every discrete variable (declaration order).
+    fn set_discrete(&mut self, values: PyReadonlyArray1<'_, f64>) -> PyResult<()> {
+        let values = vector(&values, self.sizes.discrete, "discrete")?;
+        self.engine.set_discrete(&values);
+        Ok(())
     }
 
     /// `dx/dt` at `(t, x)` with the current inputs.

@@ -10,6 +10,7 @@ use autosim_runtime::RunSettings;
 use autosim_runtime::study::{Results, StudySummary};
 
 use crate::native::rows;
+use crate::simulate_args::event_settings;
 use crate::study::{Factor, KeepSpec, Plan, cases, keep, method, parallelism};
 
 /// Item `key` of `spec`, which must be there.
@@ -46,7 +47,7 @@ fn factor(tuple: &Bound<'_, PyTuple>) -> PyResult<Factor> {
 }
 
 /// The [`Plan`] of a specification dict (keys `factors`, `t0`, `t_end`,
-/// `h`, `output_interval`, `max_steps`, `method`, `rtol`, `atol`,
+/// `h`, `output_interval`, `max_steps`, `events`, `method`, `rtol`, `atol`,
 /// `final_state`, `at`, `statistics`, `history`, `threads`, `progress`).
 ///
 /// # Errors
@@ -66,7 +67,8 @@ pub fn plan(spec: &Bound<'_, PyDict>) -> PyResult<Plan> {
         item(spec, "h")?,
         item(spec, "output_interval")?,
     )
-    .with_max_steps(item(spec, "max_steps")?);
+    .with_max_steps(item(spec, "max_steps")?)
+    .with_events(event_settings(item(spec, "events")?)?);
     let method_name: String = item(spec, "method")?;
     Ok(Plan {
         cases: cases(&factors).map_err(PyValueError::new_err)?,

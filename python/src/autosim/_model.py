@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from types import ModuleType
 from typing import Any, Callable, NamedTuple, Union
@@ -11,7 +12,7 @@ import numpy as np
 
 from ._interface import Event, Interface, Quantity
 from ._linear import LinearModel
-from ._simulation import Simulation, simulate
+from ._simulation import Simulation, event_settings, simulate
 from ._values import ArrayLike, NamedValues, as_vector, unknown_name
 
 
@@ -31,6 +32,10 @@ class TrimResult(NamedTuple):
 Inputs = Union[
     None, float, ArrayLike, Mapping[str, float], tuple[ArrayLike, ArrayLike], Callable[[float], Any]
 ]
+
+#: Discrete values: a mapping by name (the others at their initial values)
+#: or a vector in declaration order.
+Discrete = Union[None, Mapping[str, float], ArrayLike]
 
 
 class Model:
@@ -175,11 +180,11 @@ class Model:
 
     def initial_discrete(self) -> np.ndarray:
         """The discrete variables' initial values written in the model (what
-        :meth:`derivatives` and :meth:`outputs` read, and where
-        :meth:`simulate` starts them unless told otherwise)."""
+        the evaluations read when their ``discrete`` argument is not given,
+        and where :meth:`simulate` starts them unless told otherwise)."""
         return np.array(self._native.discrete())
 
-    def discrete_vector(self, values: Mapping[str, float] | ArrayLike) -> np.ndarray:
+    def discrete_vector(self, values: Mapping[str, float] | ArrayLike, what: str = "discrete") -> np.ndarray:
         """A vector of discrete values: a mapping by name (the others at
         their initial values) or a vector in declaration order."""
         if isinstance(values, Mapping):
@@ -190,7 +195,21 @@ class Model:
                     raise unknown_name("discrete variable", name, names)
                 d[names.index(name)] = float(value)
             return d
-        return as_vector(values, len(self.interface.discrete), "discrete0")
+        return as_vector(values, len(self.interface.discrete), what)
+
+    @contextmanager
+    def _discrete_set(self, values: Discrete) -> Iterator[None]:
+        """The discrete variables at ``values`` inside the block (``None``:
+        unchanged), their initial values again after it."""
+        if values is None:
+            yield
+            return
+        initial = self._native.discrete()
+        self._native.set_discrete(self.discrete_vector(values))
+        try:
+            yield
+        finally:
+            self._native.set_discrete(initial)
 
     def state_index(self, name: str) -> int:
         """Position of state ``name`` in the state vector."""
@@ -242,7 +261,9 @@ class Model:
                 raise ValueError(f"u must have shape (n, {len(self.input_names)})")
         return self._native.many(ts, xs, us, outputs)
 
-    def derivatives(self, t: float | ArrayLike, x: ArrayLike, u: Any = None) -> np.ndarray:
+    def derivatives(
+        self, t: float | ArrayLike, x: ArrayLike, u: Any = None, *, discrete: Discrete = None
+    ) -> np.ndarray:
         """``dx/dt`` at time ``t`` and state ``x``.
 
         ``x`` of shape ``(n_states,)`` gives one derivative; of shape
@@ -256,24 +277,29 @@ class Model:
         instructions, with the same bits as one call per row; with a time
         or inputs per row, such a model computes four rows per call too,
         each at its own time with its own inputs. A failing row raises
-        :class:`SimulationError` naming the first such row.
+        :class:`SimulationError` naming the first such row. ``discrete``
+        (a mapping by name, the others at their initial values, or a
+        vector) gives the discrete variables for this call only; without
+        it the equations read their initial values.
         """
-        xs = np.asarray(x, dtype=np.float64)
-        if xs.ndim == 2:
-            return self._rows(t, xs, u, False)
-        if u is not None:
-            self.set_inputs(u)
-        return self._native.derivatives(float(t), as_vector(xs, self._nx, "x"))  # type: ignore[arg-type]
+        return self._evaluate(t, x, u, discrete, outputs=False)
 
-    def outputs(self, t: float | ArrayLike, x: ArrayLike, u: Any = None) -> np.ndarray:
-        """The outputs at ``(t, x)`` (rows of a 2-D ``x`` as in
-        :meth:`derivatives`)."""
+    def outputs(
+        self, t: float | ArrayLike, x: ArrayLike, u: Any = None, *, discrete: Discrete = None
+    ) -> np.ndarray:
+        """The outputs at ``(t, x)`` (rows of a 2-D ``x``, ``u`` and
+        ``discrete`` as in :meth:`derivatives`)."""
+        return self._evaluate(t, x, u, discrete, outputs=True)
+
+    def _evaluate(self, t: Any, x: ArrayLike, u: Any, discrete: Discrete, outputs: bool) -> np.ndarray:
         xs = np.asarray(x, dtype=np.float64)
-        if xs.ndim == 2:
-            return self._rows(t, xs, u, True)
-        if u is not None:
-            self.set_inputs(u)
-        return self._native.outputs(float(t), as_vector(xs, self._nx, "x"))  # type: ignore[arg-type]
+        with self._discrete_set(discrete):
+            if xs.ndim == 2:
+                return self._rows(t, xs, u, outputs)
+            if u is not None:
+                self.set_inputs(u)
+            one = self._native.outputs if outputs else self._native.derivatives
+            return one(float(t), as_vector(xs, self._nx, "x"))  # type: ignore[arg-type]
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """``dx/dt`` with the signature of :func:`scipy.integrate.solve_ivp`'s
@@ -295,23 +321,30 @@ class Model:
             )
         return self.linearize(t, y).A
 
-    def mass_matrix(self, t: float, x: ArrayLike) -> np.ndarray:
+    def mass_matrix(self, t: float, x: ArrayLike, *, discrete: Discrete = None) -> np.ndarray:
         """The mass matrix ``M(q)`` of ``M du/dt = f`` (``n_speeds`` square;
         for constrained models in the independent speeds' equations as
-        generated)."""
-        return self._native.mass_matrix(float(t), as_vector(x, self._nx, "x"))
+        generated; ``discrete`` as in :meth:`derivatives`)."""
+        with self._discrete_set(discrete):
+            return self._native.mass_matrix(float(t), as_vector(x, self._nx, "x"))
 
-    def forcing(self, t: float, x: ArrayLike, u: Any = None) -> np.ndarray:
+    def forcing(self, t: float, x: ArrayLike, u: Any = None, *, discrete: Discrete = None) -> np.ndarray:
         """The forcing vector ``f(q, u, t)`` of ``M du/dt = f`` (with inputs
-        ``u``, or the current inputs)."""
+        ``u``, or the current inputs; ``discrete`` as in :meth:`derivatives`)."""
         if u is not None:
             self.set_inputs(u)
-        return self._native.forcing(float(t), as_vector(x, self._nx, "x"))
+        with self._discrete_set(discrete):
+            return self._native.forcing(float(t), as_vector(x, self._nx, "x"))
 
-    def linearize(self, t: float = 0.0, x: ArrayLike | None = None, u: Any = None) -> LinearModel:
+    def linearize(
+        self, t: float = 0.0, x: ArrayLike | None = None, u: Any = None, *, discrete: Discrete = None
+    ) -> LinearModel:
         """The linear model ``dx/dt ≈ A δx + B δu``, ``y ≈ C δx + D δu`` about
         ``(t, x, u)`` (defaults: time 0, the initial state, the current
-        inputs), from symbolic derivatives of the equations. For models with
+        inputs), from symbolic derivatives of the equations, with the
+        discrete variables at ``discrete`` (as in :meth:`derivatives`;
+        default their initial values): a model with modes is linearized
+        in the mode given. For models with
         position constraints the states are the independent ones
         (:attr:`LinearModel.state_names`). Models compiled with
         ``linearize=False`` raise ``ValueError``."""
@@ -321,7 +354,8 @@ class Model:
         if linear is None:
             raise ValueError(f"{self.name} was loaded without its linearization: load it with linearize=True")
         xv = self.initial_state() if x is None else as_vector(x, self._nx, "x")
-        a, b, c, d = self._native.linearize(float(t), xv, len(linear))
+        with self._discrete_set(discrete):
+            a, b, c, d = self._native.linearize(float(t), xv, len(linear))
         names = self.state_names
         return LinearModel(
             a,
@@ -334,10 +368,12 @@ class Model:
             self.output_names,
         )
 
-    def modes(self, t: float = 0.0, x: ArrayLike | None = None, u: Any = None) -> Any:
+    def modes(
+        self, t: float = 0.0, x: ArrayLike | None = None, u: Any = None, *, discrete: Discrete = None
+    ) -> Any:
         """Eigenvalues and eigenvectors of ``A`` at ``(t, x, u)``
-        (:meth:`LinearModel.modes`)."""
-        return self.linearize(t, x, u).modes()
+        (:meth:`LinearModel.modes`; ``discrete`` as in :meth:`linearize`)."""
+        return self.linearize(t, x, u, discrete=discrete).modes()
 
     def trim(
         self,
@@ -350,6 +386,7 @@ class Model:
         tolerance: float = 1e-10,
         max_iterations: int = 50,
         max_step: float = 1.0,
+        discrete: Discrete = None,
     ) -> TrimResult:
         """Trims the model (the runtime's damped Newton on the symbolic
         linearization, as SD/FAST's ``sdstatic``/``sdsteady``): from ``x``
@@ -359,7 +396,8 @@ class Model:
         (to ``tolerance``); everything else is held. Static equilibrium:
         the coordinates free, the speeds steady. Each Newton step moves an
         unknown by at most ``max_step`` times ``max(1, |value|)``. The model
-        keeps the trimmed inputs. Raises :class:`autosim.errors.SimulationError` naming the
+        keeps the trimmed inputs. ``discrete`` gives the discrete variables
+        (as in :meth:`derivatives`). Raises :class:`autosim.errors.SimulationError` naming the
         residuals when Newton's method does not converge or the free
         variables do not control the steady derivatives."""
         xv = self.initial_state() if x is None else as_vector(x, self._nx, "x")
@@ -368,16 +406,17 @@ class Model:
         for name in free_inputs:
             if name not in self.input_names:
                 raise unknown_name("input", name, self.input_names)
-        done = self._native.trim(
-            float(t),
-            xv,
-            list(free_states),
-            list(free_inputs),
-            list(steady),
-            float(tolerance),
-            int(max_iterations),
-            float(max_step),
-        )
+        with self._discrete_set(discrete):
+            done = self._native.trim(
+                float(t),
+                xv,
+                list(free_states),
+                list(free_inputs),
+                list(steady),
+                float(tolerance),
+                int(max_iterations),
+                float(max_step),
+            )
         if done is None:
             raise ValueError(f"{self.name} was loaded without its linearization: load it with linearize=True")
         trimmed, iterations, residual = done
@@ -458,14 +497,7 @@ class Model:
         Raises :class:`autosim.errors.SimulationError` when the model or the
         integrator fails (the message names the time and the state).
         """
-        for name, value in (("event_tolerance", event_tolerance), ("zeno_interval", zeno_interval)):
-            if not (value >= 0 and np.isfinite(value)):
-                raise ValueError(f"{name} must be finite and not negative, not {value}")
-        if not 0 <= event_samples <= 1000:
-            raise ValueError(f"event_samples must be in 0..=1000, not {event_samples}")
-        if zeno_events < 1:
-            raise ValueError(f"zeno_events must be at least 1, not {zeno_events}")
-        events = (float(event_tolerance), int(event_samples), int(zeno_events), float(zeno_interval))
+        events = event_settings(event_tolerance, event_samples, zeno_events, zeno_interval)
         return simulate(
             self, t_end, x0, t0, method, rtol, atol, h, t_eval, inputs, max_steps, discrete0, events
         )
@@ -481,10 +513,12 @@ class Model:
 
         return Study(self, cases, keep, t_end, **settings)
 
-    def to_control(self, t: float = 0.0, x: ArrayLike | None = None, u: Any = None) -> Any:
+    def to_control(
+        self, t: float = 0.0, x: ArrayLike | None = None, u: Any = None, *, discrete: Discrete = None
+    ) -> Any:
         """The linear model as a python-control ``StateSpace`` (needs the
-        ``control`` package)."""
-        return self.linearize(t, x, u).to_control()
+        ``control`` package; arguments as :meth:`linearize`)."""
+        return self.linearize(t, x, u, discrete=discrete).to_control()
 
     def __repr__(self) -> str:
         return (

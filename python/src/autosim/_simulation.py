@@ -132,6 +132,25 @@ def _output_times(t0: float, t_end: float, t_eval: Any) -> np.ndarray:
     return times
 
 
+#: How events are located: ``(event_tolerance, event_samples, zeno_events,
+#: zeno_interval)``, as :meth:`Model.simulate` and studies take them.
+EventSettings = tuple[float, int, int, float]
+
+
+def event_settings(
+    event_tolerance: float, event_samples: int, zeno_events: int, zeno_interval: float
+) -> EventSettings:
+    """The event settings, checked (``ValueError`` naming a wrong one)."""
+    for name, value in (("event_tolerance", event_tolerance), ("zeno_interval", zeno_interval)):
+        if not (value >= 0 and np.isfinite(value)):
+            raise ValueError(f"{name} must be finite and not negative, not {value}")
+    if not 0 <= event_samples <= 1000:
+        raise ValueError(f"event_samples must be in 0..=1000, not {event_samples}")
+    if zeno_events < 1:
+        raise ValueError(f"zeno_events must be at least 1, not {zeno_events}")
+    return (float(event_tolerance), int(event_samples), int(zeno_events), float(zeno_interval))
+
+
 def simulate(
     model: Model,
     t_end: float,
@@ -145,7 +164,7 @@ def simulate(
     inputs: Inputs,
     max_steps: int,
     discrete0: Any = None,
-    events: tuple[float, int, int, float] = (0.0, 4, 100, 0.0),
+    events: EventSettings = (0.0, 4, 100, 0.0),
 ) -> Simulation:
     """:meth:`Model.simulate` (see there)."""
     if method not in METHODS:
@@ -163,7 +182,7 @@ def simulate(
         bad = [n for n, v in zip(model.state_names, xv) if not np.isfinite(v)]
         raise ValueError(f"x0 is not finite in {', '.join(bad)}")
     times = _output_times(t0, t_end, t_eval)
-    d0 = None if discrete0 is None else model.discrete_vector(discrete0)
+    d0 = None if discrete0 is None else model.discrete_vector(discrete0, "discrete0")
     table = None
     function = None
     native = model._native

@@ -19,6 +19,8 @@ from typing import TYPE_CHECKING, Any, NamedTuple, Union
 
 import numpy as np
 
+from ._simulation import event_settings
+
 if TYPE_CHECKING:  # pragma: no cover
     from ._model import Model
 
@@ -57,8 +59,9 @@ def _floats(values: Any, what: str) -> list[float]:
 @dataclass(frozen=True)
 class Cases:
     """The table of cases: named columns that set the model's parameters,
-    inputs or initial states (``parameter:NAME``, ``input:NAME``,
-    ``state:NAME`` when a name is more than one), the product of factors
+    inputs, initial states or discrete variables' initial values
+    (``parameter:NAME``, ``input:NAME``, ``state:NAME``, ``discrete:NAME``
+    when a name is more than one), the product of factors
     like nested loops, the first outermost.
 
     >>> cases = Cases().grid("torque", [0.0, 0.5]).random(200, seed=7, m=uniform(0.5, 2.0))
@@ -126,7 +129,8 @@ class Cases:
 
 @dataclass(frozen=True)
 class Keep:
-    """What a study keeps of each run, by state or output name; each item
+    """What a study keeps of each run, by the name of a state, an output or
+    a discrete variable; each item
     is one field of the results, named as the runtime names it:
     ``final:<state>``, ``<quantity>@<time>``, ``<statistic>:<quantity>``,
     ``history:<quantity>``.
@@ -144,7 +148,8 @@ class Keep:
         return Keep(True, self.times, self.statistics, self.histories)
 
     def at(self, times: Iterable[float], quantities: Iterable[str]) -> Keep:
-        """Keep ``quantities`` (states or outputs) at each of ``times``, which
+        """Keep ``quantities`` (states, outputs or discrete variables) at each
+        of ``times``, which
         must be output times of the run (``t0``, ``t_end``, or ``t0 +
         k*output_interval``)."""
         qs = list(quantities)
@@ -152,7 +157,8 @@ class Keep:
         return Keep(self.final, self.times + added, self.statistics, self.histories)
 
     def statistic(self, quantity: str, statistic: str) -> Keep:
-        """Keep a statistic of a state or output over the output times:
+        """Keep a statistic of a state, output or discrete variable over the
+        output times:
         ``"min"``, ``"max"``, ``"mean"``, ``"rms"`` or ``"maxabs"``."""
         if statistic not in STATISTICS:
             raise ValueError(f"statistic {statistic!r} is not one of {', '.join(STATISTICS)}")
@@ -331,6 +337,9 @@ class Study:
     ``atol`` and first trial step ``h``; the others fixed step ``h``);
     ``output_interval`` (default: ``t_end - t0``) spaces the output times
     at which :meth:`Keep.at` values, statistics and histories are taken.
+    A model's events are located as :meth:`Model.simulate` locates them,
+    with the same ``event_tolerance``, ``event_samples``, ``zeno_events``
+    and ``zeno_interval``.
 
     Raises ``ValueError`` (the runtime's reason, naming the column, the
     quantity or the setting) when the study cannot run: a column that sets
@@ -348,6 +357,10 @@ class Study:
     rtol: float = 1e-9
     atol: float = 1e-12
     max_steps: int = 10_000_000
+    event_tolerance: float = 0.0
+    event_samples: int = 4
+    zeno_events: int = 100
+    zeno_interval: float = 0.0
     _checked: tuple[Any, ...] = field(default=(), repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -377,6 +390,10 @@ class Study:
                 self.rtol,
                 self.atol,
                 self.max_steps,
+                self.event_tolerance,
+                self.event_samples,
+                self.zeno_events,
+                self.zeno_interval,
             ),
         )
 
@@ -391,6 +408,9 @@ class Study:
             "h": float(self.h),
             "output_interval": float(interval),
             "max_steps": int(self.max_steps),
+            "events": event_settings(
+                self.event_tolerance, self.event_samples, self.zeno_events, self.zeno_interval
+            ),
             "method": self.method,
             "rtol": float(self.rtol),
             "atol": float(self.atol),

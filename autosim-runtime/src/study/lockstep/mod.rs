@@ -316,7 +316,7 @@ fn record<M: Model, const S: usize, C: Copy>(
     let x = &lanes.x[l];
     let ok =
         lanes.models[l].outputs(t, x, &mut y).is_ok() && check_finite_outputs::<M>(t, &y).is_ok();
-    ok.then(|| plan.record::<M>(k, next_at, outs[lanes.case[l]], x, &y))
+    ok.then(|| plan.record::<M>(k, next_at, outs[lanes.case[l]], (x, &y, &[])))
 }
 
 /// Runs the cases starting at `xs` (at most [`GROUP`]) together, case `k`

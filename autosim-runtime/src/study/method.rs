@@ -105,6 +105,12 @@ impl<M: Model> Stepper<M> for MethodStepper<M> {
     fn is_adaptive(&self) -> bool {
         each_method!(self, s => s.is_adaptive())
     }
+    fn has_dense_output(&self) -> bool {
+        each_method!(self, s => s.has_dense_output())
+    }
+    fn dense_output(&self, t: M::Float, out: &mut M::State) -> Result<(), IntegrationError> {
+        each_method!(self, s => s.dense_output(t, out))
+    }
     fn name(&self) -> &'static str {
         each_method!(self, s => s.name())
     }

@@ -242,10 +242,14 @@ fn a_study_locates_events_on_the_methods_continuous_extension() {
     let settings = RunSettings::new(0.0, 1.0, 1e-3, 1.0);
     let keep = Keep::new().at(&[1.0], &["t_half", "x"]);
     let task = Simulate::new(settings, Method::DormandPrince { rtol, atol }, keep).unwrap();
-    let results = Study::new(Oscillator::new, Cases::new().grid("k", &[1.0]).unwrap(), task)
-        .progress(false)
-        .run_cases(0..1)
-        .unwrap();
+    let results = Study::new(
+        Oscillator::new,
+        Cases::new().grid("k", &[1.0]).unwrap(),
+        task,
+    )
+    .progress(false)
+    .run_cases(0..1)
+    .unwrap();
     let (t_half, x) = (results.values()[0], results.values()[1]);
     let exact = std::f64::consts::FRAC_PI_6;
     assert!((t_half - exact).abs() < 1e-10, "{t_half} against {exact}");
@@ -253,7 +257,14 @@ fn a_study_locates_events_on_the_methods_continuous_extension() {
     let mut model = Oscillator::new();
     let mut state = model.initial_state();
     let mut dopri = DormandPrince::new(DopriSettings::new(rtol, atol)).unwrap();
-    run(&mut model, &mut dopri, &mut state, &settings, &mut |_, _: &_, _: &_| {}).unwrap();
+    run(
+        &mut model,
+        &mut dopri,
+        &mut state,
+        &settings,
+        &mut |_, _: &_, _: &_| {},
+    )
+    .unwrap();
     assert_eq!(t_half.to_bits(), model.discrete.t_half.to_bits());
     assert_eq!(x.to_bits(), state[0].to_bits());
 }

@@ -55,3 +55,17 @@ fn four_bar_depends_on_its_independent_states_only() {
     }
     assert_eq!(of(&d.outputs[0]), on(&[0, 3], &[]));
 }
+
+#[test]
+fn initial_values_read_the_parameters_they_are_written_with() {
+    let text = "model Start;\n\
+                parameters { m = 1 [kg], g = 9.81 [m/s^2], k = 100 [N/m], lift = 0.1 [m] }\n\
+                body B { translate: 3, q: [z], u: [w], mass: m, inertia: 0, initial: [lift - m*g/k], initial_speeds: [2] }\n\
+                body C { translate: 1, q: [y], u: [v], mass: m, inertia: 0, initial: [0.5] }\n\
+                gravity = -g*n3;\n";
+    let compiled =
+        compile_source(&SourceFile::new("start.sim", text.to_string())).expect("compiles");
+    let d = Dependencies::of(&compiled.program);
+    // States z, y, w, v: z from lift, m, g and k; the others numbers.
+    assert_eq!(d.initial, [vec![0, 1, 2, 3], vec![], vec![], vec![]]);
+}

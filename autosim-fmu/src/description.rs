@@ -184,13 +184,29 @@ fn scalars(
             }
             Variable::State(k) => {
                 let s = i.states.state(states[k]);
-                Scalar {
-                    name: s.name.clone(),
-                    causality: "local",
-                    variability: "continuous",
-                    initial: Some("exact"),
-                    description: format!("State {} of the model", s.name),
-                    element: real(&s.unit, Some(x0[states[k]]), None),
+                // An initial value computed from parameters is no start
+                // value an importer could set and keep: it follows them.
+                if deps.initial[states[k]].is_empty() {
+                    Scalar {
+                        name: s.name.clone(),
+                        causality: "local",
+                        variability: "continuous",
+                        initial: Some("exact"),
+                        description: format!("State {} of the model", s.name),
+                        element: real(&s.unit, Some(x0[states[k]]), None),
+                    }
+                } else {
+                    Scalar {
+                        name: s.name.clone(),
+                        causality: "local",
+                        variability: "continuous",
+                        initial: Some("calculated"),
+                        description: format!(
+                            "State {} of the model, its initial value computed from parameters",
+                            s.name
+                        ),
+                        element: real(&s.unit, None, None),
+                    }
                 }
             }
             Variable::Derivative(k) => {
@@ -375,9 +391,11 @@ fn type_definitions() -> String {
 }
 
 /// `ModelStructure`: outputs and derivatives on states and inputs; the
-/// initial unknowns (outputs and derivatives, in index order) on the
-/// states, inputs and parameters they read, all of which have exact
-/// start values. The outputs in `residuals`, the residuals of position
+/// initial unknowns (outputs, derivatives and the states whose initial
+/// values are computed from parameters, in index order) on the states
+/// with exact start values, the inputs and the parameters they read
+/// (through such a computed state, the parameters it is computed from).
+/// The outputs in `residuals`, the residuals of position
 /// constraints, depend on nothing: the FMU solves the constraints before
 /// it evaluates, so they are zero (to the solution's rounding) whatever
 /// the states.
@@ -396,11 +414,22 @@ fn model_structure(
             unreachable!("dependencies name independent states")
         })))
     };
-    let list = |d: &Depends, parameters: bool| -> String {
-        let mut ids: Vec<u32> = d.states.iter().map(fmu_state).collect();
+    let computed = |s: &usize| !deps.initial[*s].is_empty();
+    let list = |d: &Depends, initial: bool| -> String {
+        let mut ids: Vec<u32> = d
+            .states
+            .iter()
+            .filter(|s| !(initial && computed(s)))
+            .map(fmu_state)
+            .collect();
         ids.extend(d.inputs.iter().map(|&w| index(Variable::Input(w))));
-        if parameters {
-            ids.extend(d.parameters.iter().map(|&p| index(Variable::Parameter(p))));
+        if initial {
+            let through = d.states.iter().filter(|s| computed(s));
+            let mut parameters: Vec<usize> = d.parameters.clone();
+            parameters.extend(through.flat_map(|s| deps.initial[*s].iter().copied()));
+            parameters.sort_unstable();
+            parameters.dedup();
+            ids.extend(parameters.iter().map(|&p| index(Variable::Parameter(p))));
         }
         ids.sort_unstable();
         ids.iter().map(u32::to_string).collect::<Vec<_>>().join(" ")
@@ -435,7 +464,20 @@ fn model_structure(
     };
     section("Outputs", &outputs, false);
     section("Derivatives", &derivatives, false);
+    let computed_states: Vec<(u32, Depends)> = states
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| computed(s))
+        .map(|(k, &s)| {
+            let from = Depends {
+                parameters: deps.initial[s].clone(),
+                ..Depends::default()
+            };
+            (index(Variable::State(k)), from)
+        })
+        .collect();
     let mut initial: Vec<(u32, &Depends)> = outputs.iter().chain(&derivatives).copied().collect();
+    initial.extend(computed_states.iter().map(|(i, d)| (*i, d)));
     initial.sort_by_key(|(i, _)| *i);
     section("InitialUnknowns", &initial, true);
     x + "  </ModelStructure>\n"

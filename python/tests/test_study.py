@@ -350,5 +350,7 @@ def test_a_study_of_a_model_with_events_sets_and_keeps_its_discrete_variables(lo
         ).run()
         errors.append(abs(elastic["v@0.5"][0] - exact))
     assert errors[0] < 1e-9 and 1e-9 < errors[1] < 2 * 9.81 * 1e-3, errors
+    with pytest.raises(ValueError, match=r"t_end \(0.0\) must be finite and after t0 \(0.0\)"):
+        ball.study(cases, keep, t_end=0.0)
     with pytest.raises(ValueError, match="zeno_events"):
         ball.study(cases, keep, t_end=0.6, zeno_events=0)

@@ -12,7 +12,8 @@
 //! independent coordinate that the constraint solved for it reads
 //! (transitively through the other dependent coordinates its residual
 //! reads). What user code keeps between calls is not seen; only its
-//! arguments are.
+//! arguments are. It also gives the parameters each state's initial
+//! value reads.
 
 use super::ir::{Leaf, Nid, Op};
 use super::program::{BlockKind, Program};
@@ -44,6 +45,9 @@ pub struct Dependencies {
     /// The state-vector positions of the dependent coordinates (solved
     /// from position constraints; they appear in no `Depends`).
     pub dependent: Vec<usize>,
+    /// Slot `i`: the parameters the initial value of state `i` reads
+    /// (sorted; empty for a value written as a number).
+    pub initial: Vec<Vec<usize>>,
 }
 
 /// The leaves a value reads, by state and input.
@@ -106,10 +110,15 @@ impl Dependencies {
                 resolve(r)
             })
             .collect();
+        let initial = stored(&program.block(BlockKind::Initial).stmts, 0..n)
+            .into_iter()
+            .map(|v| reads(program, v).parameters.into_iter().collect())
+            .collect();
         Dependencies {
             derivatives: derivative_reads.into_iter().map(resolve).collect(),
             outputs,
             dependent,
+            initial,
         }
     }
 }

@@ -103,6 +103,9 @@ fn entry(content: ParseStream, cx: &Cx, entries: &mut Entries) -> PResult<Span> 
         }
         _ => {
             let value = expr(content, cx)?;
+            if key == Some(EventKey::Indicator) {
+                comparison(content, cx)?;
+            }
             let last = value.span();
             if let Some(key) = key {
                 match entries.options.iter().find(|o| o.key == key) {
@@ -122,6 +125,22 @@ fn entry(content: ParseStream, cx: &Cx, entries: &mut Entries) -> PResult<Span> 
             Ok(last)
         }
     }
+}
+
+/// Refuses a comparison after an indicator's value (`indicator: h < 0`):
+/// an indicator is the value whose sign changes, its direction says which
+/// way.
+fn comparison(content: ParseStream, cx: &Cx) -> PResult<()> {
+    if content.peek(Token![<]) || content.peek(Token![>]) || content.peek(Token![==]) {
+        return cx.fail(
+            expected(cx, content, "`,` or `}` after the indicator").help(
+                "an indicator is a value whose sign changes at the event, not a comparison: \
+                     for `a < b` write `indicator: a - b, direction: falling` (the event fires \
+                     as `a - b` goes below zero)",
+            ),
+        );
+    }
+    Ok(())
 }
 
 /// `{ name: value, ... }` after `set:` or `reset:`.

@@ -364,6 +364,8 @@ class Study:
     _checked: tuple[Any, ...] = field(default=(), repr=False, compare=False)
 
     def __post_init__(self) -> None:
+        if not (math.isfinite(self.t0) and math.isfinite(self.t_end) and self.t_end > self.t0):
+            raise ValueError(f"a study's t_end ({self.t_end}) must be finite and after t0 ({self.t0})")
         if self.method not in STUDY_METHODS:
             raise ValueError(
                 f"a study's method must be one of {', '.join(STUDY_METHODS)}, not {self.method!r}"

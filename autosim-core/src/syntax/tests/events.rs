@@ -57,4 +57,14 @@ test.sim:2:34: error: expected `:` after `m`, found `=`
   = help: assignments are written `m: <new value>`
 "#,
     );
+    check(
+        "model M;\nevent e { indicator: comp < 0, direction: falling }",
+        r#"
+test.sim:2:27: error: expected `,` or `}` after the indicator, found `<`
+  |
+2 | event e { indicator: comp < 0, direction: falling }
+  |                           ^
+  = help: an indicator is a value whose sign changes at the event, not a comparison: for `a < b` write `indicator: a - b, direction: falling` (the event fires as `a - b` goes below zero)
+"#,
+    );
 }

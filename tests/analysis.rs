@@ -325,3 +325,68 @@ fn an_undamped_mode_has_a_damping_ratio_of_plain_zero() {
     let zeta = modes[0].damping_ratio;
     assert!(zeta == 0.0 && zeta.is_sign_positive(), "{:?}", modes[0]);
 }
+
+/// A sleeping top on two massless gimbals spinning below its critical
+/// rate (a new user's model): nalgebra's Schur iteration looped forever
+/// on this `A`. Its characteristic polynomial, with `K = 218 I` and the
+/// gyroscopic `G = [[0, -25], [25, 0]]`, is `(λ² - 218)² + (25 λ)²`, so
+/// `λ = ±12.5 i ± sqrt(247)/2`, and the decoupled spin adds two zeros.
+#[test]
+fn a_sleeping_top_below_its_critical_spin_has_its_four_roots_and_two_zeros() {
+    #[rustfmt::skip]
+    let a = nalgebra::DMatrix::from_row_slice(6, 6, &[
+        0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
+        0.0, 0.0, 0.0, 0.0, 1.0, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+        218.0, 0.0, 0.0, 0.0, -25.0, 0.0,
+        0.0, 218.0, 0.0, 25.0, 0.0, 0.0,
+        0.0, 0.0, 0.0, 0.0, 0.0, 0.0,
+    ]);
+    let system = LinearSystem::from_matrices(a, &["a1", "a2", "spin", "v1", "v2", "w"]);
+    let ev = system.eigenvalues();
+    let re = 247f64.sqrt() / 2.0;
+    let expected = [
+        (-re, -12.5),
+        (-re, 12.5),
+        (0.0, 0.0),
+        (0.0, 0.0),
+        (re, -12.5),
+        (re, 12.5),
+    ];
+    for (l, (r, i)) in ev.iter().zip(expected) {
+        assert!(
+            (l.re - r).abs() < 1e-12 && (l.im - i).abs() < 1e-12,
+            "{ev:?}"
+        );
+    }
+    let unstable = system.modes().iter().filter(|m| m.is_unstable()).count();
+    assert_eq!(unstable, 1, "one unstable pair: {}", system.modes_report());
+}
+
+/// A neutral oscillation's real part is rounding (±1e-16 here): the
+/// mode is reported undamped, not unstable.
+#[test]
+fn rounding_does_not_make_a_neutral_mode_unstable() {
+    // The sleeping top above spinning at 300 rad/s, its spin dropped: a
+    // gyroscopically stable pair of undamped oscillations.
+    #[rustfmt::skip]
+    let a = nalgebra::DMatrix::from_row_slice(4, 4, &[
+        0.0, 0.0, 1.0, 0.0,
+        0.0, 0.0, 0.0, 1.0,
+        218.0, 0.0, 0.0, -50.0,
+        0.0, 218.0, 50.0, 0.0,
+    ]);
+    let system = LinearSystem::from_matrices(a, &["a1", "a2", "v1", "v2"]);
+    // λ² ± 50 i λ - 218 = 0: λ = i (±25 ± sqrt(625 - 218)).
+    let root = 407f64.sqrt();
+    let modes = system.modes();
+    assert_eq!(modes.len(), 2);
+    for (m, w) in modes.iter().zip([25.0 - root, 25.0 + root]) {
+        assert!((m.natural_frequency - w).abs() < 1e-12 * w, "{m:?}");
+        assert!(
+            !m.is_unstable() && m.damping_ratio == 0.0,
+            "{}",
+            system.modes_report()
+        );
+    }
+}

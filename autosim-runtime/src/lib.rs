@@ -100,7 +100,8 @@
 //! | `csv` | yes | `io::CsvWriter`, an observer that writes one flushed CSV row per output |
 //! | `plot` | yes | `io::svg_plot`, `io::Recording::plot_svg` and `io::xy_svg_plot` (SVG line plots, linear or log axes, no system fonts needed) |
 //! | `serde` | no | `Serialize`/`Deserialize` for settings, summaries and step reports |
-//! | `analysis` | no | `analysis`: linear models with names, modes (nalgebra), trim, sweeps, JSON/MATLAB/Python/Markdown export |
+//! | `analysis` | no | `analysis`: linear models with names, modes (faer's eigenvalues), trim, sweeps, JSON/MATLAB/Python/Markdown export |
+//! | `trim` | no | `analysis::trim` alone (what `analysis` includes, without faer) |
 //! | `study` | no | `study`: one model over a table of cases on every core (rayon), a progress bar (indicatif), results in memory or as CSV shards that a study resumes from |
 //! | `parquet` | no | Parquet shards for studies (the arrow and parquet crates: from clean on 2 cores, about 30 s more to build for debug, 2 min 20 s for release; `study` alone adds 6 s) |
 //!
@@ -111,7 +112,7 @@
 #[cfg(feature = "std")]
 extern crate std;
 
-#[cfg(feature = "analysis")]
+#[cfg(feature = "trim")]
 pub mod analysis;
 pub mod assembly;
 pub mod batch;

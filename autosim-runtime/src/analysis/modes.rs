@@ -88,7 +88,10 @@ impl LinearSystem {
     /// one with positive imaginary part), sorted by real part. Eigenvalues
     /// within `1e-6 ‖A‖` of zero (rigid-body and ignorable motions, whose
     /// multiple zeros the eigenvalue solver spreads by about the square
-    /// root of the rounding) are reported as exactly zero.
+    /// root of the rounding) are reported as exactly zero, and a complex
+    /// pair's real part within `1e-12 ‖A‖` of zero (an undamped
+    /// oscillation's rounding) as zero (`‖A‖` the largest entry's
+    /// magnitude, at least 1).
     pub fn modes(&self) -> Vec<Mode> {
         let scale = self.a.amax().max(1.0);
         let mut modes = Vec::new();
@@ -100,6 +103,10 @@ impl LinearSystem {
                 continue;
             }
             let l = if real { Complex::new(l.re, 0.0) } else { l };
+            // An oscillation's real part within rounding of zero is zero:
+            // neutral, not unstable by 1e-16.
+            let neutral = !real && l.re.abs() <= 1e-12 * scale;
+            let l = if neutral { Complex::new(0.0, l.im) } else { l };
             let wn = l.norm();
             // An undamped mode's ratio is 0, not the -0 of `-0.0 / wn`.
             let zeta = if l.re == 0.0 { 0.0 } else { -l.re / wn };
@@ -118,6 +125,11 @@ impl LinearSystem {
                 shape,
             });
         }
+        // Sorted again: a neutral pair's real part is now zero.
+        modes.sort_by(|a, b| {
+            let (a, b) = (a.eigenvalue, b.eigenvalue);
+            a.re.total_cmp(&b.re).then(a.im.total_cmp(&b.im))
+        });
         modes
     }
 

@@ -154,7 +154,7 @@ path = "src/lib.rs"
 pyo3-build-config = "0.30"
 
 [dependencies]
-autosim-runtime = {{ path = {path("autosim-runtime")}, default-features = false, features = ["std", "analysis"] }}
+autosim-runtime = {{ path = {path("autosim-runtime")}, default-features = false, features = ["std", "trim"] }}
 autosim-python-model = {{ path = {path("autosim-python-model")} }}
 
 [profile.release]

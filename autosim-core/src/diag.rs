@@ -485,23 +485,37 @@ fn render_footer(out: &mut String, diagnostic: &Diagnostic, gutter: usize) {
 }
 
 /// The closest of `candidates` to `word`, if it is close enough to be a
-/// likely misspelling (for "did you mean" help).
+/// likely misspelling (for "did you mean" help): one edit per three
+/// letters, at least one; a name of one or two letters is not matched to
+/// one that only replaces a letter (`Q` is no misspelling of `N`, nor
+/// `w1` of `n1`; `kk` may be one of `k`).
 pub fn did_you_mean<'a>(
     word: &str,
     candidates: impl IntoIterator<Item = &'a str>,
 ) -> Option<&'a str> {
-    let limit = (word.chars().count() / 3).max(1);
+    let word = word.to_lowercase();
+    let letters = word.chars().count();
+    let limit = (letters / 3).max(1);
     candidates
         .into_iter()
-        .map(|candidate| {
-            (
-                edit_distance(&word.to_lowercase(), &candidate.to_lowercase()),
-                candidate,
-            )
+        .map(|candidate| (edit_distance(&word, &candidate.to_lowercase()), candidate))
+        .filter(|&(distance, candidate)| {
+            distance <= limit
+                && !(letters < 3 && distance > 0 && replaces_a_letter(&word, candidate))
         })
-        .filter(|&(distance, _)| distance <= limit)
         .min_by_key(|&(distance, _)| distance)
         .map(|(_, candidate)| candidate)
+}
+
+/// Whether `candidate` is `word` with a letter replaced (not inserted,
+/// removed or swapped): as long, other letters.
+fn replaces_a_letter(word: &str, candidate: &str) -> bool {
+    let sorted = |s: &str| {
+        let mut c: Vec<char> = s.to_lowercase().chars().collect();
+        c.sort_unstable();
+        c
+    };
+    word.chars().count() == candidate.chars().count() && sorted(word) != sorted(candidate)
 }
 
 /// Optimal-string-alignment distance (Levenshtein plus adjacent swaps).
@@ -604,6 +618,12 @@ mod tests {
         assert_eq!(did_you_mean("parnet", keys), Some("parent"));
         assert_eq!(did_you_mean("Joint", keys), Some("joint"));
         assert_eq!(did_you_mean("xyz", keys), None);
+        assert_eq!(did_you_mean("Q", ["N", "B"]), None);
+        assert_eq!(did_you_mean("w1", ["n1", "u1"]), None);
+        assert_eq!(did_you_mean("B", ["b"]), Some("b"));
+        assert_eq!(did_you_mean("wlx", ["w1x", "n1"]), Some("w1x"));
+        assert_eq!(did_you_mean("kk", ["k", "m"]), Some("k"));
+        assert_eq!(did_you_mean("1u", ["u1"]), Some("u1"));
         assert_eq!(edit_distance("", "ab"), 2);
     }
 

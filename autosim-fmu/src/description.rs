@@ -186,27 +186,22 @@ fn scalars(
                 let s = i.states.state(states[k]);
                 // An initial value computed from parameters is no start
                 // value an importer could set and keep: it follows them.
-                if deps.initial[states[k]].is_empty() {
-                    Scalar {
-                        name: s.name.clone(),
-                        causality: "local",
-                        variability: "continuous",
-                        initial: Some("exact"),
-                        description: format!("State {} of the model", s.name),
-                        element: real(&s.unit, Some(x0[states[k]]), None),
-                    }
+                let (initial, start, how) = if deps.initial[states[k]].is_empty() {
+                    ("exact", Some(x0[states[k]]), "")
                 } else {
-                    Scalar {
-                        name: s.name.clone(),
-                        causality: "local",
-                        variability: "continuous",
-                        initial: Some("calculated"),
-                        description: format!(
-                            "State {} of the model, its initial value computed from parameters",
-                            s.name
-                        ),
-                        element: real(&s.unit, None, None),
-                    }
+                    (
+                        "calculated",
+                        None,
+                        ", its initial value computed from parameters",
+                    )
+                };
+                Scalar {
+                    name: s.name.clone(),
+                    causality: "local",
+                    variability: "continuous",
+                    initial: Some(initial),
+                    description: format!("State {} of the model{how}", s.name),
+                    element: real(&s.unit, start, None),
                 }
             }
             Variable::Derivative(k) => {

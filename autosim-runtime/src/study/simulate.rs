@@ -78,9 +78,9 @@ impl Keep {
     }
 
     /// Keep `quantities` (states, outputs or discrete variables) at each
-    /// of `times`, which must
-    /// be output times of the run (the start, the stop, or
-    /// `start + k·output_interval`): a field `<quantity>@<time>` each.
+    /// of `times`, which must be output times of the run (the start, the
+    /// stop, or `start + k·output_interval`): a field `<quantity>@<time>`
+    /// each.
     pub fn at(mut self, times: &[f64], quantities: &[&str]) -> Keep {
         for t in times {
             for q in quantities {
@@ -91,8 +91,8 @@ impl Keep {
     }
 
     /// Keep a statistic of a state, output or discrete variable over the
-    /// output times: a field
-    /// `<statistic>:<quantity>` (`min`, `max`, `mean`, `rms`, `maxabs`).
+    /// output times: a field `<statistic>:<quantity>` (`min`, `max`,
+    /// `mean`, `rms`, `maxabs`).
     pub fn statistic(mut self, quantity: &str, statistic: Statistic) -> Keep {
         self.statistics.push((quantity.to_string(), statistic));
         self

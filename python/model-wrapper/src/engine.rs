@@ -53,8 +53,8 @@ pub trait Engine: Send + Sync {
     /// The discrete variables' values (declaration order): their initial
     /// values, which the equations read outside a simulation.
     fn discrete(&self) -> Vec<f64>;
-    /// Sets every discrete variable (what the equations read until the
-    /// next call).
+    /// Sets every discrete variable (what the equations read until they
+    /// are set again).
     fn set_discrete(&mut self, values: &[f64]);
     /// `dx/dt` at `(t, x)` with the current inputs.
     fn derivatives(&mut self, t: f64, x: &[f64], dx: &mut [f64]) -> Result<(), ModelError>;

@@ -186,7 +186,8 @@ class Model:
 
     def discrete_vector(self, values: Mapping[str, float] | ArrayLike, what: str = "discrete") -> np.ndarray:
         """A vector of discrete values: a mapping by name (the others at
-        their initial values) or a vector in declaration order."""
+        their initial values) or a vector in declaration order (``what``
+        names the argument in the error for a wrong length)."""
         if isinstance(values, Mapping):
             d = self.initial_discrete()
             names = self.discrete_names

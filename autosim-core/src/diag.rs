@@ -322,8 +322,14 @@ impl Diagnostics {
     /// ```
     ///
     /// `None` when there is nothing to report.
+    ///
+    /// A diagnostic at the macro's own tokens (a scene option naming
+    /// something the model lacks) is shown there instead.
     pub fn to_syn_error_in(&self, file: &SourceFile, at: proc_macro2::Span) -> Option<syn::Error> {
         let mut errors = self.sorted().into_iter().map(|diagnostic| {
+            if diagnostic.span.file.is_none() && diagnostic.span.token_range().is_some() {
+                return diagnostic.to_syn_error();
+            }
             let mut text = String::new();
             render_one(&mut text, diagnostic, file, Header::Rustc);
             syn::Error::new(at, text.trim_end())

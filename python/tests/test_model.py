@@ -143,8 +143,40 @@ def test_mass_matrix_and_forcing_give_the_accelerations(load_model: Load) -> Non
     m = model.mass_matrix(0.0, x)
     f = model.forcing(0.0, x, u=[0.7])
     assert np.allclose(m, m.T, rtol=0, atol=1e-15)
-    du = model.derivatives(0.0, x)[model.n_states - model.n_speeds :]
+    du = model.derivatives(0.0, x, u=[0.7])[model.n_states - model.n_speeds :]
     assert np.allclose(m @ du, f, rtol=1e-12, atol=1e-12)
+
+
+def test_an_input_given_to_an_evaluation_holds_for_that_call_only(load_model: Load) -> None:
+    model = load_model(PENDULUM)
+    x = model.state(q=0.3, u=0.1)
+    model.inputs["torque"] = 0.25
+    # The torque's angular acceleration is torque / (m L^2) (m = 1.3 kg, L = 0.7 m).
+    pushed = model.derivatives(0.0, x, u=[1.25])[1] - model.derivatives(0.0, x)[1]
+    assert pushed == pytest.approx(1.0 / (1.3 * 0.49), rel=1e-12)
+    for call in (
+        lambda: model.derivatives(0.0, x, u={"torque": 2.0}),
+        lambda: model.outputs(0.0, x, u=2.0),
+        lambda: model.derivatives(0.0, np.array([x, x]), u=[2.0]),
+        lambda: model.derivatives(0.0, np.array([x, x]), u=[[2.0], [3.0]]),
+        lambda: model.forcing(0.0, x, u=[2.0]),
+        lambda: model.linearize(0.0, x, u=[2.0]),
+    ):
+        call()
+        assert model.inputs["torque"] == 0.25
+    with pytest.raises(ValueError):
+        model.derivatives(0.0, x, u=[1.0, 2.0])
+    assert model.inputs["torque"] == 0.25, "a failed call restores nothing it did not change"
+
+
+def test_unknown_names_suggest_the_closest_whatever_the_case(load_model: Load) -> None:
+    model = load_model(PENDULUM)
+    with pytest.raises(KeyError, match="did you mean 'm'"):
+        model.parameters.set(M=2.0)
+    with pytest.raises(KeyError, match="did you mean 'torque'"):
+        model.inputs["torq"] = 1.0
+    with pytest.raises(KeyError, match="did you mean 'L'"):
+        model.parameters["l"]
 
 
 def test_linearization_against_central_differences_and_control(load_model: Load) -> None:

@@ -199,6 +199,20 @@ class Model:
         return as_vector(values, len(self.interface.discrete), what)
 
     @contextmanager
+    def _inputs_set(self, u: Inputs) -> Iterator[None]:
+        """The inputs at ``u`` inside the block (``None``: unchanged), the
+        model's own again after it."""
+        if u is None:
+            yield
+            return
+        held = self._native.inputs()
+        self.set_inputs(u)
+        try:
+            yield
+        finally:
+            self._native.set_inputs(held)
+
+    @contextmanager
     def _discrete_set(self, values: Discrete) -> Iterator[None]:
         """The discrete variables at ``values`` inside the block (``None``:
         unchanged), their initial values again after it."""
@@ -255,10 +269,7 @@ class Model:
         us = None
         if u is not None:
             us = np.ascontiguousarray(u, dtype=np.float64)
-            if us.ndim == 1:
-                self.set_inputs(us)
-                us = None
-            elif us.ndim != 2:
+            if us.ndim != 2:
                 raise ValueError(f"u must have shape (n, {len(self.input_names)})")
         return self._native.many(ts, xs, us, outputs)
 
@@ -270,9 +281,9 @@ class Model:
         ``x`` of shape ``(n_states,)`` gives one derivative; of shape
         ``(n, n_states)`` one per row, computed in one call with the GIL
         released (``t`` then one time or one per row, ``u`` one input row
-        for all or one per row). ``u`` (a vector, mapping or number) sets
-        the model's inputs first and they stay set; rows of ``u`` apply to
-        their row only. With one time and no rows of ``u`` the rows go
+        for all or one per row). ``u`` (a vector, mapping or number) gives
+        the inputs for this call only (the model's own are unchanged, as
+        for ``discrete``); rows of ``u`` apply to their row only. With one time and no rows of ``u`` the rows go
         through the model's ``derivatives_batch``: a model whose settings
         have ``lanes: true`` computes four rows per call in vector
         instructions, with the same bits as one call per row; with a time
@@ -294,11 +305,11 @@ class Model:
 
     def _evaluate(self, t: Any, x: ArrayLike, u: Any, discrete: Discrete, outputs: bool) -> np.ndarray:
         xs = np.asarray(x, dtype=np.float64)
-        with self._discrete_set(discrete):
+        # Rows of `u` go to the native loop; one input vector holds for the call.
+        u_rows = xs.ndim == 2 and u is not None and not isinstance(u, Mapping) and np.ndim(u) == 2
+        with self._discrete_set(discrete), self._inputs_set(None if u_rows else u):
             if xs.ndim == 2:
-                return self._rows(t, xs, u, outputs)
-            if u is not None:
-                self.set_inputs(u)
+                return self._rows(t, xs, u if u_rows else None, outputs)
             one = self._native.outputs if outputs else self._native.derivatives
             return one(float(t), as_vector(xs, self._nx, "x"))  # type: ignore[arg-type]
 
@@ -331,10 +342,9 @@ class Model:
 
     def forcing(self, t: float, x: ArrayLike, u: Any = None, *, discrete: Discrete = None) -> np.ndarray:
         """The forcing vector ``f(q, u, t)`` of ``M du/dt = f`` (with inputs
-        ``u``, or the current inputs; ``discrete`` as in :meth:`derivatives`)."""
-        if u is not None:
-            self.set_inputs(u)
-        with self._discrete_set(discrete):
+        ``u`` for this call, or the current inputs; ``discrete`` as in
+        :meth:`derivatives`)."""
+        with self._discrete_set(discrete), self._inputs_set(u):
             return self._native.forcing(float(t), as_vector(x, self._nx, "x"))
 
     def linearize(
@@ -342,20 +352,19 @@ class Model:
     ) -> LinearModel:
         """The linear model ``dx/dt ≈ A δx + B δu``, ``y ≈ C δx + D δu`` about
         ``(t, x, u)`` (defaults: time 0, the initial state, the current
-        inputs), from symbolic derivatives of the equations, with the
+        inputs; ``u`` holds for this call only), from symbolic derivatives
+        of the equations, with the
         discrete variables at ``discrete`` (as in :meth:`derivatives`;
         default their initial values): a model with modes is linearized
         in the mode given. For models with
         position constraints the states are the independent ones
         (:attr:`LinearModel.state_names`). Models compiled with
         ``linearize=False`` raise ``ValueError``."""
-        if u is not None:
-            self.set_inputs(u)
         linear = self.interface.linear_states
         if linear is None:
             raise ValueError(f"{self.name} was loaded without its linearization: load it with linearize=True")
         xv = self.initial_state() if x is None else as_vector(x, self._nx, "x")
-        with self._discrete_set(discrete):
+        with self._discrete_set(discrete), self._inputs_set(u):
             a, b, c, d = self._native.linearize(float(t), xv, len(linear))
         names = self.state_names
         return LinearModel(
@@ -508,7 +517,8 @@ class Model:
         as they are now): ``cases`` (:class:`autosim.Cases`), ``keep``
         (:class:`autosim.Keep`), ``t_end`` and the settings of
         :class:`autosim.Study` (``t0``, ``h``, ``output_interval``,
-        ``method``, ``rtol``, ``atol``, ``max_steps``). Run it with
+        ``method``, ``rtol``, ``atol``, ``max_steps``, ``event_tolerance``,
+        ``event_samples``, ``zeno_events``, ``zeno_interval``). Run it with
         :meth:`autosim.Study.run`."""
         from ._study import Study
 

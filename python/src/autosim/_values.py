@@ -15,8 +15,18 @@ ArrayLike = Union[Sequence[float], np.ndarray]
 
 
 def unknown_name(kind: str, name: str, names: Sequence[str]) -> KeyError:
-    """A KeyError naming ``name`` and the closest known names."""
-    close = difflib.get_close_matches(name, list(names), n=3)
+    """A KeyError naming ``name``, the known names and the closest of them
+    (spelled alike whatever the case, or one the start of the other)."""
+    by_lower = {n.lower(): n for n in names}
+    close = [by_lower[c] for c in difflib.get_close_matches(name.lower(), list(by_lower), n=3)]
+    lower = name.lower()
+    close += [
+        n
+        for n in names
+        if n not in close
+        and min(len(n), len(name)) >= 2
+        and (n.lower().startswith(lower) or lower.startswith(n.lower()))
+    ][: 3 - len(close)]
     hint = f"; did you mean {', '.join(repr(c) for c in close)}?" if close else ""
     return KeyError(f"{kind} {name!r} is not one of the model's {kind}s {list(names)}{hint}")
 

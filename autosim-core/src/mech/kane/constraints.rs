@@ -441,8 +441,8 @@ impl System {
             )
         } else {
             option(
-                "this constraint is redundant: at every configuration it restricts nothing the others do not",
-                "remove it: it repeats the others (a position constraint's time derivative is already a speed constraint: do not declare that again)",
+                "this constraint is redundant or contradicts the others: at every configuration it restricts no speed the others do not",
+                "remove it if it repeats the others (a position constraint's time derivative is already a speed constraint: do not declare that again); if it asks for another position along the same direction, the two cannot both hold: keep one",
             )
         }
     }

@@ -509,7 +509,16 @@ pub fn did_you_mean<'a>(
             distance <= limit
                 && !(letters < 3 && distance > 0 && replaces_a_letter(&word, candidate))
         })
-        .min_by_key(|&(distance, _)| distance)
+        // Of equally close names, the one that starts most like the word
+        // (`ph` is `phi` more likely than `P`).
+        .min_by_key(|&(distance, candidate)| {
+            let common = word
+                .chars()
+                .zip(candidate.to_lowercase().chars())
+                .take_while(|(a, b)| a == b)
+                .count();
+            (distance, std::cmp::Reverse(common))
+        })
         .map(|(_, candidate)| candidate)
 }
 
@@ -630,6 +639,7 @@ mod tests {
         assert_eq!(did_you_mean("wlx", ["w1x", "n1"]), Some("w1x"));
         assert_eq!(did_you_mean("kk", ["k", "m"]), Some("k"));
         assert_eq!(did_you_mean("1u", ["u1"]), Some("u1"));
+        assert_eq!(did_you_mean("ph", ["P", "phi", "s"]), Some("phi"));
         assert_eq!(edit_distance("", "ab"), 2);
     }
 

@@ -400,22 +400,27 @@ pub(super) fn finish(r: &mut Resolver<'_>) {
                 Ok(Value::Vector(moment_about(r, *b, *p, x)))
             }
             Quantity::Potential(bs) => Ok(Value::Scalar(r.sys.gravitational_energy(bs))),
+            // The name was resolved to a constraint, a force or a moment;
+            // absent from the system, that item failed and its own error
+            // is reported (a second one here would name the wrong kind).
             Quantity::ConstraintForce(name) => {
                 match r.sys.constraints.iter().position(|c| &c.name == name) {
                     Some(k) => r.sys.constraint_forces.push((k, d.symbols[0])),
-                    None => r.error(
+                    None if r.diags.is_empty() => r.error(
                         d.span,
                         format!("`constraint_force` needs a constraint, but `{name}` is a force, moment or motion"),
                     ),
+                    None => {}
                 }
                 continue;
             }
             Quantity::Power(name) => match r.sys.power_of(name) {
                 Some(Ok(p)) => Ok(Value::Scalar(p)),
                 Some(Err(e)) => Err(e.to_string()),
-                None => Err(format!(
+                None if r.diags.is_empty() => Err(format!(
                     "`power` needs a force or moment, but `{name}` is a constraint or motion"
                 )),
+                None => continue,
             },
         };
         match value {

@@ -156,8 +156,11 @@ pub fn model_tokens(prog: &Program, options: &EmitOptions) -> TokenStream {
         #module_doc
         // Names come from the model (`KB`, `IB11`); literals are the model's
         // values; numerically equal but symbolically distinct terms can
-        // print alike (`a - a` after rounding) or as `x * -1.0`.
+        // print alike (`a - a` after rounding) or as `x * -1.0`. A crate
+        // uses what it needs of the model (`include_model!` in a private
+        // module of a binary would warn of every constant it leaves).
         #[allow(
+            dead_code,
             non_snake_case,
             clippy::approx_constant,
             clippy::too_many_arguments,

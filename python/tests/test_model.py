@@ -392,3 +392,11 @@ def test_a_pickled_model_is_the_same_model_in_another_process(load_model: Load, 
     values = [float(v) for v in run.stdout.split()]
     assert values[:2] == [1.7, 0.25]
     assert values[2:] == list(model.derivatives(0.0, x))
+
+
+def test_a_misspelled_load_option_is_named_with_the_fix(repo: Path) -> None:
+    with pytest.raises(
+        TypeError,
+        match=r"load\(\) got an unexpected keyword argument 'linearise'; did you mean 'linearize'\?",
+    ):
+        autosim.load(repo / PENDULUM, linearise=True)

@@ -15,6 +15,8 @@ about a millisecond. The result is a :class:`Model`.
 
 from __future__ import annotations
 
+import difflib
+import inspect
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -141,6 +143,14 @@ def load(path: str | Path, **options: Any) -> Model:
     """Compiles the model file at ``path`` (the options as in
     :func:`loads`) and returns it as a :class:`Model`; a file loaded before
     with the same text and options comes from the cache."""
+    known = [n for n in inspect.signature(loads).parameters if n not in ("text", "path")]
+    for key in options:
+        if key not in known:
+            close = difflib.get_close_matches(key, known, n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise TypeError(
+                f"load() got an unexpected keyword argument {key!r}{hint} (its options: {', '.join(known)})"
+            )
     file = Path(path)
     try:
         text = file.read_text(encoding="utf-8")

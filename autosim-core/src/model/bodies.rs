@@ -22,16 +22,18 @@ impl<'a> Resolver<'a> {
             self.report_cycle(bodies, cycle);
         }
         for i in ordered.order {
-            if !parent_ok[i] {
-                continue;
-            }
             let b = bodies[i];
             let parent = parents[i].map_or("N".to_string(), |j| bodies[j].name.text.clone());
-            if self.sys.body_named(&parent).is_none() {
-                continue; // the parent failed; already reported
-            }
-            if let Some(spec) = self.body_spec(b, parent) {
+            // A bad parent, a failed parent (already reported), or options
+            // that fail: the body is not added.
+            if parent_ok[i]
+                && self.sys.body_named(&parent).is_some()
+                && let Some(spec) = self.body_spec(b, parent)
+            {
                 self.add_body(b, spec);
+            }
+            if self.sys.body_named(&b.name.text).is_none() {
+                self.names_of_failed_bodies.extend(declared_names(b));
             }
         }
         // Unit-vector shorthands: `b1` for body `B`, `n1` for N.
@@ -360,4 +362,19 @@ fn store<T>(slot: &mut Option<T>, value: Option<T>) -> bool {
         *slot = value;
     }
     given
+}
+
+/// The coordinate and speed names a body declares (`q: [...]`,
+/// `u: [...]`), read without checking them.
+fn declared_names(b: &ast::Body) -> Vec<String> {
+    b.options
+        .entries
+        .iter()
+        .filter(|o| matches!(o.key, BodyKey::Q | BodyKey::U))
+        .flat_map(|o| items(&o.value))
+        .filter_map(|e| match e {
+            Expr::Name(n) => Some(n.text.clone()),
+            _ => None,
+        })
+        .collect()
 }

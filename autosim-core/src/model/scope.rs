@@ -50,6 +50,9 @@ pub(crate) struct Resolver<'a> {
     pub points: Vec<(&'a ast::Point, Lazy<PointId>)>,
     /// Unit-vector shorthands like `b1` (lower-case body name and axis).
     pub uv_short: FxHashMap<String, (BodyId, crate::mech::Axis)>,
+    /// The coordinate and speed names of bodies that could not be added
+    /// (their error is reported): a use of one is no second mistake.
+    pub names_of_failed_bodies: Vec<String>,
     /// How many `let`s and points are being evaluated, one inside another
     /// (each evaluates what it uses first: see [`MAX_PENDING`]).
     pub pending: usize,
@@ -97,6 +100,7 @@ impl<'a> Resolver<'a> {
             lets: Vec::new(),
             points: Vec::new(),
             uv_short: FxHashMap::default(),
+            names_of_failed_bodies: Vec::new(),
             pending: 0,
             too_many_pending: false,
             scene: super::Scene::default(),
@@ -184,8 +188,12 @@ impl<'a> Resolver<'a> {
         v
     }
 
-    /// An "unknown name" diagnostic with a suggestion.
+    /// An "unknown name" diagnostic with a suggestion (none for a name a
+    /// body declares that failed: that body's error says what is wrong).
     pub fn unknown(&mut self, name: &ast::Name, what: &str) {
+        if self.names_of_failed_bodies.contains(&name.text) {
+            return;
+        }
         let known = self.known_names();
         let mut d = Diagnostic::error(name.span, format!("unknown {what} `{}`", name.text));
         if super::operations::is_function(&name.text) {

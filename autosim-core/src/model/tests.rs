@@ -283,3 +283,22 @@ fn a_lock_of_a_coordinate_a_quaternion_does_not_have_is_reported() {
     let got = resolved("model M;\nbody E { rotate: quaternion, q: [a, b, c, d, e, f], lock: f }");
     assert!(got.contains("`f` is not a coordinate of body `E`"), "{got}");
 }
+
+/// A body that fails (a misspelled parent, two rotations) reports its own
+/// mistake; the uses of its coordinates and speeds add none (they were
+/// "unknown names" with a misleading "did you mean").
+#[test]
+fn a_failed_body_hides_no_mistake_but_adds_none() {
+    for body in [
+        "body L2 { parent: Lnk1, rotate: 2, q: [th2], u: [w2], mass: 1, inertia: 0 }",
+        "body L2 { rotate: [1, 2], q: [th2, ph2], u: [w2, v2], mass: 1, inertia: 0 }",
+    ] {
+        let got = resolved(&format!(
+            "model M;\nbody L1 {{ rotate: 2, q: [th1], u: [w1], mass: 1, inertia: 0 }}\n{body}\n\
+             output spin [rad/s] = w2;\noutput tilt [rad] = th2 + th1 + kk;\n"
+        ));
+        assert_eq!(got.matches("error:").count(), 2, "{got}");
+        assert!(got.contains("error: unknown name `kk`"), "{got}");
+        assert!(!got.contains("`w2`") && !got.contains("`th2`"), "{got}");
+    }
+}

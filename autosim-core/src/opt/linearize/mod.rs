@@ -42,6 +42,9 @@ pub(crate) struct Linearizable<'a> {
     pub closure: Option<(&'a [Nid], Vec<usize>, &'a Elimination)>,
     /// Number of inputs.
     pub inputs: usize,
+    /// The relative step of user functions' central differences (the
+    /// cube root of the float type's epsilon).
+    pub user_step: f64,
 }
 
 /// The linear model's entries: `A` (row-major over the linear states),
@@ -118,7 +121,7 @@ impl Linearizable<'_> {
         accel: &[Nid],
         mass_du: Option<&[Nid]>,
     ) -> (Column, Vec<Nid>) {
-        let mut t = Tangent::new(leaf);
+        let mut t = Tangent::new(leaf, self.user_step);
         let n = self.forcing.len();
         let mut rhs = Vec::with_capacity(n);
         for i in 0..n {
@@ -142,7 +145,7 @@ impl Linearizable<'_> {
         }
         let ddu = self.factor.solve(ir, &rhs);
         // From here on the accelerations move with the leaf.
-        let mut t = Tangent::new(leaf);
+        let mut t = Tangent::new(leaf, self.user_step);
         for (k, d) in ddu.iter().enumerate() {
             t.seed(accel[k], *d);
         }

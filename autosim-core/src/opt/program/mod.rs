@@ -10,7 +10,7 @@ pub(super) mod verify;
 pub use crate::opt::lower::events::Assigned;
 
 use crate::opt::error::ProgramError;
-use crate::opt::input::{Formulation, Input};
+use crate::opt::input::{FloatType, Formulation, Input};
 use crate::opt::interface::{Interface, StateLayout};
 use crate::opt::ir::{Ir, Leaf, Nid};
 use crate::opt::linearize::{Linear, Linearizable};
@@ -314,6 +314,10 @@ fn linearizable<'a>(lowered: &'a Lowered, interface: &Interface) -> Linearizable
             (a.residuals.as_slice(), slots, &a.elim)
         }),
         inputs: interface.model.inputs.len(),
+        user_step: match interface.float {
+            FloatType::F64 => f64::EPSILON.cbrt(),
+            FloatType::F32 => f64::from(f32::EPSILON).cbrt(),
+        },
     }
 }
 

@@ -439,11 +439,19 @@ fn build_fmus(out: &Path) -> Vec<PathBuf> {
             .out_dir(out)
             .work_dir(out.join("build")),
     );
+    // Another default experiment than its crate's build script knows: the
+    // GUIDs must still agree (FMPy refused to instantiate such an FMU).
+    let experiment = autosim_fmu::Experiment {
+        stop: 3.0,
+        step: 0.005,
+        ..autosim_fmu::Experiment::default()
+    };
     fmus.push(
         autosim_fmu::Fmu::new(root.join("tests/fmi/ball.sim"))
             .out_dir(out)
             .work_dir(out.join("build"))
-            .user_crate(root.join("tests/fmi/ball_fmu")),
+            .user_crate(root.join("tests/fmi/ball_fmu"))
+            .experiment(experiment),
     );
     let built = autosim_fmu::build_all(&fmus).unwrap_or_else(|e| panic!("{e}"));
     built.into_iter().map(|b| b.fmu).collect()

@@ -351,6 +351,27 @@ fn direction_name(d: Direction) -> &'static str {
 pub unsafe fn write_event_interface<E: Export>(buffer: *mut u8, length: usize) -> usize {
     let text = std::panic::catch_unwind(|| EventInterface::of::<E>().to_text());
     let Ok(text) = text else { return 0 };
+    // SAFETY: as this function's.
+    unsafe { write_text(&text, buffer, length) }
+}
+
+/// The body of the exported `autosim_fmi_guid(buffer, length)`: the GUID
+/// the library's `fmi2Instantiate` accepts, written as
+/// [`write_event_interface`] writes its text (`autosim-fmu` checks it
+/// against the description it packages the library with).
+///
+/// # Safety
+/// `buffer` points to `length` writable bytes (or `length` is 0).
+pub unsafe fn write_guid<E: Export>(buffer: *mut u8, length: usize) -> usize {
+    // SAFETY: as this function's.
+    unsafe { write_text(E::GUID, buffer, length) }
+}
+
+/// Writes what fits of `text` into `buffer`; returns its full length.
+///
+/// # Safety
+/// `buffer` points to `length` writable bytes (or `length` is 0).
+unsafe fn write_text(text: &str, buffer: *mut u8, length: usize) -> usize {
     let n = text.len().min(length);
     if n > 0 && !buffer.is_null() {
         // SAFETY: the caller passes `length` writable bytes.

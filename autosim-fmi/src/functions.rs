@@ -28,6 +28,17 @@ macro_rules! fmi2_functions {
             pub unsafe extern "C" fn autosim_fmi_event_interface(buffer: *mut u8, length: usize) -> usize {
                 unsafe { $crate::events::write_event_interface::<$e>(buffer, length) }
             }
+            /// Not an FMI function: the GUID `fmi2Instantiate` accepts,
+            /// read by `autosim-fmu` to check the library against the
+            /// description it packages it with. Writes what fits into
+            /// `buffer` and returns the GUID's length.
+            ///
+            /// # Safety
+            /// `buffer` points to `length` writable bytes.
+            #[unsafe(no_mangle)]
+            pub unsafe extern "C" fn autosim_fmi_guid(buffer: *mut u8, length: usize) -> usize {
+                unsafe { $crate::events::write_guid::<$e>(buffer, length) }
+            }
             #[unsafe(no_mangle)]
             pub extern "C" fn fmi2GetVersion() -> FmiString {
                 c"2.0".as_ptr()

@@ -54,7 +54,10 @@ pub struct Options {
 
 /// A GUID for a description text (without its GUID): name-based (UUID
 /// version 5), so the same model built the same way gets the same GUID
-/// and any change to the description gets another.
+/// and any change to the description gets another. The caller passes the
+/// text with the default experiment: the experiment is advice to the
+/// importer, not the model, and a user crate's build script
+/// ([`generate`](crate::generate)) does not know it.
 pub fn guid(text: &str) -> String {
     let id = uuid::Uuid::new_v5(&uuid::Uuid::NAMESPACE_OID, text.as_bytes());
     format!("{{{id}}}")

@@ -26,7 +26,7 @@
 
 mod cargo;
 pub mod description;
-mod events;
+mod library;
 mod package;
 pub mod units;
 
@@ -207,7 +207,9 @@ pub fn build_all(fmus: &[Fmu]) -> Result<Vec<Built>, FmuError> {
     let libraries = cargo::build(&work, fmus, &prepared)?;
     let mut out = Vec::with_capacity(fmus.len());
     for ((fmu, mut p), library) in fmus.iter().zip(prepared).zip(libraries) {
-        p.add_events(events::of_library(&library)?);
+        let told = library::Told::of(&library)?;
+        told.check_guid(&p.guid, fmu.user_crate.as_deref())?;
+        p.add_events(told.events);
         let dir = fmu.out();
         std::fs::create_dir_all(&dir).map_err(io(&dir))?;
         let path = dir.join(format!("{}.fmu", p.identifier));
@@ -279,7 +281,11 @@ fn prepare(fmu: &Fmu) -> Result<Prepared, FmuError> {
         directional: linearize,
         events: autosim_fmi::EventInterface::default(),
     };
-    options.guid = description::guid(&description::model_description(&program, &deps, &options));
+    let identity = description::Options {
+        experiment: Experiment::default(),
+        ..options.clone()
+    };
+    options.guid = description::guid(&description::model_description(&program, &deps, &identity));
     let text = description::model_description(&program, &deps, &options);
     let sources = model_sources(&fmu.work(), &identifier, &fmu.model, scene)?;
     Ok(Prepared {
@@ -393,4 +399,33 @@ pub fn generate(model: impl AsRef<Path>, out_dir: Option<&Path>) -> Result<Gener
         rust_file,
         fmu_file,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A user crate's build script knows no experiment: the GUID must not
+    /// depend on it, the description must say it.
+    #[test]
+    fn the_guid_does_not_depend_on_the_default_experiment() {
+        let model =
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/models/quarter_car.sim");
+        let work = std::env::temp_dir().join(format!("autosim-fmu-guid-{}", std::process::id()));
+        let plain = prepare(&Fmu::new(&model).work_dir(&work)).expect("compiles");
+        let short = Experiment {
+            stop: 3.0,
+            step: 0.001,
+            ..Experiment::default()
+        };
+        let other = prepare(&Fmu::new(&model).work_dir(&work).experiment(short)).expect("compiles");
+        let _ = std::fs::remove_dir_all(&work);
+        assert_eq!(plain.guid, other.guid);
+        assert_ne!(plain.description, other.description);
+        assert!(
+            other.description.contains("stopTime=\"3.0\""),
+            "{}",
+            other.description
+        );
+    }
 }

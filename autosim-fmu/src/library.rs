@@ -38,8 +38,7 @@ impl Told {
         };
         // SAFETY: the library was just built by cargo from a crate calling
         // `autosim_fmi::export_fmi2!`; loading it runs no code of the model.
-        let library =
-            unsafe { libloading::Library::new(path) }.map_err(|e| fail(e.to_string()))?;
+        let library = unsafe { libloading::Library::new(path) }.map_err(|e| fail(e.to_string()))?;
         let events = text(&library, b"autosim_fmi_event_interface\0").map_err(fail)?;
         let guid = text(&library, b"autosim_fmi_guid\0").map_err(fail)?;
         Ok(Told {

@@ -268,3 +268,74 @@ fn a_study_locates_events_on_the_methods_continuous_extension() {
     assert_eq!(t_half.to_bits(), model.discrete.t_half.to_bits());
     assert_eq!(x.to_bits(), state[0].to_bits());
 }
+
+mod end_stop {
+    autosim::model! {
+        /// A unit mass pushed from rest by a constant force `F`, its run
+        /// ended when it reaches `x = 1` (at `t = √(2/F)`).
+        model Pushed;
+        parameters { m = 1 [kg] }
+        input F [N] = 2;
+        body Mass { translate: 1, q: [x], u: [v], mass: m, inertia: 0 }
+        force push { on: Mass, along: n1, magnitude: F }
+        event end [m] { indicator: x - 1, direction: rising, stop: true }
+    }
+}
+
+/// A case a terminal event ends between output times keeps its outputs
+/// before the event, NaN after it (the event's state went into the next
+/// output's slot), and its mean over the outputs it had; checked against
+/// `x = F t²/2`.
+#[test]
+fn a_terminal_event_leaves_the_outputs_after_it_empty() {
+    use autosim::runtime::study::{Cases, Keep, Method, Simulate, Statistic, Study};
+    use end_stop::pushed::Pushed;
+    // Stops at 0.79 and 1.25 s, between output times.
+    let settings = RunSettings::new(0.0, 2.0, 1e-3, 0.5);
+    let keep = Keep::new()
+        .at(&[1.5], &["x"])
+        .history(&["x"])
+        .statistic("x", Statistic::Mean)
+        .final_state();
+    let task = Simulate::new(settings, Method::Rk4, keep).unwrap();
+    let results = Study::new(
+        Pushed::new,
+        Cases::new().grid("F", &[3.2, 1.28]).unwrap(),
+        task,
+    )
+    .progress(false)
+    .run_cases(0..2)
+    .unwrap();
+    assert_eq!(results.failures(), 0);
+    let field = |name: &str| results.field(name).unwrap();
+    let (at, history, mean, last) = (
+        field("x@1.5"),
+        field("history:x"),
+        field("mean:x"),
+        field("final:x"),
+    );
+    let x = |f: f64, t: f64| f * t * t / 2.0;
+    for (case, f) in [3.2f64, 1.28].into_iter().enumerate() {
+        let row = &history[case * 5..case * 5 + 5];
+        let stop = (2.0 / f).sqrt();
+        let kept: Vec<f64> = (0..5)
+            .map(|k| 0.5 * k as f64)
+            .filter(|t| *t <= stop)
+            .collect();
+        for (k, t) in kept.iter().enumerate() {
+            assert!((row[k] - x(f, *t)).abs() < 1e-12, "case {case}: {row:?}");
+        }
+        assert!(
+            row[kept.len()..].iter().all(|v| v.is_nan()),
+            "case {case}: {row:?}"
+        );
+        assert!(at[case].is_nan(), "x@1.5 after the stop: {}", at[case]);
+        let want = kept.iter().map(|t| x(f, *t)).sum::<f64>() / kept.len() as f64;
+        assert!(
+            (mean[case] - want).abs() < 1e-12,
+            "mean {} against {want}",
+            mean[case]
+        );
+        assert!((last[case] - 1.0).abs() < 1e-9, "final x {}", last[case]);
+    }
+}

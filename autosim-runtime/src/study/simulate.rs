@@ -162,7 +162,8 @@ pub(super) struct Plan {
     statistics: Vec<(Quantity, Statistic, usize)>,
     /// (quantity, first slot).
     history: Vec<(Quantity, usize)>,
-    samples: u64,
+    /// Outputs of a run to its stop (the start included).
+    pub(super) samples: u64,
 }
 
 /// The simulation task: each case runs with [`run`] from `settings.start`
@@ -269,8 +270,9 @@ fn plan<M: Model>(settings: &RunSettings<M::Float>, keep: &Keep) -> Result<Plan,
 }
 
 /// The observer of one run: writes kept samples into the case's row.
-struct Recorder<'a, M> {
+struct Recorder<'a, M: Model> {
     plan: &'a Plan,
+    settings: &'a RunSettings<M::Float>,
     out: &'a mut [f64],
     /// The discrete variables at the output being observed.
     discrete: [f64; MAX_DISCRETE],
@@ -291,7 +293,12 @@ impl<M: Model> Observer<M> for Recorder<'_, M> {
         Ok(())
     }
 
-    fn observe(&mut self, _t: M::Float, x: &M::State, y: &M::Outputs) -> Result<(), Self::Error> {
+    /// Records output `k`; the stop of a terminal event between output
+    /// times is not one (its state is the case's final state).
+    fn observe(&mut self, t: M::Float, x: &M::State, y: &M::Outputs) -> Result<(), Self::Error> {
+        if self.k >= self.plan.samples || t.to_f64() != output_time(self.settings, self.k) {
+            return Ok(());
+        }
         let d = &self.discrete[..M::DISCRETE_NAMES.len().min(MAX_DISCRETE)];
         self.next_at = self
             .plan
@@ -347,9 +354,11 @@ impl Plan {
         next_at
     }
 
-    /// Ends a case's row: the means, the RMS values, the final state `x`.
-    pub(super) fn end<M: Model>(&self, out: &mut [f64], x: &M::State) {
-        let n = self.samples as f64;
+    /// Ends a case's row: the means and RMS values over the `recorded`
+    /// outputs (fewer than the plan's when a terminal event ended the
+    /// run), the final state `x`.
+    pub(super) fn end<M: Model>(&self, out: &mut [f64], x: &M::State, recorded: u64) {
+        let n = recorded.max(1) as f64;
         for (_, s, slot) in &self.statistics {
             match s {
                 Statistic::Mean => out[*slot] /= n,
@@ -379,6 +388,7 @@ where
         let mut stepper = self.method.stepper::<M>()?;
         let mut recorder = Recorder {
             plan,
+            settings: &self.settings,
             out: &mut *out,
             discrete: [0.0; MAX_DISCRETE],
             k: 0,
@@ -387,7 +397,8 @@ where
         };
         run(model, &mut stepper, x, &self.settings, &mut recorder)
             .map_err(|e| CaseError::Run(IntegrationError::from(e)))?;
-        plan.end::<M>(out, x);
+        let recorded = recorder.k;
+        plan.end::<M>(out, x, recorded);
         Ok(())
     }
 

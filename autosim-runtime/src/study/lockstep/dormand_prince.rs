@@ -155,7 +155,7 @@ fn next_step<M: Model>(
         let c = &mut lanes.carry[l];
         if c.output > settings.output_count() {
             let case = lanes.case[l];
-            plan.end::<M>(outs[case], &lanes.x[l]);
+            plan.end::<M>(outs[case], &lanes.x[l], plan.samples);
             done[case] = true;
             return false;
         }

@@ -372,7 +372,7 @@ pub(super) fn simulate<'m, M: Model, const S: usize, C: Copy>(
     }
     for l in 0..lanes.n {
         let case = lanes.case[l];
-        plan.end::<M>(outs[case], &lanes.x[l]);
+        plan.end::<M>(outs[case], &lanes.x[l], plan.samples);
         done[case] = true;
     }
 }

@@ -2,6 +2,7 @@
 //! advancing to a target time with a fixed-step or adaptive method
 //! (shared by [`run`](super::run()) and [`run_sampled`](super::run_sampled)).
 
+use super::counts::{rounding, step_count};
 use super::events::{Events, Flow};
 use super::{MAX_RECORDED_INPUTS, Observer, RunError, RunSettings, RunSummary};
 use crate::error::{check_finite_outputs, check_finite_parameters};
@@ -266,16 +267,16 @@ impl<M: Model> Driver<M> {
         step: M::Float,
         observer: &mut O,
     ) -> Result<Flow, RunError<O::Error>> {
-        let tiny = M::Float::from_f64(64.0) * M::Float::EPSILON;
         let span = t_out - self.start;
-        let last = ceil_count((span / step).to_f64());
+        let scale = t_out.abs().max(self.start.abs());
+        let last = step_count(span, step, scale);
         // When the output time is a whole number of steps from the start,
         // step exactly `step` at the times `start + k step`, as a
         // hand-written loop would: user functions that keep state see the
         // same times.
         let whole = self.on_grid
             && (M::Float::from_f64(last as f64) * step - span).abs()
-                <= tiny * span.abs().max(step.abs());
+                <= rounding(span.abs().max(step.abs()), step);
         if whole {
             while self.fixed_steps < last {
                 let next = self.start + M::Float::from_f64((self.fixed_steps + 1) as f64) * step;
@@ -299,11 +300,12 @@ impl<M: Model> Driver<M> {
         loop {
             let t0 = self.t;
             let interval = t_out - t0;
-            if interval <= tiny * t_out.abs().max(t0.abs()) {
+            let scale = t_out.abs().max(t0.abs());
+            if interval <= rounding(scale, step) {
                 self.t = t_out;
                 return Ok(Flow::Continue);
             }
-            let n = ceil_count((interval / step).to_f64()).max(1);
+            let n = step_count(interval, step, scale).max(1);
             let h = interval / M::Float::from_f64(n as f64);
             let mut restarted = false;
             for j in 1..=n {
@@ -431,43 +433,5 @@ impl<F: Float> AdaptiveTrial<F> {
             info.h_next
         };
         (t, h_next, landed)
-    }
-}
-
-/// ⌈v⌉ as a count, treating values within 1e-9 (relative) above an integer
-/// as that integer (so 1.0000000000002 intervals are 1, not 2). Zero for
-/// non-positive or NaN values; saturates for huge ones.
-pub(super) fn ceil_count(v: f64) -> u64 {
-    if v.is_nan() || v <= 0.0 {
-        return 0;
-    }
-    let v = v - 1e-9 * v.max(1.0);
-    if v.is_nan() || v <= 0.0 {
-        return 0;
-    }
-    // `as` saturates; the comparison rounds up a fractional part.
-    let i = v as u64;
-    if (i as f64) < v {
-        i.saturating_add(1)
-    } else {
-        i
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::ceil_count;
-
-    #[test]
-    fn ceil_count_rounds_up_but_forgives_rounding_noise() {
-        assert_eq!(ceil_count(0.0), 0);
-        assert_eq!(ceil_count(-3.0), 0);
-        assert_eq!(ceil_count(f64::NAN), 0);
-        assert_eq!(ceil_count(1.0), 1);
-        assert_eq!(ceil_count(1.0 + 1e-13), 1);
-        assert_eq!(ceil_count(1.01), 2);
-        assert_eq!(ceil_count(10.0 / 0.1), 100);
-        assert_eq!(ceil_count(2.5), 3);
-        assert_eq!(ceil_count(1e300), u64::MAX);
     }
 }

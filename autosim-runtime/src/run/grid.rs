@@ -5,7 +5,7 @@
 //! and steps, bit for bit.
 
 use super::RunSettings;
-use super::driver::ceil_count;
+use super::counts::{rounding, step_count};
 use crate::Float;
 
 /// One thing the run does, in order.
@@ -38,7 +38,6 @@ pub(crate) fn fixed_ticks<F: Float, E>(
     mut visit: impl FnMut(Tick<F>) -> Result<(), E>,
 ) -> Result<(), E> {
     let (start, step) = (settings.start, settings.step);
-    let tiny = F::from_f64(64.0) * F::EPSILON;
     let mut t = start;
     let mut fixed_steps = 0;
     let mut on_grid = true;
@@ -46,9 +45,10 @@ pub(crate) fn fixed_ticks<F: Float, E>(
     for k in 1..=settings.output_count() {
         let t_out = settings.output_time(k);
         let span = t_out - start;
-        let last = ceil_count((span / step).to_f64());
+        let last = step_count(span, step, t_out.abs().max(start.abs()));
         let whole = on_grid
-            && (F::from_f64(last as f64) * step - span).abs() <= tiny * span.abs().max(step.abs());
+            && (F::from_f64(last as f64) * step - span).abs()
+                <= rounding(span.abs().max(step.abs()), step);
         if whole {
             while fixed_steps < last {
                 let next = start + F::from_f64((fixed_steps + 1) as f64) * step;
@@ -65,7 +65,7 @@ pub(crate) fn fixed_ticks<F: Float, E>(
             t = start + F::from_f64(last as f64) * step;
         } else {
             on_grid = false;
-            t = equal_steps(t, t_out, step, tiny, &mut visit)?;
+            t = equal_steps(t, t_out, step, &mut visit)?;
         }
         visit(Tick::Output(t))?;
     }
@@ -78,14 +78,14 @@ fn equal_steps<F: Float, E>(
     t0: F,
     t_out: F,
     step: F,
-    tiny: F,
     visit: &mut impl FnMut(Tick<F>) -> Result<(), E>,
 ) -> Result<F, E> {
     let interval = t_out - t0;
-    if interval <= tiny * t_out.abs().max(t0.abs()) {
+    let scale = t_out.abs().max(t0.abs());
+    if interval <= rounding(scale, step) {
         return Ok(t_out);
     }
-    let n = ceil_count((interval / step).to_f64()).max(1);
+    let n = step_count(interval, step, scale).max(1);
     let h = interval / F::from_f64(n as f64);
     let mut t = t0;
     for j in 1..=n {

@@ -4,6 +4,7 @@
 use core::convert::Infallible;
 use core::fmt;
 
+mod counts;
 mod driver;
 #[cfg(feature = "study")]
 pub(crate) use driver::{AdaptiveTrial, adaptive_trial};
@@ -91,7 +92,8 @@ impl<F: Float> RunSettings<F> {
 
     /// Output intervals from start to stop (the last may be shorter).
     pub(crate) fn output_count(&self) -> u64 {
-        driver::ceil_count(((self.stop - self.start) / self.output_interval).to_f64())
+        let scale = self.stop.abs().max(self.start.abs());
+        counts::step_count(self.stop - self.start, self.output_interval, scale)
     }
 
     /// The end of output interval `k` (1 to [`output_count`](Self::output_count)):

@@ -13,6 +13,7 @@
 //! function of time and state, and any integrator converges to the same
 //! answer.
 
+use super::counts::rounding;
 use super::driver::Driver;
 use super::events::Flow;
 use super::{MAX_RECORDED_INPUTS, Observer, RunError, RunSettings, RunSummary};
@@ -74,8 +75,13 @@ where
     let intervals = settings.output_count();
     let (mut j, mut k) = (1u64, 1u64);
     while k <= intervals && flow == Flow::Continue {
-        let t_sample = settings.start + M::Float::from_f64(j as f64) * period;
         let t_out = settings.output_time(k);
+        // A sample instant a rounding from an output time is that time (in
+        // `f32`, `j · period` of the last sample can round past the stop).
+        let t_sample = match settings.start + M::Float::from_f64(j as f64) * period {
+            t if (t - t_out).abs() <= rounding(t_out.abs().max(t.abs()), period) => t_out,
+            t => t,
+        };
         let target = if t_sample < t_out { t_sample } else { t_out };
         flow = driver.advance(model, stepper, x, target, settings.step, observer)?;
         if flow == Flow::Stopped {

@@ -365,8 +365,10 @@ fn store<T>(slot: &mut Option<T>, value: Option<T>) -> bool {
 }
 
 /// The coordinate and speed names a body declares (`q: [...]`,
-/// `u: [...]`), read without checking them.
+/// `u: [...]`), read without checking them, and its unit vectors'
+/// shorthands (`b1` to `b3`).
 fn declared_names(b: &ast::Body) -> Vec<String> {
+    let axes = (1..=3).map(|k| format!("{}{k}", b.name.text.to_lowercase()));
     b.options
         .entries
         .iter()
@@ -376,5 +378,6 @@ fn declared_names(b: &ast::Body) -> Vec<String> {
             Expr::Name(n) => Some(n.text.clone()),
             _ => None,
         })
+        .chain(axes)
         .collect()
 }

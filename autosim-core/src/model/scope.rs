@@ -204,6 +204,12 @@ impl<'a> Resolver<'a> {
         } else if let Some(s) = did_you_mean(&name.text, known.iter().map(String::as_str)) {
             d = d.help(format!("did you mean `{s}`?"));
         }
+        if what == "name" && !super::operations::is_function(&name.text) {
+            d = d.note(format!(
+                "a new name is declared before use: in `parameters {{ ... }}`, as `input {} [unit];`, or with `let`",
+                name.text
+            ));
+        }
         self.push(d);
     }
 

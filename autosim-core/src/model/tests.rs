@@ -302,3 +302,28 @@ fn a_failed_body_hides_no_mistake_but_adds_none() {
         assert!(!got.contains("`w2`") && !got.contains("`th2`"), "{got}");
     }
 }
+
+/// Constants name what varies; gravity's hint is a gravity.
+#[test]
+fn constant_options_name_what_varies() {
+    let got = resolved(
+        "model M;\ninput road [m];\nbody W { translate: 3, q: [z], u: [w], mass: 1, inertia: 0, initial: [1 + road] }",
+    );
+    assert!(
+        got.contains("initial coordinates must be constant, but `road` is an input"),
+        "{got}"
+    );
+    let gravity = resolved("model M;\nparameters { g = 9.81 }\ngravity = -g;");
+    assert!(gravity.contains("e.g. `-g*n3`"), "{gravity}");
+}
+
+/// The unit vectors of a body that failed add no "unknown name" either,
+/// and an undeclared name says how to declare it.
+#[test]
+fn a_failed_bodys_axes_add_no_error() {
+    let got = resolved(
+        "model M;\nbody P { rotate: 4, q: [th], u: [w], mass: 1, inertia: 0 }\nmoment m { on: P, about: p1, magnitude: 1 }\noutput y = road;",
+    );
+    assert!(!got.contains("`p1`"), "{got}");
+    assert!(got.contains("as `input road [unit];`"), "{got}");
+}

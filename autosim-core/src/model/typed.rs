@@ -39,13 +39,37 @@ impl Resolver<'_> {
     pub fn constant(&mut self, e: &Expr, context: &str) -> Option<ExprId> {
         let s = self.scalar(e, context)?;
         if !self.sys.arena.is_constant(s) {
+            let culprit = self.varying_symbol(s);
             self.push(
-                Diagnostic::error(e.span(), format!("{context} must be constant"))
+                Diagnostic::error(e.span(), format!("{context} must be constant{culprit}"))
                     .help("use parameters and numbers only"),
             );
             return None;
         }
         Some(s)
+    }
+
+    /// `, but `name` is …` for the first symbol of `e` that is not a
+    /// parameter (empty when only a user function call varies).
+    fn varying_symbol(&self, e: ExprId) -> String {
+        let arena = &self.sys.arena;
+        let found = arena.free_symbols(e).into_iter().find_map(|s| {
+            let symbol = arena.symbol(s);
+            let kind = match symbol.kind {
+                SymbolKind::Parameter { .. } => return None,
+                SymbolKind::Coordinate { .. } => "a coordinate",
+                SymbolKind::Speed { .. } => "a speed",
+                SymbolKind::SpeedRate { .. } => "an acceleration",
+                SymbolKind::State { .. } => "a state",
+                SymbolKind::Input { .. } => "an input",
+                SymbolKind::Discrete { .. } => "a discrete variable",
+                SymbolKind::ExternOutput { .. } => "an output of a user subroutine",
+                SymbolKind::Time => "the time",
+                SymbolKind::Free => "a variable",
+            };
+            Some(format!(", but `{}` is {kind}", symbol.name))
+        });
+        found.unwrap_or_else(|| ", but it calls user code".into())
     }
 
     /// False, with a diagnostic at `span`, when `values` use an
@@ -129,6 +153,9 @@ impl Resolver<'_> {
                             "; `{}` names a scalar declared in the model, which hides the unit vector of the same spelling: write `{body}.{axis}` for axis {axis} of body `{body}`",
                             n.text
                         )
+                    }
+                    (Value::Scalar(_), _) if context == "gravity" => {
+                        "; multiply it by a unit vector, e.g. `-g*n3` (g downwards along N's third axis)".to_string()
                     }
                     (Value::Scalar(_), _) => {
                         "; multiply it by a unit vector, e.g. `F*b1`".to_string()

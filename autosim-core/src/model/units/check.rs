@@ -371,9 +371,12 @@ impl<'r, 'a> Checker<'r, 'a> {
         }
         if let Some(sig) = self.signatures.get(name) {
             let (units, result) = (sig.args.clone(), sig.result);
+            // A call with the wrong number of arguments is reported as
+            // such: its arguments match no declared position.
+            let counted = units.len() == args.len();
             for (k, a) in args.iter().enumerate() {
                 let q = self.expr(a);
-                if let Some(Some(dim)) = units.get(k) {
+                if let (true, Some(Some(dim))) = (counted, units.get(k)) {
                     self.require(q, *dim, a, &format!("argument {} of `{name}`", k + 1));
                 }
             }

@@ -217,12 +217,27 @@ impl Checker<'_, '_> {
         let Some(m) = magnitude else { return };
         let d = direction.map(|d| self.expr(&d.value));
         let need = match d {
-            Some(Measure::Dim(a)) => Affine::known(unit_dim(unit)).over(&a),
+            Some(Measure::Dim(ref a)) => Affine::known(unit_dim(unit)).over(a),
             _ => Some(Affine::known(unit_dim(unit))),
         };
         let q = self.expr(&m.value);
-        if let Some(need) = need {
-            self.require_affine(q, &need, &m.value, &format!("the magnitude of {what}"));
+        let Some(need) = need else { return };
+        if self.require_affine(q, &need, &m.value, &format!("the magnitude of {what}")) {
+            return;
+        }
+        // A direction with a unit scales the load: say so, lest `as` be
+        // put on the magnitude where the direction is what is wrong.
+        let direction_unit = match &d {
+            Some(Measure::Dim(a)) => self.solver.known(a).filter(|u| *u != Dim::ONE),
+            _ => None,
+        };
+        if let Some(u) = direction_unit
+            && let Some(diagnostic) = self.diags.pop()
+        {
+            let key = if what == "a moment" { "about" } else { "along" };
+            self.diags.push(diagnostic.note(format!(
+                "`{key}` is in {u}, not a unit vector: {what} is `{key}` times `magnitude`, so the magnitude's unit is {unit} per {u}; for a direction, write `{key}: dir(...)`"
+            )));
         }
     }
 

@@ -393,3 +393,33 @@ fn an_output_in_a_unit_with_a_factor_is_converted() {
         "{y:?}"
     );
 }
+
+/// A load whose direction has a unit: the message says the direction
+/// scales it (its fix is `dir(...)`, not `as` on the magnitude).
+#[test]
+fn a_direction_with_a_unit_is_named_as_the_scale() {
+    let got = resolved(&format!(
+        "{HEAD}moment mt {{ on: R, about: pos(R), magnitude: -k*L*L*th }}"
+    ));
+    assert!(
+        got.contains("note: `about` is in m, not a unit vector"),
+        "{got}"
+    );
+    assert!(got.contains("write `about: dir(...)`"), "{got}");
+    // A spring written along its vector is right as it stands.
+    let spring = resolved(&format!(
+        "{HEAD}force f {{ on: B, along: pos(B), magnitude: -k }}"
+    ));
+    assert_eq!(spring, "OK");
+}
+
+/// A user function called with the wrong number of arguments is reported
+/// once: its arguments' units are not checked against other positions.
+#[test]
+fn a_call_with_the_wrong_arity_adds_no_unit_error() {
+    let got = resolved(&format!(
+        "{HEAD}extern fn tire(k [N/m], d [m]) -> [N];\nforce f {{ on: B, along: n1, magnitude: tire(x) }}"
+    ));
+    assert!(got.contains("`tire` takes 2 arguments"), "{got}");
+    assert!(!got.contains("argument 1 of `tire`"), "{got}");
+}

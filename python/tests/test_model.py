@@ -400,3 +400,60 @@ def test_a_misspelled_load_option_is_named_with_the_fix(repo: Path) -> None:
         match=r"load\(\) got an unexpected keyword argument 'linearise'; did you mean 'linearize'\?",
     ):
         autosim.load(repo / PENDULUM, linearise=True)
+
+
+def test_t_end_must_be_after_t0(load_model: Load) -> None:
+    model = load_model(PENDULUM)
+    for t_end in (1.0, 0.5):
+        with pytest.raises(ValueError, match=r"t_end \(.*\) must be finite and after t0 \(1.0\)"):
+            model.simulate(t_end, t0=1.0)
+
+
+def test_an_input_table_that_is_not_finite_is_refused_naming_row_and_input(load_model: Load) -> None:
+    model = load_model(PENDULUM)
+    with pytest.raises(
+        ValueError, match=r"input table's values row 1 is not finite in input 'torque' \(#0\): nan"
+    ):
+        model.simulate(1.0, inputs=([0.0, 1.0], np.array([[1.0], [np.nan]])))
+    with pytest.raises(ValueError, match=r"row 2 is not finite in input 'torque'"):
+        model.simulate(1.0, inputs=([0.0, 0.5, 1.0], [0.0, 1.0, np.inf]))
+    with pytest.raises(ValueError, match=r"input table's time #1 is not finite: nan"):
+        model.simulate(1.0, inputs=([0.0, np.nan], np.ones((2, 1))))
+
+
+def test_a_state_that_is_not_finite_is_refused_naming_the_state(load_model: Load) -> None:
+    model = load_model(PENDULUM)
+    x = np.array([0.3, np.nan])
+    for call in (
+        lambda: model.derivatives(0.0, x),
+        lambda: model.outputs(0.0, x),
+        lambda: model.linearize(0.0, x),
+        lambda: model.mass_matrix(0.0, x),
+        lambda: model.forcing(0.0, x),
+        lambda: model.assemble(x),
+        lambda: model.trim(x, free_states=["q"], steady=["u"]),
+    ):
+        with pytest.raises(ValueError, match=r"^x is not finite in state 'u' \(#1\): nan$"):
+            call()
+    with pytest.raises(ValueError, match=r"^x0 is not finite in state 'u' \(#1\): nan$"):
+        model.simulate(1.0, x)
+    rows = np.zeros((4, 2))
+    rows[2, 0] = np.inf
+    with pytest.raises(ValueError, match=r"^x row 2 is not finite in state 'q' \(#0\): inf$"):
+        model.derivatives(0.0, rows)
+    inputs = np.zeros((4, 1))
+    inputs[3, 0] = np.nan
+    with pytest.raises(ValueError, match=r"^u row 3 is not finite in input 'torque' \(#0\): nan$"):
+        model.outputs(0.0, np.zeros((4, 2)), inputs)
+
+
+def test_a_misspelling_far_from_every_name_finds_the_doc_that_names_it(load_model: Load) -> None:
+    model = load_model(PENDULUM)
+    with pytest.raises(KeyError, match=r"'Lenght' is not one .*; did you mean 'L' \('Rod length.'\)\?"):
+        model.parameters["Lenght"] = 2.0
+    with pytest.raises(KeyError) as nothing_close:
+        model.parameters["xyzzy"]
+    assert (
+        str(nothing_close.value)
+        == "\"parameter 'xyzzy' is not one of the model's parameters ['m', 'L', 'g']\""
+    )

@@ -168,6 +168,17 @@ def test_failed_cases_carry_their_error_and_the_others_are_exact(load_model: Loa
         for k in (0, 2)
     ]
     assert np.array_equal(results.values[[0, 2]], np.vstack([a.values for a in alone]))
+    assert repr(results) == (
+        "<StudyResults: cases 0..4 (2 ok, 2 failed); columns m, q; fields final:q, final:u>"
+    )
+
+
+def test_the_repr_of_results_is_one_short_line(study: autosim.Study) -> None:
+    shown = repr(study.run((0, 80)))
+    assert shown == (
+        "<StudyResults: cases 0..80 (80 ok, 0 failed); columns torque, m, L, q; "
+        "fields final:q, final:u, height@1, max:height, history:q[21]>"
+    )
 
 
 def test_mistakes_are_value_errors_naming_the_thing(load_model: Load) -> None:

@@ -91,6 +91,10 @@ pub enum StudyError {
     /// The format is not available (Parquet without feature `parquet`).
     #[error("{0}")]
     Unsupported(String),
+    /// The study's [`Cancel`](super::Cancel) was set: it stopped before
+    /// its last case (a folder keeps the shards written before).
+    #[error("the study was cancelled")]
+    Cancelled,
 }
 
 impl StudyError {

@@ -77,7 +77,9 @@ where
         resolve::<M>(self.cases.names(), &self.setup_columns)
     }
 
-    /// Runs `range` with `runner`'s threads, ticking its bar.
+    /// Runs `range` with `runner`'s threads, ticking its bar; no case
+    /// starts once the study is cancelled (then the results are dropped:
+    /// [`StudyError::Cancelled`]).
     pub(super) fn execute(
         &self,
         range: Range<u64>,
@@ -101,6 +103,9 @@ where
         let size = if self.in_lockstep() { GROUP } else { 1 };
         let first = |g: usize| range.start + (g * size) as u64;
         let group = |w: &mut Setter<M::Float>, (g, rows): (usize, &mut [Row<'_>])| {
+            if self.cancelled() {
+                return;
+            }
             match rows {
                 [(case, out, error)] => **error = self.run_case(&targets, w, first(g), case, out),
                 _ => self.run_group(&targets, w, first(g), rows),
@@ -122,6 +127,9 @@ where
                 Some(pool) => pool.install(all),
                 None => all(),
             }
+        }
+        if self.cancelled() {
+            return Err(StudyError::Cancelled);
         }
         Ok(results)
     }

@@ -71,6 +71,7 @@
 //! alone, and fails as it does alone); other studies run one case at a
 //! time. [`Study::lockstep`] turns it off.
 
+mod cancel;
 mod cases;
 mod csv_shard;
 mod error;
@@ -88,6 +89,7 @@ mod store;
 mod targets;
 mod task;
 
+pub use cancel::Cancel;
 pub use cases::{Cases, Distribution};
 pub use error::StudyError;
 pub use method::{Method, MethodStepper};
@@ -138,6 +140,7 @@ pub struct Study<M: Model, F, T> {
     parallelism: Parallelism,
     progress: bool,
     lockstep: bool,
+    cancel: Option<Cancel>,
 }
 
 impl<M, F, T> Study<M, F, T>
@@ -160,6 +163,7 @@ where
             parallelism: Parallelism::AllCores,
             progress: true,
             lockstep: true,
+            cancel: None,
         }
     }
 
@@ -203,6 +207,18 @@ where
     pub fn lockstep(mut self, lockstep: bool) -> Study<M, F, T> {
         self.lockstep = lockstep;
         self
+    }
+
+    /// Stops the study when `cancel` is set (see [`Cancel`]): no new case
+    /// starts, and the run returns [`StudyError::Cancelled`].
+    pub fn cancel_with(mut self, cancel: Cancel) -> Study<M, F, T> {
+        self.cancel = Some(cancel);
+        self
+    }
+
+    /// Whether the study was given a [`Cancel`] that is set.
+    fn cancelled(&self) -> bool {
+        self.cancel.as_ref().is_some_and(Cancel::is_cancelled)
     }
 
     /// Turns lockstep on or off (see [`Study::lockstep`]).

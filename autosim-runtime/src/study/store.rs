@@ -370,6 +370,8 @@ where
     /// so memory holds one shard and a crash loses at most the shard in
     /// progress. Run it again on the same folder to resume: shards already
     /// written are skipped (the manifest must describe the same study).
+    /// A study stopped by its [`Cancel`](super::Cancel) writes no shard
+    /// after the stop, so it resumes the same way.
     ///
     /// # Errors
     /// A column that sets nothing, a folder that holds a different study,

@@ -6,6 +6,8 @@
 
 use autosim_runtime::{EventIndicator, EventOutcome, Model, ModelError};
 
+use crate::interrupt::Poll;
+
 /// Where a simulation's inputs come from.
 pub trait InputSource: Send {
     /// Writes the inputs at time `t` into `u`; `false` leaves the model's
@@ -78,22 +80,25 @@ impl InputSource for Table {
 }
 
 /// A model whose inputs follow a source: every evaluation first sets the
-/// inputs at its time.
+/// inputs at its time. Its derivatives fail once `poll` says stop (Ctrl-C:
+/// see [`crate::interrupt`]), which ends the run.
 pub struct Driven<M> {
     /// The model.
     pub model: M,
     /// The inputs' source.
     pub source: Box<dyn InputSource>,
     buffer: Vec<f64>,
+    poll: Poll,
 }
 
 impl<M: Model<Float = f64>> Driven<M> {
-    /// `model` driven by `source`.
-    pub fn new(model: M, source: Box<dyn InputSource>) -> Self {
+    /// `model` driven by `source`, stopped by `poll`.
+    pub fn new(model: M, source: Box<dyn InputSource>, poll: Poll) -> Self {
         Driven {
             model,
             source,
             buffer: vec![0.0; M::INPUT_NAMES.len()],
+            poll,
         }
     }
 
@@ -122,6 +127,12 @@ impl<M: Model<Float = f64>> Model for Driven<M> {
     const DISCRETE_UNITS: &'static [&'static str] = M::DISCRETE_UNITS;
 
     fn derivatives(&mut self, t: f64, x: &M::State, dx: &mut M::State) -> Result<(), ModelError> {
+        if self.poll.stopped() {
+            // Any error ends the run; the caller raises what stopped it.
+            return Err(ModelError::NonFiniteUserResult {
+                function: "(interrupted)",
+            });
+        }
         self.apply(t);
         self.model.derivatives(t, x, dx)
     }

@@ -20,6 +20,7 @@ use autosim_runtime::{Model, ModelError};
 
 mod engine;
 mod inputs;
+mod interrupt;
 mod native;
 mod simulate;
 mod simulate_args;

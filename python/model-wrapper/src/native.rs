@@ -8,6 +8,7 @@
 use crate::Generated;
 use crate::engine::{Adapter, Engine, RowError, Sizes};
 use crate::inputs::{Held, InputSource, Table};
+use crate::interrupt::{signals, watched};
 use crate::simulate::{Failure, Request, Trajectory};
 use crate::simulate_args::{event_settings, failure_error, trajectory_dict};
 use crate::study::{self, Outcome};
@@ -74,7 +75,7 @@ fn simulation_error(py: Python<'_>, message: String) -> PyErr {
 /// thread), turning a Rust panic — a bug, never a user's mistake — into
 /// the message of a `SimulationError` rather than PyO3's
 /// `PanicException` (a `BaseException`, which `except Exception` misses).
-fn unpanicked<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+pub(crate) fn unpanicked<T>(f: impl FnOnce() -> T) -> Result<T, String> {
     std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)).map_err(|payload| {
         let text = payload
             .downcast_ref::<&str>()
@@ -185,7 +186,8 @@ impl InputSource for Callable {
 
 impl NativeModel {
     /// Runs `request` on the study `spec` of copies of this model with the
-    /// GIL released.
+    /// GIL released, on a thread of its own: Ctrl-C cancels it (no new
+    /// case starts) and raises `KeyboardInterrupt` here.
     fn run_study(
         &self,
         py: Python<'_>,
@@ -193,8 +195,9 @@ impl NativeModel {
         request: study::Request<'_>,
     ) -> PyResult<Outcome> {
         let plan = plan(spec)?;
+        let cancel = plan.cancel.clone();
         let engine = &self.engine;
-        py.detach(|| unpanicked(|| engine.study(&plan, request)))
+        watched(py, move || cancel.cancel(), || engine.study(&plan, request))?
             .map_err(|message| simulation_error(py, message))?
             .map_err(PyValueError::new_err)
     }
@@ -475,7 +478,9 @@ impl NativeModel {
     /// (default: the model's), events located as `events` =
     /// `(time_tolerance, interior_samples, zeno_events, zeno_interval)`
     /// says. Returns the dict of `simulate_args::trajectory_dict`. The GIL
-    /// is released (a callable takes it back at each call).
+    /// is released (a callable takes it back at each call, and the run
+    /// every 0.1 s to check for Ctrl-C, which stops it and raises
+    /// `KeyboardInterrupt`).
     #[pyo3(signature = (method, t0, t_end, h, rtol, atol, times, x0, max_steps, table=None, function=None, discrete0=None, events=(0.0, 4, 100, 0.0)))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
@@ -529,9 +534,10 @@ impl NativeModel {
             discrete0,
             events: event_settings(events)?,
         };
+        let poll = signals(Arc::clone(&failure));
         let engine = &mut self.engine;
         let result = py
-            .detach(|| unpanicked(|| engine.simulate(&request, source)))
+            .detach(|| unpanicked(|| engine.simulate(&request, source, poll)))
             .map_err(Failure::Message)
             .and_then(|r| r);
         if let Some(e) = failure.lock().unwrap_or_else(|p| p.into_inner()).take() {

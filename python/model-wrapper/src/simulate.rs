@@ -6,6 +6,7 @@
 
 use crate::Generated;
 use crate::inputs::{Driven, InputSource};
+use crate::interrupt::Poll;
 use autosim_runtime::integrate::{
     AbmOrder, AdamsBashforthMoulton, DopriSettings, DormandPrince, Euler, Heun, Rk4, SdirkSettings,
     Stepper,
@@ -149,7 +150,7 @@ impl<M: Model<Float = f64>> Observer<M> for Trajectory {
 }
 
 /// Runs `model` (a copy: its inputs end where the source left them) as
-/// `request` says, its inputs from `source`.
+/// `request` says, its inputs from `source`, until `poll` says stop.
 ///
 /// # Errors
 /// The integration error's message (it names the time, and the state or
@@ -159,9 +160,10 @@ pub fn simulate<M: Generated>(
     model: &M,
     request: &Request,
     source: Box<dyn InputSource>,
+    poll: Poll,
 ) -> Result<Trajectory, Failure> {
     let mut stepper = stepper::<M>(request)?;
-    let mut driven = Driven::new(model.clone(), source);
+    let mut driven = Driven::new(model.clone(), source, poll);
     if let Some(d0) = &request.discrete0 {
         driven.model.set_discrete_values(d0);
     }

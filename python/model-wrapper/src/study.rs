@@ -10,8 +10,8 @@ use std::path::Path;
 use autosim_runtime::RunSettings;
 use autosim_runtime::integrate::AbmOrder;
 use autosim_runtime::study::{
-    Cases, Distribution, Format, Keep, Method, Parallelism, Results, Simulate, Statistic, Study,
-    StudyDir, StudyError, StudySummary,
+    Cancel, Cases, Distribution, Format, Keep, Method, Parallelism, Results, Simulate, Statistic,
+    Study, StudyDir, StudyError, StudySummary,
 };
 
 use crate::Generated;
@@ -57,6 +57,8 @@ pub struct Plan {
     pub parallelism: Parallelism,
     /// Whether to draw a progress bar (on a terminal only).
     pub progress: bool,
+    /// Stops the study (Ctrl-C: see [`crate::interrupt`]).
+    pub cancel: Cancel,
 }
 
 /// The integrators a study runs, by the names Python uses (SDIRK3 is not
@@ -171,7 +173,8 @@ fn study<M: Generated>(
     let task = Simulate::<M>::new(plan.settings, plan.method, plan.keep.clone())?;
     Ok(Study::new(move || base.clone(), plan.cases.clone(), task)
         .parallelism(plan.parallelism)
-        .progress(plan.progress))
+        .progress(plan.progress)
+        .cancel_with(plan.cancel.clone()))
 }
 
 /// What Python asks of a study of `M`.

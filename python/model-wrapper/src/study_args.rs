@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
 use autosim_runtime::RunSettings;
-use autosim_runtime::study::{Results, StudySummary};
+use autosim_runtime::study::{Cancel, Results, StudySummary};
 
 use crate::native::rows;
 use crate::simulate_args::event_settings;
@@ -78,6 +78,7 @@ pub fn plan(spec: &Bound<'_, PyDict>) -> PyResult<Plan> {
         keep: keep(&keep_spec).map_err(PyValueError::new_err)?,
         parallelism: parallelism(item(spec, "threads")?),
         progress: item(spec, "progress")?,
+        cancel: Cancel::new(),
     })
 }
 

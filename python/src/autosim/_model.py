@@ -13,7 +13,7 @@ import numpy as np
 from ._interface import Event, Interface, Quantity
 from ._linear import LinearModel
 from ._simulation import Simulation, event_settings, simulate
-from ._values import ArrayLike, NamedValues, as_vector, unknown_name
+from ._values import ArrayLike, NamedValues, as_vector, check_finite, unknown_name
 
 
 class TrimResult(NamedTuple):
@@ -226,6 +226,13 @@ class Model:
         finally:
             self._native.set_discrete(initial)
 
+    def _state(self, x: ArrayLike, what: str = "x") -> np.ndarray:
+        """``x`` as a state vector: its length and every entry finite
+        checked (``ValueError`` naming ``what`` and the state)."""
+        xv = as_vector(x, self._nx, what)
+        check_finite(xv, what, self.state_names, "state")
+        return xv
+
     def state_index(self, name: str) -> int:
         """Position of state ``name`` in the state vector."""
         if name not in self._state_index:
@@ -265,12 +272,14 @@ class Model:
         xs = np.ascontiguousarray(x, dtype=np.float64)
         if xs.ndim != 2 or xs.shape[1] != self._nx:
             raise ValueError(f"x must have shape (n, {self._nx}), not {xs.shape}")
+        check_finite(xs, "x", self.state_names, "state")
         ts = np.ascontiguousarray(np.atleast_1d(np.asarray(t, dtype=np.float64)))
         us = None
         if u is not None:
             us = np.ascontiguousarray(u, dtype=np.float64)
             if us.ndim != 2:
                 raise ValueError(f"u must have shape (n, {len(self.input_names)})")
+            check_finite(us, "u", self.input_names, "input")
         return self._native.many(ts, xs, us, outputs)
 
     def derivatives(
@@ -311,7 +320,7 @@ class Model:
             if xs.ndim == 2:
                 return self._rows(t, xs, u if u_rows else None, outputs)
             one = self._native.outputs if outputs else self._native.derivatives
-            return one(float(t), as_vector(xs, self._nx, "x"))  # type: ignore[arg-type]
+            return one(float(t), self._state(xs))  # type: ignore[arg-type]
 
     def rhs(self, t: float, y: np.ndarray) -> np.ndarray:
         """``dx/dt`` with the signature of :func:`scipy.integrate.solve_ivp`'s
@@ -338,14 +347,14 @@ class Model:
         for constrained models in the independent speeds' equations as
         generated; ``discrete`` as in :meth:`derivatives`)."""
         with self._discrete_set(discrete):
-            return self._native.mass_matrix(float(t), as_vector(x, self._nx, "x"))
+            return self._native.mass_matrix(float(t), self._state(x))
 
     def forcing(self, t: float, x: ArrayLike, u: Any = None, *, discrete: Discrete = None) -> np.ndarray:
         """The forcing vector ``f(q, u, t)`` of ``M du/dt = f`` (with inputs
         ``u`` for this call, or the current inputs; ``discrete`` as in
         :meth:`derivatives`)."""
         with self._discrete_set(discrete), self._inputs_set(u):
-            return self._native.forcing(float(t), as_vector(x, self._nx, "x"))
+            return self._native.forcing(float(t), self._state(x))
 
     def linearize(
         self, t: float = 0.0, x: ArrayLike | None = None, u: Any = None, *, discrete: Discrete = None
@@ -363,7 +372,7 @@ class Model:
         linear = self.interface.linear_states
         if linear is None:
             raise ValueError(f"{self.name} was loaded without its linearization: load it with linearize=True")
-        xv = self.initial_state() if x is None else as_vector(x, self._nx, "x")
+        xv = self.initial_state() if x is None else self._state(x)
         with self._discrete_set(discrete), self._inputs_set(u):
             a, b, c, d = self._native.linearize(float(t), xv, len(linear))
         names = self.state_names
@@ -410,7 +419,7 @@ class Model:
         (as in :meth:`derivatives`). Raises :class:`autosim.errors.SimulationError` naming the
         residuals when Newton's method does not converge or the free
         variables do not control the steady derivatives."""
-        xv = self.initial_state() if x is None else as_vector(x, self._nx, "x")
+        xv = self.initial_state() if x is None else self._state(x)
         for name in list(free_states) + list(steady):
             self.state_index(name)
         for name in free_inputs:
@@ -436,7 +445,7 @@ class Model:
         """``x`` (default: the initial state) with its dependent coordinates
         solved from the position constraints, the others held; unchanged for
         models without position constraints."""
-        xv = self.initial_state() if x is None else as_vector(x, self._nx, "x")
+        xv = self.initial_state() if x is None else self._state(x)
         return self._native.assemble(float(t), xv)
 
     @property
@@ -505,7 +514,10 @@ class Model:
         run), raise :class:`autosim.errors.ZenoError` naming the event.
 
         Raises :class:`autosim.errors.SimulationError` when the model or the
-        integrator fails (the message names the time and the state).
+        integrator fails (the message names the time and the state), and
+        ``ValueError`` for ``t_end`` not after ``t0`` or a state or input
+        table value that is not finite. Ctrl-C stops the run within about
+        0.1 s and raises ``KeyboardInterrupt``.
         """
         events = event_settings(event_tolerance, event_samples, zeno_events, zeno_interval)
         return simulate(

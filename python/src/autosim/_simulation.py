@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ._values import as_vector, unknown_name
+from ._values import check_finite, unknown_name
 
 if TYPE_CHECKING:  # pragma: no cover
     from ._model import Inputs, Model
@@ -121,6 +121,22 @@ class Simulation:
         return pd.DataFrame(columns, index=pd.Index(self.t, name="t"))
 
 
+def _input_table(inputs: tuple[Any, Any], names: tuple[str, ...]) -> tuple[np.ndarray, np.ndarray]:
+    """The input table ``(times, values)`` as arrays (a vector of values is
+    one column), every time and value finite (``ValueError`` naming the
+    row and the input)."""
+    tt = np.ascontiguousarray(inputs[0], dtype=np.float64)
+    uu = np.ascontiguousarray(inputs[1], dtype=np.float64)
+    if uu.ndim == 1:
+        uu = uu.reshape(-1, 1)
+    bad = np.flatnonzero(~np.isfinite(tt))
+    if bad.size:
+        raise ValueError(f"the input table's time #{bad[0]} is not finite: {tt.flat[bad[0]]}")
+    if uu.ndim == 2:
+        check_finite(uu, "the input table's values", names, "input")
+    return tt, uu
+
+
 def _output_times(t0: float, t_end: float, t_eval: Any) -> np.ndarray:
     if t_eval is None:
         return np.linspace(t0, t_end, 1001)
@@ -170,17 +186,14 @@ def simulate(
     if method not in METHODS:
         raise ValueError(f"method {method!r} is not one of {', '.join(METHODS)}")
     t0, t_end = float(t0), float(t_end)
-    if not (np.isfinite(t0) and np.isfinite(t_end)) or t_end < t0:
-        raise ValueError(f"t_end ({t_end}) must be finite and not before t0 ({t0})")
+    if not (np.isfinite(t0) and np.isfinite(t_end) and t_end > t0):
+        raise ValueError(f"t_end ({t_end}) must be finite and after t0 ({t0})")
     step = 1e-3 if h is None else float(h)
     if not (step > 0 and np.isfinite(step)):
         raise ValueError(f"h must be positive and finite, not {h}")
     if not (rtol > 0 and atol >= 0):
         raise ValueError("rtol must be positive and atol not negative")
-    xv = model.initial_state() if x0 is None else as_vector(x0, model.n_states, "x0")
-    if not np.all(np.isfinite(xv)):
-        bad = [n for n, v in zip(model.state_names, xv) if not np.isfinite(v)]
-        raise ValueError(f"x0 is not finite in {', '.join(bad)}")
+    xv = model.initial_state() if x0 is None else model._state(x0, "x0")
     times = _output_times(t0, t_end, t_eval)
     d0 = None if discrete0 is None else model.discrete_vector(discrete0, "discrete0")
     table = None
@@ -190,11 +203,7 @@ def simulate(
     if callable(inputs):
         function = inputs
     elif isinstance(inputs, tuple) and len(inputs) == 2:
-        tt = np.ascontiguousarray(inputs[0], dtype=np.float64)
-        uu = np.ascontiguousarray(inputs[1], dtype=np.float64)
-        if uu.ndim == 1:
-            uu = uu.reshape(-1, 1)
-        table = (tt, uu)
+        table = _input_table(inputs, model.input_names)
     elif inputs is not None:
         model.set_inputs(inputs if isinstance(inputs, Mapping) else np.atleast_1d(inputs))
     try:

@@ -197,7 +197,8 @@ class StudyResults:
 
     ``results["name"]`` is a field (shape ``(n,)``, or ``(n, length)`` for a
     history) or a column of the case table; :meth:`to_pandas` gives a
-    DataFrame. ``a == b`` compares every value's bits (NaN included).
+    DataFrame. ``a == b`` compares every value's bits (NaN included);
+    ``repr`` is one line (cases, failures, columns, fields).
     """
 
     first_case: int
@@ -220,6 +221,17 @@ class StudyResults:
 
     def __len__(self) -> int:
         return len(self.errors)
+
+    def __repr__(self) -> str:
+        """A line, not the arrays: the cases, how many failed, the columns
+        and fields (a field of several values with its length)."""
+        fields = ", ".join(n if k == 1 else f"{n}[{k}]" for n, k in self.fields)
+        end = self.first_case + len(self)
+        return (
+            f"<StudyResults: cases {self.first_case}..{end} ({len(self) - self.failures} ok, "
+            f"{self.failures} failed); columns {', '.join(self.case_columns) or '(none)'}; "
+            f"fields {fields or '(none)'}>"
+        )
 
     @property
     def cases(self) -> np.ndarray:
@@ -476,7 +488,8 @@ class Study:
         chunks joined with :meth:`StudyResults.concat` equal the whole.
         A failed case (a non-finite state, a failed step, a model error)
         has NaN values and its error in :attr:`StudyResults.errors`; the
-        others run on."""
+        others run on. Ctrl-C stops the run (no case starts after it; those
+        running finish) and raises ``KeyboardInterrupt``."""
         start, end = self._range(cases)
         raw = self.model._native.study_run(self._spec(threads, progress), start, end)
         return StudyResults._from_native(raw)
@@ -525,7 +538,10 @@ class Study:
         renamed into place, so memory holds one shard and a crash loses at
         most the shard in progress. Run it again on the same folder to
         resume (written shards are skipped; a folder holding another study
-        is refused). :meth:`read` reads it back."""
+        is refused). Ctrl-C stops it between cases with
+        ``KeyboardInterrupt``, dropping the shard in progress: the shards
+        written stay whole and a later call resumes. :meth:`read` reads it
+        back."""
         raw = self.model._native.study_run_in(self._spec(threads, progress), str(folder), int(shard_size))
         return StudySummary(
             int(raw["cases"]), int(raw["ran"]), int(raw["skipped"]), int(raw["failed"]), float(raw["seconds"])

@@ -4,6 +4,7 @@ name, as a dict, or as a vector, with checks that name what is wrong."""
 from __future__ import annotations
 
 import difflib
+import re
 from collections.abc import Iterator, Mapping, MutableMapping, Sequence
 from typing import Callable, Union
 
@@ -14,9 +15,24 @@ from ._interface import Quantity
 ArrayLike = Union[Sequence[float], np.ndarray]
 
 
-def unknown_name(kind: str, name: str, names: Sequence[str]) -> KeyError:
+def unknown_name(kind: str, name: str, names: Sequence[str], docs: Sequence[str] = ()) -> KeyError:
     """A KeyError naming ``name``, the known names and the closest of them
-    (spelled alike whatever the case, or one the start of the other)."""
+    (spelled alike whatever the case, or one the start of the other), or
+    when none is, those whose doc comment (``docs``, one per name) has a
+    word spelled alike (``"Lenght"``: ``L``, "Cable length"); only the
+    known names when nothing is close."""
+    close = _close_names(name, names)
+    if close:
+        hint = f"; did you mean {', '.join(repr(c) for c in close)}?"
+    else:
+        by_doc = _close_docs(name, names, docs)
+        hint = f"; did you mean {', '.join(f'{n!r} ({d!r})' for n, d in by_doc)}?" if by_doc else ""
+    return KeyError(f"{kind} {name!r} is not one of the model's {kind}s {list(names)}{hint}")
+
+
+def _close_names(name: str, names: Sequence[str]) -> list[str]:
+    """Up to three of ``names`` spelled like ``name`` whatever the case, or
+    one the start of the other."""
     by_lower = {n.lower(): n for n in names}
     close = [by_lower[c] for c in difflib.get_close_matches(name.lower(), list(by_lower), n=3)]
     lower = name.lower()
@@ -27,8 +43,17 @@ def unknown_name(kind: str, name: str, names: Sequence[str]) -> KeyError:
         and min(len(n), len(name)) >= 2
         and (n.lower().startswith(lower) or lower.startswith(n.lower()))
     ][: 3 - len(close)]
-    hint = f"; did you mean {', '.join(repr(c) for c in close)}?" if close else ""
-    return KeyError(f"{kind} {name!r} is not one of the model's {kind}s {list(names)}{hint}")
+    return close
+
+
+def _close_docs(name: str, names: Sequence[str], docs: Sequence[str]) -> list[tuple[str, str]]:
+    """Up to three ``(name, doc)`` whose doc has a word spelled like ``name``."""
+    found = []
+    for n, doc in zip(names, docs):
+        words = re.findall(r"[a-z]{3,}", doc.lower())
+        if difflib.get_close_matches(name.lower(), words, n=1, cutoff=0.75):
+            found.append((n, doc.strip()))
+    return found[:3]
 
 
 def as_vector(values: ArrayLike, length: int, what: str) -> np.ndarray:
@@ -41,6 +66,20 @@ def as_vector(values: ArrayLike, length: int, what: str) -> np.ndarray:
     if v.ndim != 1 or v.shape[0] != length:
         raise ValueError(f"{what} must have shape ({length},), not {v.shape}")
     return v
+
+
+def check_finite(values: np.ndarray, what: str, names: Sequence[str], kind: str) -> None:
+    """A ValueError naming the first entry of ``values`` (a vector, or rows
+    of one) that is NaN or infinite: ``what``, its row for rows, and the
+    ``kind`` and name of its column (``names``)."""
+    finite = np.isfinite(values)
+    if finite.all():
+        return
+    at = tuple(int(k) for k in np.argwhere(~finite)[0])
+    column = at[-1]
+    label = names[column] if column < len(names) else f"#{column}"
+    row = f" row {at[0]}" if len(at) == 2 else ""
+    raise ValueError(f"{what}{row} is not finite in {kind} {label!r} (#{column}): {values[at]}")
 
 
 class NamedValues(MutableMapping[str, float]):
@@ -101,7 +140,7 @@ class NamedValues(MutableMapping[str, float]):
         v = self._read().copy()
         for name, value in changes.items():
             if name not in self._index:
-                raise unknown_name(self._kind, name, self._names)
+                raise self._unknown(name)
             try:
                 v[self._index[name]] = float(value)
             except (TypeError, ValueError):
@@ -116,9 +155,12 @@ class NamedValues(MutableMapping[str, float]):
         if bad:
             raise ValueError(f"{self._kind} {', '.join(repr(b) for b in bad)} must be finite")
 
+    def _unknown(self, name: str) -> KeyError:
+        return unknown_name(self._kind, name, self._names, [q.doc for q in self._quantities])
+
     def __getitem__(self, name: str) -> float:
         if name not in self._index:
-            raise unknown_name(self._kind, name, self._names)
+            raise self._unknown(name)
         return float(self._read()[self._index[name]])
 
     def __setitem__(self, name: str, value: float) -> None:

@@ -13,7 +13,7 @@ use crate::Float;
 
 /// The difference between two times of size `scale` that is rounding
 /// for a run of fixed `step`: `min(64 ε scale, |step| / 64)`.
-pub(super) fn rounding<F: Float>(scale: F, step: F) -> F {
+pub(crate) fn rounding<F: Float>(scale: F, step: F) -> F {
     let relative = F::from_f64(64.0) * F::EPSILON * scale.abs();
     let cap = step.abs() / F::from_f64(64.0);
     if relative < cap { relative } else { cap }

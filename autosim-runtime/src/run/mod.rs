@@ -4,7 +4,7 @@
 use core::convert::Infallible;
 use core::fmt;
 
-mod counts;
+pub(crate) mod counts;
 mod driver;
 #[cfg(feature = "study")]
 pub(crate) use driver::{AdaptiveTrial, adaptive_trial};

@@ -14,6 +14,7 @@ use crate::batch::LANES;
 use crate::event::MAX_DISCRETE;
 use crate::integrate::{AbmHistory, DopriSettings, EULER, HEUN, RK4};
 use crate::run::Observer;
+use crate::run::counts::rounding;
 use crate::{Float, IntegrationError, Lanes, Model, RunSettings, run};
 
 /// A summary statistic of a quantity over a run's output times (the
@@ -296,7 +297,15 @@ impl<M: Model> Observer<M> for Recorder<'_, M> {
     /// Records output `k`; the stop of a terminal event between output
     /// times is not one (its state is the case's final state).
     fn observe(&mut self, t: M::Float, x: &M::State, y: &M::Outputs) -> Result<(), Self::Error> {
-        if self.k >= self.plan.samples || t.to_f64() != output_time(self.settings, self.k) {
+        let settings = self.settings;
+        let due = match self.k {
+            0 => settings.start,
+            k => settings.output_time(k),
+        };
+        // The driver's output times are the plan's up to rounding (a
+        // whole number of steps); a terminal event's stop comes earlier.
+        let early = t < due - rounding(due.abs().max(t.abs()), settings.step);
+        if self.k >= self.plan.samples || early {
             return Ok(());
         }
         let d = &self.discrete[..M::DISCRETE_NAMES.len().min(MAX_DISCRETE)];

@@ -2,7 +2,8 @@
 //! written: at the speed level a constraint is a row `A u`, and when the
 //! expression is a sum of `dot(vel(P, Q), d)` and `dot(rot(B), e)` terms
 //! (through `let`s, `cross`, sums and factors without velocities; a
-//! position constraint the same with `pos` for `vel`), the generalized
+//! position constraint the same with `pos` for `vel`, and a distance
+//! `mag(pos(P, Q))` as `dot(pos(P, Q), dir(pos(P, Q)))`), the generalized
 //! force `Aᵀ λ` is the force `λ d` at `P`, `−λ d` at `Q` and the moment
 //! `λ e` on `B`. Each term is read here ([`read`]), then checked against
 //! the constraint itself in [`super::constraint_check`]: a load whose
@@ -173,6 +174,14 @@ impl Reader<'_> {
                 }
                 let d = r.vector(d, "`dot`")?;
                 let f = self.vector(r, v)?;
+                Some(f.into_iter().map(|(a, m)| (a, dotted(r, m, &d))).collect())
+            }
+            // A length changes along its direction, `d|v| = dir(v)·dv`: a
+            // distance `mag(pos(P, Q)) - L` is held along the line.
+            Expr::Call { func, args, .. } if func.text == "mag" && args.len() == 1 => {
+                let whole = r.vector(&args[0], "`mag`")?;
+                let d = r.sys.frames.dir(&mut r.sys.arena, &whole)?;
+                let f = self.vector(r, &args[0])?;
                 Some(f.into_iter().map(|(a, m)| (a, dotted(r, m, &d))).collect())
             }
             _ => None,

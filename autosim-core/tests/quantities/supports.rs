@@ -55,3 +55,49 @@ fn beam_held_level_carries_its_weight_at_the_hinge() {
         assert!(close(*a, b, 1e-14), "output {k}: {a} against {b}");
     }
 }
+
+/// A load hung from a trolley by a cable written as a distance,
+/// `mag(pos(Load, Trolley)) - L`: its multiplier is the cable's pull
+/// along the line (Newton along the cable:
+/// `T = −m g r̂₃ − m ẍ r̂₁ + m |v_rel|²/L`, `λ = −T`), the rail carries
+/// `M g − T r̂₃`, and the trolley, free along n1, is pulled by `T r̂₁`.
+#[test]
+fn a_cable_written_as_a_distance_pulls_along_its_line() {
+    let c = compile_text(
+        "crane",
+        "model Crane;
+         parameters { M = 5 [kg], m = 2 [kg], L = 1.5 [m], g = 9.81 [m/s^2] }
+         body Trolley { translate: 1, q: [x], u: [v], mass: M, inertia: 0 }
+         body Load { parent: Trolley, translate: [1, 3], q: [xl, zl], u: [vxl, vzl], mass: m, inertia: 0, initial: [0.9, -1.2] }
+         gravity = -g*n3;
+         constraint cable [m] { position: mag(pos(Load, Trolley)) - L, dependent: zl }
+         output pull [N] = constraint_force(cable);
+         output rail [N] = dot(reaction_force(Trolley), n3);
+         output a [m/s^2] = dxdt(v);",
+    );
+    let names = output_names(&c);
+    // On the cable's circle, moving along it: r̂ = (0.6, 0, −0.8).
+    let y = outputs_at(&c, &[0.0, 0.9, -1.2, 0.3, 0.8, 0.6], 0.0);
+    let get = |n: &str| y[names.iter().position(|m| m == n).expect(n)];
+    let (m, big_m, g, l) = (2.0, 5.0, 9.81, 1.5);
+    let (r1, r3) = (0.6, -0.8);
+    let a = get("a");
+    let tension = -m * g * r3 - m * a * r1 + m * 1.0 / l;
+    assert!(
+        close(get("pull"), -tension, 1e-12),
+        "{} against {}",
+        get("pull"),
+        -tension
+    );
+    assert!(
+        close(get("rail"), big_m * g - tension * r3, 1e-12),
+        "{}",
+        get("rail")
+    );
+    assert!(
+        close(big_m * a, tension * r1, 1e-12),
+        "M a = {} against T r̂₁ = {}",
+        big_m * a,
+        tension * r1
+    );
+}

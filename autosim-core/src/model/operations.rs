@@ -337,6 +337,9 @@ fn rot(r: &mut Resolver<'_>, args: &[Expr], _: Span, ctx: &str) -> Option<Value>
 
 fn dxdt(r: &mut Resolver<'_>, args: &[Expr], _: Span, _: &str) -> Option<Value> {
     let y = r.eval(&args[0])?;
+    if !computed_later(r, &y, "dxdt", &args[0]) {
+        return None;
+    }
     let d = derivative(
         r,
         y,
@@ -351,6 +354,9 @@ fn partial(r: &mut Resolver<'_>, args: &[Expr], _: Span, ctx: &str) -> Option<Va
     let y = r.eval(&args[0]);
     let x = r.scalar(&args[1], ctx);
     let (y, x) = (y?, x?);
+    if !computed_later(r, &y, "partial", &args[0]) {
+        return None;
+    }
     let Some(sym) = r.sys.arena.as_symbol(x) else {
         r.error(
             args[1].span(),
@@ -366,6 +372,26 @@ fn partial(r: &mut Resolver<'_>, args: &[Expr], _: Span, ctx: &str) -> Option<Va
         |sys, v| sys.partial_vector(v, sym).map_err(|e| e.to_string()),
     );
     r.lift(args[0].span(), d)
+}
+
+/// False, with a diagnostic at `e`, when `y` reads a quantity the model
+/// computes after its equations (reactions, potential energy, power,
+/// constraint forces): it stands for a value, not an expression, and
+/// its derivative `name` would be taken as zero.
+fn computed_later(r: &mut Resolver<'_>, y: &Value, name: &str, e: &Expr) -> bool {
+    let values = match y {
+        Value::Scalar(s) => vec![*s],
+        Value::Vector(v) => super::loads::coefficients(v),
+        _ => return true,
+    };
+    let Some(quantity) = r.deferred_in(&values) else {
+        return true;
+    };
+    r.push(
+        Diagnostic::error(e.span(), format!("`{name}` cannot differentiate `{quantity}`"))
+            .help("reactions, potential energy, power and constraint forces are values the model computes, not expressions: differentiate the expression itself (for a potential energy, its formula, e.g. `m*g*dot(pos(B), n3)`)"),
+    );
+    false
 }
 
 /// The derivative `name` of a scalar or of a vector (the other kinds of

@@ -327,3 +327,39 @@ fn a_failed_bodys_axes_add_no_error() {
     assert!(!got.contains("`p1`"), "{got}");
     assert!(got.contains("as `input road [unit];`"), "{got}");
 }
+
+/// `partial` and `dxdt` of a quantity the model computes after its
+/// equations are refused (they were silently zero, also inside a load).
+#[test]
+fn derivatives_of_computed_quantities_are_refused() {
+    let head = "model M;\nparameters { m = 1 [kg], g = 9.81 [m/s^2] }\ninput tau [N m];\nbody B { rotate: 2, q: [q], u: [w], mass: m, cm: [0, 0, -1], inertia: 0 }\ngravity = -g*n3;\nmoment drive { on: B, about: b2, magnitude: tau }\n";
+    for (item, quantity) in [
+        (
+            "output k [N m] = partial(potential_energy(), q);",
+            "`partial` cannot differentiate `potential_energy()`",
+        ),
+        (
+            "output k [W] = dxdt(potential_energy());",
+            "`dxdt` cannot differentiate `potential_energy()`",
+        ),
+        (
+            "output k = partial(power(drive), tau);",
+            "`partial` cannot differentiate `power(drive)`",
+        ),
+        (
+            "output k = partial(dot(reaction_force(B), n3), tau);",
+            "`partial` cannot differentiate `reaction_force(B)`",
+        ),
+        (
+            "moment hold { on: B, about: b2, magnitude: partial(potential_energy(), q) }",
+            "`partial` cannot differentiate `potential_energy()`",
+        ),
+    ] {
+        let got = resolved(&format!("{head}{item}"));
+        assert!(got.contains(quantity), "{item}\n{got}");
+        assert!(!got.contains('#'), "{got}");
+    }
+    // Of what it is made of, as before.
+    let got = resolved(&format!("{head}output k = partial(kinetic_energy(), w);"));
+    assert!(!got.contains("error"), "{got}");
+}

@@ -237,6 +237,9 @@ def test_inputs_constant_table_and_callable(load_model: Load) -> None:
 
     with pytest.raises(RuntimeError, match="no input today"):
         model.simulate(1.0, inputs=broken)
+    # A NaN from the callable is the callable's, not the model's.
+    with pytest.raises(ValueError, match=r"returned NaN for input #0"):
+        model.simulate(1.0, inputs=lambda t: [float("nan")])
 
 
 def test_pandas_when_installed(load_model: Load) -> None:

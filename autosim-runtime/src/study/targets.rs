@@ -72,6 +72,10 @@ fn resolve_one<M: Model>(column: &str, setup: &[String]) -> Result<Target, Study
     }
     match found.as_slice() {
         [(_, target)] => Ok(*target),
+        [] if setup.is_empty() => Err(unknown::<M>(
+            column,
+            "it is not a parameter, input, state or discrete variable of the model",
+        )),
         [] => Err(unknown::<M>(
             column,
             "it is not a parameter, input, state or discrete variable of the model, nor a column the setup function reads",

@@ -169,6 +169,11 @@ impl InputSource for Callable {
                         self.width
                     )));
                 }
+                if let Some((k, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+                    return Err(PyValueError::new_err(format!(
+                        "the inputs callable returned {v} for input #{k} (model.input_names order) at t = {t}; inputs must be finite"
+                    )));
+                }
                 Ok(values)
             });
             match got {

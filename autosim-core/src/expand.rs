@@ -4,7 +4,7 @@
 //! with a placeholder module named from what could be parsed.
 
 use crate::diag::{Diagnostics, SourceFile, Span};
-use crate::emit::{EmitOptions, model_tokens, placeholder};
+use crate::emit::{EmitOptions, Outline, model_tokens, placeholder};
 use crate::model::Scene;
 use crate::pipeline::compile_scene;
 use crate::syntax::{self, FileArguments, Parsed, file_arguments};
@@ -30,17 +30,14 @@ pub fn expand_model(input: TokenStream, crate_root: &Path) -> TokenStream {
         Some(Err(d)) => compile_errors(&d),
         None => {
             let parsed = syntax::parse_tokens_recovering(input);
-            let name = model_name(&parsed, &Scene::default());
+            let outline = outline(&parsed, &Scene::default());
             match compile(parsed, &Scene::default()) {
                 Ok(module) => module,
                 Err(d) => {
-                    let mut out = match d.to_syn_error() {
-                        Some(e) => e.to_compile_error(),
-                        None => syn::Error::new(proc_macro2::Span::call_site(), "invalid model")
-                            .to_compile_error(),
-                    };
-                    out.extend(name.as_deref().map(placeholder));
-                    out
+                    let errors = d.to_syn_error().unwrap_or_else(|| {
+                        syn::Error::new(proc_macro2::Span::call_site(), "invalid model")
+                    });
+                    errors_and_placeholder(errors, outline)
                 }
             }
         }
@@ -54,13 +51,23 @@ fn compile_errors(d: &Diagnostics) -> TokenStream {
         .unwrap_or_default()
 }
 
-/// The name the generated module and type take.
-fn model_name(parsed: &Parsed, scene: &Scene) -> Option<String> {
-    scene
-        .name
-        .as_ref()
-        .or(parsed.name())
-        .map(|n| n.text.clone())
+/// The name the generated module and type take, and the user code the
+/// model declares, for a placeholder.
+fn outline(parsed: &Parsed, scene: &Scene) -> Option<Outline> {
+    let name = scene.name.as_ref().or(parsed.name());
+    Outline::of(parsed, name.map(|n| n.text.as_str()))
+}
+
+/// Every error of a model, the first inside its placeholder module (where
+/// it makes the module's items error types: see `emit::placeholder`).
+fn errors_and_placeholder(errors: syn::Error, outline: Option<Outline>) -> TokenStream {
+    let Some(outline) = outline else {
+        return errors.to_compile_error();
+    };
+    let mut each = errors.into_iter().map(|e| e.to_compile_error());
+    let first = each.next().unwrap_or_default();
+    let module = placeholder(&outline, first);
+    quote!(#module #(#each)*)
 }
 
 fn compile(parsed: Parsed, scene: &Scene) -> Result<TokenStream, Diagnostics> {
@@ -82,13 +89,15 @@ fn expand_file(args: &FileArguments, scene: &Scene, crate_root: &Path) -> TokenS
     let full_str = full.to_string_lossy().to_string();
     let track = quote_spanned!(span=> const _: &str = include_str!(#full_str););
     let parsed = syntax::parse_source_recovering(&file);
-    let name = model_name(&parsed, scene);
+    let outline = outline(&parsed, scene);
     match compile(parsed, scene) {
         Ok(module) => quote!(#module #track),
         Err(d) => {
-            let errors = d.to_syn_error_in(&file, span).map(|e| e.to_compile_error());
-            let placeholder = name.as_deref().map(placeholder);
-            quote!(#errors #placeholder #track)
+            let errors = d
+                .to_syn_error_in(&file, span)
+                .unwrap_or_else(|| syn::Error::new(span, "invalid model"));
+            let errors = errors_and_placeholder(errors, outline);
+            quote!(#errors #track)
         }
     }
 }

@@ -16,4 +16,4 @@ mod sines;
 pub use file::{format_tokens, header, source_hash};
 pub use markdown::markdown;
 pub use model::{EmitOptions, model_tokens, snake_case};
-pub use placeholder::placeholder;
+pub use placeholder::{Outline, placeholder};

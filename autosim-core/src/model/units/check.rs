@@ -102,7 +102,9 @@ impl<'r, 'a> Checker<'r, 'a> {
     }
 
     /// The dimension of a unit, or a diagnostic; a unit with a factor
-    /// (`deg`, `mm`) is reported unless `factor_allowed`.
+    /// (`deg`, `mm`) is reported unless `factor_allowed`, and read as its
+    /// coherent unit (the one the error says to declare), so its uses add
+    /// no errors of their own.
     pub fn meaning(&mut self, unit: &Unit, factor_allowed: bool) -> Option<Dim> {
         match parse_unit(&unit.text) {
             Ok(u) if u.is_coherent() || factor_allowed => Some(u.dim),
@@ -117,7 +119,7 @@ impl<'r, 'a> Checker<'r, 'a> {
                     )
                     .help(format!("declare it in `[{}]`; a unit with a factor is converted only where a number is written: a parameter's value (`a = 30 [{}]`) or a number in an expression (`2 [{}]`)", u.dim, unit.text, unit.text)),
                 );
-                None
+                Some(u.dim)
             }
             Err(err) => {
                 self.diags

@@ -3,7 +3,7 @@
 //! (trim), a steady turn of the bicycle (trim from a rough start), an
 //! impossible trim (a typed error), and the exports read back.
 
-use autosim::runtime::analysis::{LinearSystem, Trim, TrimError, trim};
+use autosim::runtime::analysis::{Complex, LinearSystem, Mode, Trim, TrimError, trim};
 use autosim::runtime::{Model, RunSettings, integrate::DormandPrince, run};
 use autosim_test_support::worst_of;
 
@@ -389,4 +389,108 @@ fn rounding_does_not_make_a_neutral_mode_unstable() {
             system.modes_report()
         );
     }
+}
+
+/// `(A − λI) v` for a mode's shape, largest entry's magnitude.
+fn residual(a: &nalgebra::DMatrix<f64>, mode: &Mode) -> f64 {
+    let v: Vec<Complex<f64>> = mode.shape.iter().map(|(_, c)| *c).collect();
+    (0..a.nrows())
+        .map(|i| {
+            let av: Complex<f64> = (0..a.ncols()).map(|j| v[j] * a[(i, j)]).sum();
+            (av - mode.eigenvalue * v[i]).norm()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The rank of the shapes of `modes`, as columns (tolerance 1e-9).
+fn rank_of_shapes(modes: &[&Mode]) -> usize {
+    let n = modes[0].shape.len();
+    let m = nalgebra::DMatrix::from_fn(n, modes.len(), |i, j| modes[j].shape[i].1);
+    m.svd(false, false)
+        .singular_values
+        .iter()
+        .filter(|s| **s > 1e-9)
+        .count()
+}
+
+/// Two identical uncoupled oscillators (`ẍ = -4x`, `ÿ = -4y`): `λ = 2i`
+/// twice, and its two copies are the two independent motions, not one
+/// motion twice (inverse iteration from one start gave both the same).
+#[test]
+fn a_repeated_eigenvalue_has_independent_shapes() {
+    #[rustfmt::skip]
+    let a = nalgebra::DMatrix::from_row_slice(4, 4, &[
+        0.0, 0.0, 1.0, 0.0,
+        0.0, 0.0, 0.0, 1.0,
+        -4.0, 0.0, 0.0, 0.0,
+        0.0, -4.0, 0.0, 0.0,
+    ]);
+    let modes = LinearSystem::from_matrices(a.clone(), &["x", "y", "vx", "vy"]).modes();
+    assert_eq!(modes.len(), 2, "{modes:?}");
+    for m in &modes {
+        assert!(
+            (m.eigenvalue - Complex::new(0.0, 2.0)).norm() < 1e-12,
+            "{m:?}"
+        );
+        assert!(residual(&a, m) < 1e-12, "{m:?}");
+    }
+    assert_eq!(
+        rank_of_shapes(&modes.iter().collect::<Vec<_>>()),
+        2,
+        "{modes:?}"
+    );
+}
+
+/// A free particle in the plane (`ẋ = v`, `v̇ = 0`, twice): `λ = 0` four
+/// times with two eigenvectors (the positions); the other two copies are
+/// generalized eigenvectors, `A w` the position's shape, so the four
+/// shapes span the state space.
+#[test]
+fn a_defective_zero_has_generalized_eigenvectors() {
+    #[rustfmt::skip]
+    let a = nalgebra::DMatrix::from_row_slice(4, 4, &[
+        0.0, 0.0, 1.0, 0.0,
+        0.0, 0.0, 0.0, 1.0,
+        0.0, 0.0, 0.0, 0.0,
+        0.0, 0.0, 0.0, 0.0,
+    ]);
+    let modes = LinearSystem::from_matrices(a.clone(), &["x", "y", "vx", "vy"]).modes();
+    assert_eq!(modes.len(), 4, "{modes:?}");
+    let eigen: Vec<_> = modes.iter().filter(|m| residual(&a, m) < 1e-12).collect();
+    assert_eq!(eigen.len(), 2, "{modes:?}");
+    for m in &eigen {
+        // An eigenvector is a position: no velocity.
+        assert!(m.shape[2].1.norm() + m.shape[3].1.norm() < 1e-12, "{m:?}");
+    }
+    assert_eq!(
+        rank_of_shapes(&modes.iter().collect::<Vec<_>>()),
+        4,
+        "{modes:?}"
+    );
+}
+
+/// A report prints a real mode's entries with their signs: the robot's
+/// yaw mode turns its wheels against each other.
+#[test]
+fn a_reported_real_mode_keeps_its_signs() {
+    // ẋ = -x, with y following -x: the mode is (x, y) = (1, -1).
+    #[rustfmt::skip]
+    let a = nalgebra::DMatrix::from_row_slice(2, 2, &[
+        -1.0, 0.0,
+        1.0, -2.0,
+    ]);
+    let report = LinearSystem::from_matrices(a, &["uL", "uR"]).modes_report();
+    // λ = -1: (A + I) v = 0 gives v = (1, 1); λ = -2: v = (0, 1).
+    assert!(
+        report.contains("λ = -1.000000 1/s, time constant 1.000000 s [uL 1.000, uR 1.000]"),
+        "{report}"
+    );
+    #[rustfmt::skip]
+    let b = nalgebra::DMatrix::from_row_slice(2, 2, &[
+        -1.0, 0.0,
+        -1.0, -2.0,
+    ]);
+    let report = LinearSystem::from_matrices(b, &["uL", "uR"]).modes_report();
+    // λ = -1: v = (1, -1).
+    assert!(report.contains("[uL 1.000, uR -1.000]"), "{report}");
 }

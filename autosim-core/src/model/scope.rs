@@ -256,6 +256,9 @@ impl<'a> Resolver<'a> {
         fits: fn(&Named) -> bool,
         otherwise: String,
     ) {
+        if self.names_of_failed_bodies.contains(&name.text) {
+            return;
+        }
         let mut candidates: Vec<&str> = self
             .names
             .iter()

@@ -236,9 +236,19 @@ fn very_large_speeds() {
     let (mut model, mut x) = start(1e8);
     let mut dopri = DormandPrince::with_tolerances(1e-8, 1e-8).unwrap();
     match run_to(&mut model, &mut dopri, &mut x, 1.0, 1e-3, 20_000) {
-        Err(IntegrationError::TooManySteps { t, steps }) => {
+        Err(IntegrationError::TooManySteps {
+            t,
+            steps,
+            largest,
+            value,
+        }) => {
             assert_eq!(steps, 20_000);
             assert!(t > 0.0 && t < 1e-3, "t = {t}");
+            // The error names the state that shows the size of the motion:
+            // a speed of 1e8 rad/s (the angles are still below 1e5 rad).
+            let speeds = &<TwoLink as Model>::STATE_NAMES[2..];
+            assert!(speeds.contains(&largest), "{largest}");
+            assert!(value.abs() > 0.5e8, "{largest} = {value}");
         }
         other => panic!("expected the step limit, got {other:?}"),
     }

@@ -128,6 +128,11 @@ pub enum IntegrationError {
         t: f64,
         /// Steps taken.
         steps: u64,
+        /// The state of largest magnitude then: a diverging motion (a
+        /// controller that destabilizes, an unbounded spin) shows here.
+        largest: &'static str,
+        /// Its value.
+        value: f64,
     },
 }
 
@@ -201,9 +206,14 @@ impl core::fmt::Display for IntegrationError {
                 f,
                 "events chatter at t = {t}: {events} events each within the Zeno interval of the one before, the last one {name}; stop the chattering in the model (e.g. a minimum rebound speed) or raise the limit (`zeno_events`)"
             ),
-            IntegrationError::TooManySteps { t, steps } => write!(
+            IntegrationError::TooManySteps {
+                t,
+                steps,
+                largest,
+                value,
+            } => write!(
                 f,
-                "stopped at t = {t} after {steps} steps (the step limit); raise the limit or loosen the tolerances"
+                "stopped at t = {t} after {steps} steps (the step limit), the largest state {largest} = {value:e}; raise the limit or loosen the tolerances, or, if the motion diverges, end it sooner (a terminal event, `stop: true`, or a smaller step limit)"
             ),
         }
     }

@@ -198,7 +198,7 @@ fn step_limit_is_a_typed_error() {
         .unwrap_err()
         .into();
     assert!(
-        matches!(err, IntegrationError::TooManySteps { steps: 7, t } if (t - 0.7).abs() < 1e-12),
+        matches!(err, IntegrationError::TooManySteps { steps: 7, t, .. } if (t - 0.7).abs() < 1e-12),
         "{err:?}"
     );
     // Exactly enough steps is fine.

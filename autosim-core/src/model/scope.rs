@@ -206,7 +206,7 @@ impl<'a> Resolver<'a> {
         }
         if what == "name" && !super::operations::is_function(&name.text) {
             d = d.note(format!(
-                "a new name is declared before use: in `parameters {{ ... }}`, as `input {} [unit];`, or with `let`",
+                "a name is declared (anywhere in the model) in `parameters {{ ... }}`, as `input {} [unit];`, or with `let`",
                 name.text
             ));
         }

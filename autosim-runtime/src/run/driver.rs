@@ -194,12 +194,27 @@ impl<M: Model> Driver<M> {
         Ok(())
     }
 
-    /// Fails if the step limit is reached (called before each step).
-    fn check_limit(&self) -> Result<(), IntegrationError> {
+    /// Fails if the step limit is reached (called before each step at
+    /// state `x`).
+    fn check_limit(&self, x: &M::State) -> Result<(), IntegrationError> {
         if self.summary.steps >= self.max_steps {
+            let (index, value) =
+                x.as_ref()
+                    .iter()
+                    .map(|v| v.to_f64())
+                    .enumerate()
+                    .fold((0, 0.0), |big, (k, v)| {
+                        if v.abs() > f64::abs(big.1) {
+                            (k, v)
+                        } else {
+                            big
+                        }
+                    });
             return Err(IntegrationError::TooManySteps {
                 t: self.t.to_f64(),
                 steps: self.summary.steps,
+                largest: M::STATE_NAMES.get(index).copied().unwrap_or("?"),
+                value,
             });
         }
         Ok(())
@@ -244,7 +259,7 @@ impl<M: Model> Driver<M> {
         t_end: M::Float,
         observer: &mut O,
     ) -> Result<Option<Flow>, RunError<O::Error>> {
-        self.check_limit()?;
+        self.check_limit(x)?;
         if let Some(events) = &mut self.events {
             events.before_step(model, stepper, self.t, x)?;
         }
@@ -345,7 +360,7 @@ impl<M: Model> Driver<M> {
                 return Ok(Flow::Continue);
             };
             let t0 = self.t;
-            self.check_limit()?;
+            self.check_limit(x)?;
             if let Some(events) = &mut self.events {
                 events.before_step(model, stepper, t0, x)?;
             }

@@ -70,21 +70,46 @@ fn resolve_one<M: Model>(column: &str, setup: &[String]) -> Result<Target, Study
     if let Some(k) = setup.iter().position(|s| s == column) {
         found.push(("setup", Target::Setup(k)));
     }
+    let every = kinds
+        .iter()
+        .flat_map(|k| k.1.iter().copied())
+        .chain(setup.iter().map(String::as_str));
+    let hint = match alike(column, every) {
+        Some(name) => std::format!("; did you mean `{name}`?"),
+        None => String::new(),
+    };
     match found.as_slice() {
         [(_, target)] => Ok(*target),
         [] if setup.is_empty() => Err(unknown::<M>(
             column,
-            "it is not a parameter, input, state or discrete variable of the model",
+            &std::format!(
+                "it is not a parameter, input, state or discrete variable of the model{hint}"
+            ),
         )),
         [] => Err(unknown::<M>(
             column,
-            "it is not a parameter, input, state or discrete variable of the model, nor a column the setup function reads",
+            &std::format!(
+                "it is not a parameter, input, state or discrete variable of the model, nor a column the setup function reads{hint}"
+            ),
         )),
         many => Err(StudyError::AmbiguousColumn {
             name: column.to_string(),
             kinds: many.iter().map(|f| f.0).collect(),
         }),
     }
+}
+
+/// The first of `names` spelled as `column` whatever the case, else the
+/// first that one of the two starts (at least two letters shared).
+fn alike<'a>(column: &str, names: impl Iterator<Item = &'a str> + Clone) -> Option<&'a str> {
+    let lower = column.to_lowercase();
+    let same = names.clone().find(|n| n.to_lowercase() == lower);
+    same.or_else(|| {
+        names.into_iter().find(|n| {
+            let n = n.to_lowercase();
+            n.len().min(lower.len()) >= 2 && (n.starts_with(&lower) || lower.starts_with(&n))
+        })
+    })
 }
 
 fn unknown<M: Model>(name: &str, why: &str) -> StudyError {

@@ -232,6 +232,11 @@ def test_inputs_constant_table_and_callable(load_model: Load) -> None:
     by_function = model.simulate(2.0, t_eval=times, inputs=lambda t: t / 2, method="rk4", h=1e-3)
     assert np.max(np.abs(by_function.x - ramp.x)) < 1e-13
 
+    # A state feedback is not an input: said before the run, with the way.
+    with pytest.raises(ValueError, match="must take the time alone"):
+        model.simulate(1.0, inputs=lambda t, x: -x[0])
+    model.simulate(0.1, inputs=lambda t, *rest: [0.0])  # the time alone binds
+
     def broken(t: float) -> list:
         raise RuntimeError("no input today")
 

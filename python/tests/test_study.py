@@ -365,3 +365,12 @@ def test_a_study_of_a_model_with_events_sets_and_keeps_its_discrete_variables(lo
         ball.study(cases, keep, t_end=0.0)
     with pytest.raises(ValueError, match="zeno_events"):
         ball.study(cases, keep, t_end=0.6, zeno_events=0)
+
+
+def test_a_distribution_that_is_none_is_refused_where_it_is_written() -> None:
+    for bad in [lambda: autosim.uniform(0.11, 0.09), lambda: autosim.uniform(0.0, np.inf)]:
+        with pytest.raises(ValueError, match="finite with low < high"):
+            bad()
+    with pytest.raises(ValueError, match="standard deviation finite and at least 0"):
+        autosim.normal(0.1, -0.01)
+    assert autosim.normal(0.1, 0.0).b == 0.0

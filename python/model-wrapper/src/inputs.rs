@@ -42,9 +42,10 @@ impl Table {
     pub fn new(times: Vec<f64>, values: Vec<f64>, width: usize) -> Result<Table, String> {
         if times.is_empty() || values.len() != times.len() * width {
             return Err(format!(
-                "the input table needs one row of {width} values per time ({} times, {} values)",
+                "the input table has {} times and {} values in all: it needs one row of {width} values per time ({} values)",
                 times.len(),
-                values.len()
+                values.len(),
+                times.len() * width
             ));
         }
         if !times.iter().all(|t| t.is_finite()) || !times.windows(2).all(|w| w[0] < w[1]) {

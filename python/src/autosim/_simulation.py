@@ -4,6 +4,7 @@ DataFrame when pandas is installed."""
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -201,6 +202,7 @@ def simulate(
     native = model._native
     saved = native.inputs()
     if callable(inputs):
+        _check_time_only(inputs)
         function = inputs
     elif isinstance(inputs, tuple) and len(inputs) == 2:
         table = _input_table(inputs, model.input_names)
@@ -253,3 +255,21 @@ def _event_log(log: Mapping[str, Any], model: Model) -> EventLog:
     return EventLog(
         log["t"], names, log["x_before"], log["x_after"], log["d_before"], log["d_after"], declared
     )
+
+
+def _check_time_only(function: Any) -> None:
+    """A ValueError if ``function`` cannot be called with the time alone
+    (``lambda t, x: ...`` is a state feedback, which an input cannot be)."""
+    try:
+        signature = inspect.signature(function)
+    except (TypeError, ValueError):  # a builtin without a signature
+        return
+    try:
+        signature.bind(0.0)
+    except TypeError:
+        raise ValueError(
+            f"the inputs callable must take the time alone, u(t); its signature is {signature}. "
+            "A feedback of the state belongs in the model (the gains as parameters), or in "
+            'a loop of simulate calls, one per control period (docs/python.md: "A sampled '
+            'controller in Python")'
+        ) from None

@@ -40,13 +40,23 @@ class Distribution:
 
 
 def uniform(low: float, high: float) -> Distribution:
-    """Uniform on ``[low, high)``."""
-    return Distribution("uniform", float(low), float(high))
+    """Uniform on ``[low, high)``: finite bounds with ``low < high``, else a
+    ValueError."""
+    low, high = float(low), float(high)
+    if not (np.isfinite(low) and np.isfinite(high) and low < high):
+        raise ValueError(f"uniform({low}, {high}): the bounds must be finite with low < high")
+    return Distribution("uniform", low, high)
 
 
 def normal(mean: float, std_dev: float) -> Distribution:
-    """Normal with this mean and standard deviation."""
-    return Distribution("normal", float(mean), float(std_dev))
+    """Normal with this mean and standard deviation: a finite mean and a
+    finite standard deviation of at least 0, else a ValueError."""
+    mean, std_dev = float(mean), float(std_dev)
+    if not (np.isfinite(mean) and np.isfinite(std_dev) and std_dev >= 0.0):
+        raise ValueError(
+            f"normal({mean}, {std_dev}): the mean must be finite and the standard deviation finite and at least 0"
+        )
+    return Distribution("normal", mean, std_dev)
 
 
 def _floats(values: Any, what: str) -> list[float]:

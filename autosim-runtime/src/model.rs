@@ -140,7 +140,7 @@ impl core::fmt::Display for ModelError {
             ),
             ModelError::SingularConstraints { constraint, name } => write!(
                 f,
-                "the constraints are singular at this state: the pivot of constraint {name} (#{constraint}) vanishes (name other dependent speeds with `dependent:`, or the mechanism is at a singular configuration)"
+                "the constraints are singular at this state: the pivot of constraint {name} (#{constraint}) vanishes: the mechanism is at a singular configuration, or the pivot is one of how the constraints are written (name other dependent speeds with `dependent:`, or write the constraints along the axes the dependent speeds are measured in: language.md, \"Constraints\")"
             ),
             ModelError::NotAssembled { name } => write!(
                 f,

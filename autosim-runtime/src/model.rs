@@ -136,7 +136,7 @@ impl core::fmt::Display for ModelError {
         match self {
             ModelError::SingularMassMatrix { speed, name } => write!(
                 f,
-                "the mass matrix is singular at this state: pivot of speed {name} (#{speed}) is not positive (check that every mass and inertia is positive and every parameter finite)"
+                "the mass matrix is singular at this state: pivot of speed {name} (#{speed}) is not positive or is NaN (check that every mass and inertia is positive and every parameter finite)"
             ),
             ModelError::SingularConstraints { constraint, name } => write!(
                 f,

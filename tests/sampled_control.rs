@@ -119,3 +119,94 @@ fn a_sampled_input_fires_the_event_it_crosses() {
     assert!((events[0].t - 0.3).abs() < 1e-12, "at {}", events[0].t);
     assert_eq!(model.discrete.high, 1.0);
 }
+
+mod pushed {
+    autosim::model! {
+        /// A unit mass on a unit spring, pushed by its input.
+        model Pushed;
+        input push [N];
+        body B { translate: 1, q: [x], u: [v], mass: 1, inertia: 0 }
+        force f { on: B, along: n1, magnitude: push - x as [N] }
+    }
+}
+
+/// `run_sampled_at` reports at the times it is given (repeated ones too)
+/// and samples as `run_sampled` does: on the times `run_sampled` reports
+/// at, the same bits; on other times, the same samples and the same end.
+#[test]
+fn sampled_runs_report_at_given_times() {
+    use autosim::runtime::io::Recording;
+    use autosim::runtime::{RunSettings, run_sampled, run_sampled_at};
+    let settings = RunSettings::new(0.0, 1.0, 0.01, 0.1);
+    let run = |times: Option<&[f64]>| {
+        let mut model = pushed::pushed::Pushed::new();
+        let mut x = [0.2, 0.0];
+        let mut samples = Vec::new();
+        let mut controller = |t: f64, x: &[f64; 2], _: &[f64; 0], inputs: &mut [f64]| {
+            samples.push(t);
+            inputs[0] = -3.0 * x[0] - 2.0 * x[1];
+        };
+        let mut recording = Recording::new();
+        let (stepper, period) = (&mut Rk4::new(), 0.1);
+        match times {
+            None => run_sampled(
+                &mut model,
+                stepper,
+                &mut x,
+                &settings,
+                period,
+                &mut controller,
+                &mut recording,
+            ),
+            Some(times) => run_sampled_at(
+                &mut model,
+                stepper,
+                &mut x,
+                &settings,
+                times,
+                period,
+                &mut controller,
+                &mut recording,
+            ),
+        }
+        .expect("runs");
+        (recording, samples, x)
+    };
+    let (every, samples, end) = run(None);
+    let times: Vec<f64> = every.time().to_vec();
+    assert_eq!(times.len(), 11);
+    let (listed, listed_samples, listed_end) = run(Some(&times));
+    assert_eq!(listed.time(), &times[..]);
+    let values = |r: &Recording<pushed::pushed::Pushed>| -> Vec<Vec<f64>> {
+        r.columns().iter().map(|c| c.values.clone()).collect()
+    };
+    assert_eq!(values(&listed), values(&every));
+    assert_eq!((listed_samples, listed_end), (samples.clone(), end));
+
+    let odd = [0.05, 0.25, 0.25, 0.7];
+    let (sparse, sparse_samples, sparse_end) = run(Some(&odd));
+    // A fixed step's grid time stands for the time within its rounding
+    // (as in every run: `7 · 0.1` is `0.7000000000000001`).
+    let reported = sparse.time();
+    assert_eq!(reported.len(), odd.len());
+    assert!(
+        reported.iter().zip(odd).all(|(a, b)| (a - b).abs() < 1e-15),
+        "{reported:?}"
+    );
+    assert_eq!(sparse_samples, samples);
+    assert!(
+        (sparse_end[0] - end[0]).abs() < 1e-9 && (sparse_end[1] - end[1]).abs() < 1e-9,
+        "{sparse_end:?} vs {end:?}"
+    );
+    let bad = run_sampled_at(
+        &mut pushed::pushed::Pushed::new(),
+        &mut Rk4::new(),
+        &mut [0.0; 2],
+        &settings,
+        &[0.5, 0.4],
+        0.1,
+        &mut |_: f64, _: &[f64; 2], _: &[f64; 0], _: &mut [f64]| {},
+        &mut Recording::new(),
+    );
+    assert!(bad.is_err(), "times out of order are refused");
+}

@@ -140,7 +140,7 @@ pub use model::{
 };
 pub use run::{
     Controller, EventSettings, Observer, RunError, RunSettings, RunSummary, run, run_at,
-    run_sampled,
+    run_sampled, run_sampled_at,
 };
 
 /// Items used by generated code. Not a public API: it may change without notice.

@@ -465,3 +465,70 @@ def test_a_misspelling_far_from_every_name_finds_the_doc_that_names_it(load_mode
         str(nothing_close.value)
         == "\"parameter 'xyzzy' is not one of the model's parameters ['m', 'L', 'g']\""
     )
+
+
+SPRING = """
+model Spring;
+parameters { m = 2 [kg], k = 8 [N/m] }
+input force [N];
+body Cart { translate: 1, q: [x], u: [v], mass: m }
+force spring { on: Cart, along: n1, magnitude: -k*x + force }
+output pull [N] = -k*x;
+"""
+
+
+def test_a_sampled_controller_matches_the_exact_zero_order_hold() -> None:
+    """A state feedback sampled every 50 ms on a mass and spring: at the
+    sample instants the state follows the exact discretization
+    ``z⁺ = Φ z + Γ u`` (``Φ``, ``Γ`` from the matrix exponential, SciPy),
+    whatever the method; the controller runs once per sample, at t0 and
+    every period, and sees the state and outputs there."""
+    linalg = pytest.importorskip("scipy.linalg")
+    model = autosim.loads(SPRING, quiet=True)
+    m, k, period, gains = 2.0, 8.0, 0.05, np.array([3.0, 1.5])
+    calls: list[tuple[float, float]] = []
+
+    def controller(t: float, x: np.ndarray, y: np.ndarray) -> float:
+        calls.append((t, y[0] + k * x[0]))  # the output is -k x
+        return float(-gains @ x)
+
+    a = np.array([[0.0, 1.0, 0.0], [-k / m, 0.0, 1.0 / m], [0.0, 0.0, 0.0]])
+    step = linalg.expm(a * period)
+    z = np.array([0.3, 0.0])
+    exact = [z]
+    for _ in range(40):
+        z = step[:2, :2] @ z + step[:2, 2] * float(-gains @ z)
+        exact.append(z)
+    samples = np.arange(41) * period
+    for method, options in [("dopri", {"rtol": 1e-12, "atol": 1e-14}), ("rk4", {"h": 1e-3})]:
+        calls.clear()
+        run = model.simulate(
+            2.0, [0.3, 0.0], t_eval=samples, controller=controller, period=period, method=method, **options
+        )
+        assert np.max(np.abs(run.x - np.array(exact))) < 1e-9, method
+        assert np.allclose([t for t, _ in calls], samples, rtol=0, atol=1e-12), method
+        assert max(abs(seen) for _, seen in calls) < 1e-12, "the outputs are the state's"
+        # The inputs reported at a sample instant are the new ones.
+        assert np.allclose(run["force"], -(run.x @ gains), rtol=0, atol=1e-12), method
+
+
+def test_a_controller_is_checked_before_the_run() -> None:
+    model = autosim.loads(SPRING, quiet=True)
+    with pytest.raises(ValueError, match="must take \\(t, x, y\\)"):
+        model.simulate(1.0, controller=lambda t, x: 0.0, period=0.1)
+    with pytest.raises(ValueError, match="sample period"):
+        model.simulate(1.0, controller=lambda t, x, y: 0.0)
+    with pytest.raises(ValueError, match="give controller= too"):
+        model.simulate(1.0, period=0.1)
+    with pytest.raises(ValueError, match="leave inputs= out"):
+        model.simulate(1.0, controller=lambda t, x, y: 0.0, period=0.1, inputs=1.0)
+    with pytest.raises(ValueError, match="the controller returned 2 values at t = 0"):
+        model.simulate(1.0, controller=lambda t, x, y: [0.0, 1.0], period=0.1)
+
+    def broken(t: float, x: np.ndarray, y: np.ndarray) -> float:
+        if t > 0.25:
+            raise RuntimeError("controller fault")
+        return 0.0
+
+    with pytest.raises(RuntimeError, match="controller fault"):
+        model.simulate(1.0, controller=broken, period=0.1)

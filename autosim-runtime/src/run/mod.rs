@@ -15,7 +15,7 @@ mod sampled;
 mod times;
 
 pub use events::EventSettings;
-pub use sampled::{Controller, run_sampled};
+pub use sampled::{Controller, run_sampled, run_sampled_at};
 pub use times::run_at;
 
 use crate::integrate::Stepper;

@@ -6,7 +6,7 @@ use super::driver::Driver;
 use super::events::Flow;
 use super::{Observer, RunError, RunSettings, RunSummary};
 use crate::integrate::Stepper;
-use crate::{IntegrationError, Model};
+use crate::{Float, IntegrationError, Model};
 
 /// Integrates `model` from `settings.start` to `settings.stop` like
 /// [`run`](super::run()), but calls `observer` exactly at each of `times`
@@ -36,15 +36,7 @@ where
     S: Stepper<M> + ?Sized,
     O: Observer<M> + ?Sized,
 {
-    let ordered = times.windows(2).all(|w| w[0] <= w[1]);
-    let inside = times
-        .iter()
-        .all(|&t| t >= settings.start && t <= settings.stop);
-    if !ordered || !inside {
-        return Err(RunError::Integration(IntegrationError::InvalidSettings {
-            reason: "output times must be non-decreasing and within [start, stop]",
-        }));
-    }
+    check_times(settings, times)?;
     let mut driver = Driver::begin(model, stepper, x, settings, observer)?;
     for &t_out in times {
         if t_out > driver.time() {
@@ -61,4 +53,22 @@ where
         driver.advance(model, stepper, x, settings.stop, settings.step, observer)?;
     }
     Ok(driver.finish(stepper))
+}
+
+/// `times` as output times of a run with `settings`: non-decreasing and
+/// within `[start, stop]`, else [`IntegrationError::InvalidSettings`].
+pub(super) fn check_times<F: Float, E>(
+    settings: &RunSettings<F>,
+    times: &[F],
+) -> Result<(), RunError<E>> {
+    let ordered = times.windows(2).all(|w| w[0] <= w[1]);
+    let inside = times
+        .iter()
+        .all(|&t| t >= settings.start && t <= settings.stop);
+    if ordered && inside {
+        return Ok(());
+    }
+    Err(RunError::Integration(IntegrationError::InvalidSettings {
+        reason: "output times must be non-decreasing and within [start, stop]",
+    }))
 }

@@ -6,7 +6,7 @@
 use crate::Generated;
 use crate::inputs::InputSource;
 use crate::interrupt::Poll;
-use crate::simulate::{Failure, Request, Trajectory, simulate};
+use crate::simulate::{Failure, Request, Sampler, Trajectory, simulate};
 use crate::study::{self, Outcome, Plan};
 use autosim_runtime::analysis::Trim;
 use autosim_runtime::study::Layout;
@@ -90,12 +90,13 @@ pub trait Engine: Send + Sync {
     /// iterations and the final residual, the error's message, or `None`
     /// without a generated linearization.
     fn trim(&mut self, t: f64, x: &mut [f64], spec: &Trim) -> Option<Result<(usize, f64), String>>;
-    /// Integrates as `request` says with the inputs from `inputs`, until
-    /// `poll` says stop.
+    /// Integrates as `request` says with the inputs from `inputs` or set
+    /// by `sampler`, until `poll` says stop.
     fn simulate(
         &mut self,
         request: &Request,
         inputs: Box<dyn InputSource>,
+        sampler: Option<Sampler>,
         poll: Poll,
     ) -> Result<Trajectory, Failure>;
     /// Runs a study of copies of this model (its parameters and inputs as
@@ -370,9 +371,10 @@ impl<M: Generated> Engine for Adapter<M> {
         &mut self,
         request: &Request,
         inputs: Box<dyn InputSource>,
+        sampler: Option<Sampler>,
         poll: Poll,
     ) -> Result<Trajectory, Failure> {
-        simulate(&self.0, request, inputs, poll)
+        simulate(&self.0, request, inputs, sampler, poll)
     }
 
     fn study(&self, plan: &Plan, request: study::Request<'_>) -> Result<Outcome, String> {

@@ -18,6 +18,7 @@
 use autosim_runtime::integrate::{SdirkSettings, Stepper};
 use autosim_runtime::{Model, ModelError};
 
+mod callables;
 mod engine;
 mod inputs;
 mod interrupt;

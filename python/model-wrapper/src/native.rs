@@ -6,10 +6,11 @@
 //! Python code on top of this one.
 
 use crate::Generated;
+use crate::callables::{Callable, Controller};
 use crate::engine::{Adapter, Engine, RowError, Sizes};
 use crate::inputs::{Held, InputSource, Table};
 use crate::interrupt::{signals, watched};
-use crate::simulate::{Failure, Request, Trajectory};
+use crate::simulate::{Failure, Request, Sampler, Trajectory};
 use crate::simulate_args::{event_settings, failure_error, trajectory_dict};
 use crate::study::{self, Outcome};
 use crate::study_args::{plan, results_dict, summary_dict};
@@ -141,52 +142,6 @@ pub(crate) fn rows<'py>(
     let array = Array2::from_shape_vec((n, width), values)
         .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
     Ok(array.into_pyarray(py))
-}
-
-/// A Python callable `u(t)` as an input source; its first exception is
-/// kept (and the inputs become NaN, which stops the integration) for the
-/// caller to raise.
-struct Callable {
-    function: Py<PyAny>,
-    width: usize,
-    failure: Arc<Mutex<Option<PyErr>>>,
-}
-
-impl InputSource for Callable {
-    fn at(&mut self, t: f64, u: &mut [f64]) -> bool {
-        let mut failure = self.failure.lock().unwrap_or_else(|p| p.into_inner());
-        if failure.is_none() {
-            let got = Python::attach(|py| -> PyResult<Vec<f64>> {
-                let value = self.function.call1(py, (t,))?;
-                let values: Vec<f64> = match value.extract::<f64>(py) {
-                    Ok(v) => vec![v],
-                    Err(_) => value.extract(py)?,
-                };
-                if values.len() != self.width {
-                    return Err(PyValueError::new_err(format!(
-                        "the inputs callable returned {} values at t = {t}; the model has {} inputs",
-                        values.len(),
-                        self.width
-                    )));
-                }
-                if let Some((k, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-                    return Err(PyValueError::new_err(format!(
-                        "the inputs callable returned {v} for input #{k} (model.input_names order) at t = {t}; inputs must be finite"
-                    )));
-                }
-                Ok(values)
-            });
-            match got {
-                Ok(values) => {
-                    u.copy_from_slice(&values);
-                    return true;
-                }
-                Err(e) => *failure = Some(e),
-            }
-        }
-        u.fill(f64::NAN);
-        true
-    }
 }
 
 impl NativeModel {
@@ -479,14 +434,15 @@ impl NativeModel {
 
     /// Integrates from `x0` at `t0` to `t_end` with `method`, reporting at
     /// `times`; inputs held (`inputs=None`), from a table (`table=(t, u)`)
-    /// or from a callable; the discrete variables starting at `discrete0`
+    /// or from a callable, or set by a `controller = (callable, period)`
+    /// called with `(t, x, y)` every period; the discrete variables starting at `discrete0`
     /// (default: the model's), events located as `events` =
     /// `(time_tolerance, interior_samples, zeno_events, zeno_interval)`
     /// says. Returns the dict of `simulate_args::trajectory_dict`. The GIL
     /// is released (a callable takes it back at each call, and the run
     /// every 0.1 s to check for Ctrl-C, which stops it and raises
     /// `KeyboardInterrupt`).
-    #[pyo3(signature = (method, t0, t_end, h, rtol, atol, times, x0, max_steps, table=None, function=None, discrete0=None, events=(0.0, 4, 100, 0.0)))]
+    #[pyo3(signature = (method, t0, t_end, h, rtol, atol, times, x0, max_steps, table=None, function=None, discrete0=None, events=(0.0, 4, 100, 0.0), controller=None))]
     #[allow(clippy::too_many_arguments)]
     fn simulate<'py>(
         &mut self,
@@ -504,6 +460,7 @@ impl NativeModel {
         function: Option<Py<PyAny>>,
         discrete0: Option<PyReadonlyArray1<'_, f64>>,
         events: (f64, u32, u32, f64),
+        controller: Option<(Py<PyAny>, f64)>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let x0 = vector(&x0, self.sizes.states, "x0")?.into_owned();
         let times = vector(&times, times.len(), "t_eval")?.into_owned();
@@ -519,13 +476,13 @@ impl NativeModel {
                 let uu = matrix(&uu, ni, "input values")?.into_owned();
                 Box::new(Table::new(tt, uu, ni).map_err(PyValueError::new_err)?)
             }
-            (None, Some(function)) => Box::new(Callable {
-                function,
-                width: ni,
-                failure: Arc::clone(&failure),
-            }),
+            (None, Some(function)) => Box::new(Callable::new(function, ni, Arc::clone(&failure))),
             (None, None) => Box::new(Held),
         };
+        let sampler = controller.map(|(function, period)| Sampler {
+            period,
+            control: Box::new(Controller::new(function, ni, Arc::clone(&failure))),
+        });
         let request = Request {
             method,
             t0,
@@ -542,7 +499,7 @@ impl NativeModel {
         let poll = signals(Arc::clone(&failure));
         let engine = &mut self.engine;
         let result = py
-            .detach(|| unpanicked(|| engine.simulate(&request, source, poll)))
+            .detach(|| unpanicked(|| engine.simulate(&request, source, sampler, poll)))
             .map_err(Failure::Message)
             .and_then(|r| r);
         if let Some(e) = failure.lock().unwrap_or_else(|p| p.into_inner()).take() {

@@ -14,6 +14,7 @@ use autosim_runtime::integrate::{
 use autosim_runtime::run::EventSettings;
 use autosim_runtime::{
     EventRecord, IntegrationError, Model, Observer, RunError, RunSettings, StateArray, run_at,
+    run_sampled_at,
 };
 use core::convert::Infallible;
 
@@ -44,6 +45,23 @@ pub struct Request {
     pub discrete0: Option<Vec<f64>>,
     /// How events are located and when chattering stops the run.
     pub events: EventSettings<f64>,
+}
+
+/// A discrete-time controller run every `period` (guide 3's sampled
+/// control): it reads the time, state and outputs at each sample instant
+/// and writes the inputs held until the next.
+pub trait SampledControl: Send {
+    /// At sample instant `t` with state `x` and outputs `y`: the inputs
+    /// (the current ones on entry) to hold.
+    fn sample(&mut self, t: f64, x: &[f64], y: &[f64], inputs: &mut [f64]);
+}
+
+/// A controller with its sample period.
+pub struct Sampler {
+    /// The sample period (s).
+    pub period: f64,
+    /// The controller.
+    pub control: Box<dyn SampledControl>,
 }
 
 /// Why a simulation failed.
@@ -150,7 +168,8 @@ impl<M: Model<Float = f64>> Observer<M> for Trajectory {
 }
 
 /// Runs `model` (a copy: its inputs end where the source left them) as
-/// `request` says, its inputs from `source`, until `poll` says stop.
+/// `request` says, its inputs from `source` or set by `sampler` at its
+/// sample instants, until `poll` says stop.
 ///
 /// # Errors
 /// The integration error's message (it names the time, and the state or
@@ -160,6 +179,7 @@ pub fn simulate<M: Generated>(
     model: &M,
     request: &Request,
     source: Box<dyn InputSource>,
+    sampler: Option<Sampler>,
     poll: Poll,
 ) -> Result<Trajectory, Failure> {
     let mut stepper = stepper::<M>(request)?;
@@ -178,14 +198,34 @@ pub fn simulate<M: Generated>(
     .with_max_steps(request.max_steps)
     .with_events(request.events);
     let mut out = Trajectory::default();
-    let summary = run_at(
-        &mut driven,
-        &mut *stepper,
-        &mut x,
-        &settings,
-        &request.times,
-        &mut out,
-    )
+    let summary = match sampler {
+        Some(Sampler {
+            period,
+            mut control,
+        }) => {
+            let mut controller = |t: f64, x: &M::State, y: &M::Outputs, u: &mut [f64]| {
+                control.sample(t, x.as_ref(), y.as_ref(), u);
+            };
+            run_sampled_at(
+                &mut driven,
+                &mut *stepper,
+                &mut x,
+                &settings,
+                &request.times,
+                period,
+                &mut controller,
+                &mut out,
+            )
+        }
+        None => run_at(
+            &mut driven,
+            &mut *stepper,
+            &mut x,
+            &settings,
+            &request.times,
+            &mut out,
+        ),
+    }
     .map_err(failure)?;
     if M::INPUT_NAMES.len() > autosim_runtime::run::MAX_RECORDED_INPUTS {
         out.u.clear();

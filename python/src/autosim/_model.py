@@ -478,6 +478,8 @@ class Model:
         event_samples: int = 4,
         zeno_events: int = 100,
         zeno_interval: float = 0.0,
+        controller: Callable[[float, np.ndarray, np.ndarray], Any] | None = None,
+        period: float | None = None,
     ) -> Simulation:
         """Integrates from ``x0`` (default: the initial state) at ``t0`` to
         ``t_end`` with the Rust integrators, the GIL released.
@@ -497,6 +499,17 @@ class Model:
         input vector is called at every evaluation (slow: it runs Python
         at every integrator stage). Models with position constraints are
         assembled first and projected after every step.
+
+        ``controller`` with ``period``: a discrete-time controller
+        ``controller(t, x, y)`` called at ``t0`` and every ``period`` after
+        (never between, whatever the method) with the time, the state and
+        the outputs, returning the inputs (a number for one input, or a
+        vector in :attr:`input_names` order) held until the next sample,
+        as a real controller's zero-order hold; the steps land on the
+        sample instants, and the outputs reported at one already use its
+        new inputs (``inputs`` must then be ``None``). A controller with
+        states of its own keeps them itself (a closure or an object's
+        ``__call__``).
 
         Events (models with ``event`` items) are located in every method, as
         the Rust run driver does: after each step the indicators are
@@ -521,7 +534,21 @@ class Model:
         """
         events = event_settings(event_tolerance, event_samples, zeno_events, zeno_interval)
         return simulate(
-            self, t_end, x0, t0, method, rtol, atol, h, t_eval, inputs, max_steps, discrete0, events
+            self,
+            t_end,
+            x0,
+            t0,
+            method,
+            rtol,
+            atol,
+            h,
+            t_eval,
+            inputs,
+            max_steps,
+            discrete0,
+            events,
+            controller,
+            period,
         )
 
     def study(self, cases: Any, keep: Any, t_end: float, **settings: Any) -> Any:

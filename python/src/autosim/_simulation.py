@@ -182,6 +182,8 @@ def simulate(
     max_steps: int,
     discrete0: Any = None,
     events: EventSettings = (0.0, 4, 100, 0.0),
+    controller: Any = None,
+    period: float | None = None,
 ) -> Simulation:
     """:meth:`Model.simulate` (see there)."""
     if method not in METHODS:
@@ -201,6 +203,7 @@ def simulate(
     function = None
     native = model._native
     saved = native.inputs()
+    sampled = _sampled(controller, period, inputs)
     if callable(inputs):
         _check_time_only(inputs)
         function = inputs
@@ -223,6 +226,7 @@ def simulate(
             function,
             d0,
             events,
+            sampled,
         )
     finally:
         if inputs is not None:
@@ -270,6 +274,30 @@ def _check_time_only(function: Any) -> None:
         raise ValueError(
             f"the inputs callable must take the time alone, u(t); its signature is {signature}. "
             "A feedback of the state belongs in the model (the gains as parameters), or in "
-            'a loop of simulate calls, one per control period (docs/python.md: "A sampled '
-            'controller in Python")'
+            "a sampled controller: simulate(..., controller=f, period=dt) with f(t, x, y)"
         ) from None
+
+
+def _sampled(controller: Any, period: float | None, inputs: Any) -> tuple[Any, float] | None:
+    """``(controller, period)`` checked for the native run, or ``None``
+    without a controller; a ValueError naming what is wrong."""
+    if controller is None:
+        if period is not None:
+            raise ValueError("period is the sample period of a controller: give controller= too")
+        return None
+    if not callable(controller):
+        raise ValueError(f"controller must be callable as controller(t, x, y), not {controller!r}")
+    if period is None or not (float(period) > 0 and np.isfinite(float(period))):
+        raise ValueError(f"a controller needs its sample period: period= positive and finite, not {period}")
+    if inputs is not None:
+        raise ValueError("a controller sets the inputs from the start: leave inputs= out")
+    try:
+        inspect.signature(controller).bind(0.0, None, None)
+    except TypeError:
+        raise ValueError(
+            f"the controller must take (t, x, y): the time, the state and the outputs; "
+            f"its signature is {inspect.signature(controller)}"
+        ) from None
+    except ValueError:  # a builtin without a signature
+        pass
+    return controller, float(period)

@@ -140,7 +140,7 @@ impl core::fmt::Display for ModelError {
             ),
             ModelError::SingularConstraints { constraint, name } => write!(
                 f,
-                "the constraints are singular at this state: the pivot of constraint {name} (#{constraint}) vanishes: the mechanism is at a singular configuration, or the pivot is one of how the constraints are written (name other dependent speeds with `dependent:`, or write the constraints along the axes the dependent speeds are measured in: language.md, \"Constraints\")"
+                "the constraints are singular at this state: the pivot of constraint {name} (#{constraint}) vanishes: the mechanism is at a singular configuration, or the pivot is one of how the constraints are written or of where a dependent starts (name other dependents with `dependent:`, coordinates for a position constraint and speeds for a speed constraint; start a dependent coordinate where it moves its constraint; or write the constraints along the axes the dependent speeds are measured in: language.md, \"Constraints\")"
             ),
             ModelError::NotAssembled { name } => write!(
                 f,

@@ -532,3 +532,20 @@ def test_a_controller_is_checked_before_the_run() -> None:
 
     with pytest.raises(RuntimeError, match="controller fault"):
         model.simulate(1.0, controller=broken, period=0.1)
+
+
+def test_a_run_steps_onto_its_input_tables_times() -> None:
+    """Dormand–Prince across a table's kink loses accuracy: the run lands
+    on every time of the table, so two output times give the end that a
+    dense output grid containing the kinks gives."""
+    model = autosim.loads(SPRING, quiet=True)
+    table = ([0.0, 0.3, 0.300001, 1.1, 1.4], [0.0, 0.0, 5.0, 5.0, -2.0])
+    ends = [
+        model.simulate(2.0, [0.1, 0.0], t_eval=t_eval, inputs=table, rtol=1e-10, atol=1e-12)
+        for t_eval in ([0.0, 2.0], np.linspace(0.0, 2.0, 2001), [0.0, 0.3, 0.300001, 1.1, 1.4, 2.0])
+    ]
+    assert len(ends[0].t) == 2 and ends[0].t[-1] == 2.0
+    for run in ends[1:]:
+        assert np.max(np.abs(run.x[-1] - ends[0].x[-1])) < 1e-9, (run.x[-1], ends[0].x[-1])
+    with pytest.raises(ValueError, match=r"time #2 \(1.0\) is not after time #1 \(1.0\)"):
+        model.simulate(2.0, inputs=([0.0, 1.0, 1.0], [0.0, 0.0, 1.0]))

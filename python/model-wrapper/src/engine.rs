@@ -37,6 +37,8 @@ pub type RowError = (usize, ModelError);
 pub trait Engine: Send + Sync {
     /// The vector sizes.
     fn sizes(&self) -> Sizes;
+    /// The state's names, in order.
+    fn state_names(&self) -> &'static [&'static str];
     /// The interface JSON.
     fn interface(&self) -> &'static str;
     /// A copy (same parameters and inputs).
@@ -217,6 +219,10 @@ pub fn state<M: Model<Float = f64>>(x: &[f64]) -> M::State {
 }
 
 impl<M: Generated> Engine for Adapter<M> {
+    fn state_names(&self) -> &'static [&'static str] {
+        M::STATE_NAMES
+    }
+
     fn sizes(&self) -> Sizes {
         Sizes {
             states: M::STATE_NAMES.len(),

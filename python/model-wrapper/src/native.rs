@@ -162,7 +162,9 @@ impl NativeModel {
             .map_err(PyValueError::new_err)
     }
 
-    /// `dx/dt` (or the outputs, `outputs = true`) at `(t, x)`.
+    /// `dx/dt` (or the outputs, `outputs = true`) at `(t, x)`; a state
+    /// that is not finite is a `ValueError` naming it (as Python's check
+    /// does).
     fn evaluate<'py>(
         &mut self,
         py: Python<'py>,
@@ -171,6 +173,19 @@ impl NativeModel {
         outputs: bool,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let x = vector(&x, self.sizes.states, "x")?;
+        if let Some((k, v)) = x.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            let name = self.engine.state_names().get(k).copied().unwrap_or("?");
+            let v = if v.is_nan() {
+                "nan"
+            } else if *v > 0.0 {
+                "inf"
+            } else {
+                "-inf"
+            };
+            return Err(PyValueError::new_err(format!(
+                "x is not finite in state '{name}' (#{k}): {v}"
+            )));
+        }
         let width = if outputs {
             self.sizes.outputs
         } else {

@@ -313,6 +313,11 @@ class Model:
         return self._evaluate(t, x, u, discrete, outputs=True)
 
     def _evaluate(self, t: Any, x: ArrayLike, u: Any, discrete: Discrete, outputs: bool) -> np.ndarray:
+        if u is None and discrete is None and type(x) is np.ndarray and x.shape == (self._nx,):
+            # One state as a vector, nothing set for the call: straight to
+            # the native call (it checks that every entry is finite).
+            one = self._native.outputs if outputs else self._native.derivatives
+            return one(float(t), x if x.dtype == np.float64 else x.astype(np.float64))
         xs = np.asarray(x, dtype=np.float64)
         # Rows of `u` go to the native loop; one input vector holds for the call.
         u_rows = xs.ndim == 2 and u is not None and not isinstance(u, Mapping) and np.ndim(u) == 2

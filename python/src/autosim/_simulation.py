@@ -133,9 +133,41 @@ def _input_table(inputs: tuple[Any, Any], names: tuple[str, ...]) -> tuple[np.nd
     bad = np.flatnonzero(~np.isfinite(tt))
     if bad.size:
         raise ValueError(f"the input table's time #{bad[0]} is not finite: {tt.flat[bad[0]]}")
+    back = np.flatnonzero(np.diff(tt) <= 0) if tt.ndim == 1 else np.array([], dtype=int)
+    if back.size:
+        k = int(back[0]) + 1
+        raise ValueError(
+            f"the input table's time #{k} ({tt[k]}) is not after time #{k - 1} ({tt[k - 1]}): "
+            "times must increase (a step is two times a short interval apart, e.g. 1e-6 s: "
+            "the run steps onto both)"
+        )
     if uu.ndim == 2:
         check_finite(uu, "the input table's values", names, "input")
     return tt, uu
+
+
+def _landing(times: np.ndarray, kinks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The output times with an input table's inner times added, so that
+    the integrator steps onto the table's kinks (a step of an adaptive
+    method across one loses accuracy, a fixed step's stages straddle it),
+    and which of them were asked for."""
+    extra = np.setdiff1d(kinks, times)
+    merged = np.concatenate([times, extra])
+    order = np.argsort(merged, kind="stable")
+    asked = np.concatenate([np.ones(len(times), dtype=bool), np.zeros(len(extra), dtype=bool)])
+    return np.ascontiguousarray(merged[order]), asked[order]
+
+
+def _requested_rows(run: dict[str, Any], requested: np.ndarray) -> dict[str, Any]:
+    """The run's rows at the times asked for (and, after a terminal event,
+    its last row at the event's instant)."""
+    n = len(run["t"])
+    keep = requested[:n].copy()
+    if run["terminal_event"] is not None and n:
+        keep[n - 1] = True
+    rows = {name: run[name][keep] for name in ("t", "x", "y", "d")}
+    rows["u"] = run["u"][keep] if len(run["u"]) == n else run["u"]
+    return {**run, **rows}
 
 
 def _output_times(t0: float, t_end: float, t_eval: Any) -> np.ndarray:
@@ -201,6 +233,7 @@ def simulate(
     d0 = None if discrete0 is None else model.discrete_vector(discrete0, "discrete0")
     table = None
     function = None
+    requested = None
     native = model._native
     saved = native.inputs()
     sampled = _sampled(controller, period, inputs)
@@ -209,6 +242,7 @@ def simulate(
         function = inputs
     elif isinstance(inputs, tuple) and len(inputs) == 2:
         table = _input_table(inputs, model.input_names)
+        times, requested = _landing(times, table[0][(table[0] > t0) & (table[0] < t_end)])
     elif inputs is not None:
         model.set_inputs(inputs if isinstance(inputs, Mapping) else np.atleast_1d(inputs))
     try:
@@ -231,6 +265,8 @@ def simulate(
     finally:
         if inputs is not None:
             native.set_inputs(saved)
+    if requested is not None:
+        run = _requested_rows(run, requested)
     u = run["u"]
     if u.shape[1] != len(model.input_names):
         u = np.full((len(run["t"]), len(model.input_names)), np.nan)

@@ -282,6 +282,12 @@ fn bad_columns_and_quantities_are_named() {
         .run_cases(0..1)
         .unwrap_err();
     assert!(e.to_string().contains("; did you mean `L`?"), "{e}");
+    let task = Simulate::new(settings, Method::Rk4, Keep::new().final_state()).unwrap();
+    let cases = Cases::new().grid("_g", &[1.0]).unwrap();
+    let e = Study::new(Pendulum::new, cases, task)
+        .run_cases(0..1)
+        .unwrap_err();
+    assert!(e.to_string().contains("; did you mean `g`?"), "{e}");
     let task = Simulate::new(settings, Method::Rk4, Keep::new()).unwrap();
     let cases = Cases::new().grid("state:m", &[1.0]).unwrap();
     let e = Study::new(Pendulum::new, cases, task)

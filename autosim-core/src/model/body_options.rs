@@ -35,6 +35,16 @@ impl Resolver<'_> {
 
     /// An axis number, 1, 2 or 3 (`help` says what the others mean).
     fn axis(&mut self, it: &Expr, what: &str, help: &str) -> Option<Axis> {
+        // `x`, `y`, `z` (any case): the number it means.
+        if let Expr::Name(n) = it
+            && let Some(k) = ["x", "y", "z"]
+                .iter()
+                .position(|a| n.text.eq_ignore_ascii_case(a))
+        {
+            let message = format!("{what} is a number: `{}` is axis {}", n.text, k + 1);
+            self.push(Diagnostic::error(it.span(), message).help(help));
+            return None;
+        }
         let a = self.integer(it, what)?;
         let axis = Axis::number(a);
         if axis.is_none() {

@@ -99,11 +99,13 @@ fn resolve_one<M: Model>(column: &str, setup: &[String]) -> Result<Target, Study
     }
 }
 
-/// The first of `names` spelled as `column` whatever the case, else the
-/// first that one of the two starts (at least two letters shared).
+/// The first of `names` spelled as `column` whatever the case and the
+/// underscores, else the first that one of the two starts (at least two
+/// letters shared).
 fn alike<'a>(column: &str, names: impl Iterator<Item = &'a str> + Clone) -> Option<&'a str> {
+    let bare = |s: &str| s.to_lowercase().replace('_', "");
     let lower = column.to_lowercase();
-    let same = names.clone().find(|n| n.to_lowercase() == lower);
+    let same = names.clone().find(|n| bare(n) == bare(column));
     same.or_else(|| {
         names.into_iter().find(|n| {
             let n = n.to_lowercase();

@@ -34,6 +34,10 @@ impl<'a> Resolver<'a> {
             }
             if self.sys.body_named(&b.name.text).is_none() {
                 self.names_of_failed_bodies.extend(declared_names(b));
+                let named = |key| b.options.get(key).is_some();
+                if !named(BodyKey::Q) || !named(BodyKey::U) {
+                    self.failed_body_with_default_names = true;
+                }
             }
         }
         // Unit-vector shorthands: `b1` for body `B`, `n1` for N.
@@ -141,6 +145,7 @@ impl<'a> Resolver<'a> {
     fn add_body(&mut self, b: &ast::Body, spec: BodySpec) {
         let parameters_before = self.sys.parameters().len();
         let coordinates_before = self.sys.coordinates().len();
+        let states_before = self.sys.states().len();
         match self.sys.add_body(spec.clone()) {
             Ok(id) => {
                 for &p in &self.sys.parameters()[parameters_before..] {
@@ -153,6 +158,12 @@ impl<'a> Resolver<'a> {
                         let name = self.sys.arena.symbol(s).name.clone();
                         self.names.insert(name, (Named::Symbol(s), b.name.span));
                     }
+                }
+                // A quaternion's scalar part `e0`, a state the body adds.
+                for state in self.sys.states()[states_before..].to_vec() {
+                    let name = self.sys.arena.symbol(state.sym).name.clone();
+                    self.names
+                        .insert(name, (Named::Symbol(state.sym), b.name.span));
                 }
                 self.declare_locked(b, &spec, id, coordinates_before);
                 self.names

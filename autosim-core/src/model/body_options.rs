@@ -6,7 +6,7 @@
 //! about the body itself is checked once, by `mech`.
 
 use super::scope::Resolver;
-use crate::diag::Diagnostic;
+use crate::diag::{Diagnostic, did_you_mean};
 use crate::expr::ExprId;
 use crate::mech::{Axis, Direction, Joint, Mat3};
 use crate::syntax::ast::Expr;
@@ -35,15 +35,23 @@ impl Resolver<'_> {
 
     /// An axis number, 1, 2 or 3 (`help` says what the others mean).
     fn axis(&mut self, it: &Expr, what: &str, help: &str) -> Option<Axis> {
-        // `x`, `y`, `z` (any case): the number it means.
-        if let Expr::Name(n) = it
-            && let Some(k) = ["x", "y", "z"]
+        // `x`, `y`, `z` (any case): the number it means; a misspelt
+        // `quaternion`: that.
+        if let Expr::Name(n) = it {
+            let letter = ["x", "y", "z"]
                 .iter()
-                .position(|a| n.text.eq_ignore_ascii_case(a))
-        {
-            let message = format!("{what} is a number: `{}` is axis {}", n.text, k + 1);
-            self.push(Diagnostic::error(it.span(), message).help(help));
-            return None;
+                .position(|a| n.text.eq_ignore_ascii_case(a));
+            if let Some(k) = letter {
+                let message = format!("{what} is a number: `{}` is axis {}", n.text, k + 1);
+                self.push(Diagnostic::error(it.span(), message).help(help));
+                return None;
+            }
+            if did_you_mean(&n.text, ["quaternion"]).is_some() {
+                let message = format!("unknown rotation `{}`", n.text);
+                let d = Diagnostic::error(it.span(), message).help("did you mean `quaternion`?");
+                self.push(d);
+                return None;
+            }
         }
         let a = self.integer(it, what)?;
         let axis = Axis::number(a);

@@ -166,7 +166,7 @@ fn assignments(
 /// assign it; a diagnostic saying where it belongs otherwise.
 fn assigned(r: &mut Resolver<'_>, name: &ast::Name, target: Target) -> Option<SymId> {
     let Some((named, _)) = r.names.get(&name.text).cloned() else {
-        if r.names_of_failed_bodies.contains(&name.text) {
+        if r.declared_by_failed_body(&name.text) {
             // That body's error says what is wrong.
             return None;
         }

@@ -53,6 +53,10 @@ pub(crate) struct Resolver<'a> {
     /// The coordinate and speed names of bodies that could not be added
     /// (their error is reported): a use of one is no second mistake.
     pub names_of_failed_bodies: Vec<String>,
+    /// A body that could not be added left its coordinates' and speeds'
+    /// names to the defaults (`q<k>`, `u<k>`, `<Body>_e0`), whose numbers
+    /// are unknown: a use of a name of that form is no second mistake.
+    pub failed_body_with_default_names: bool,
     /// How many `let`s and points are being evaluated, one inside another
     /// (each evaluates what it uses first: see [`MAX_PENDING`]).
     pub pending: usize,
@@ -101,6 +105,7 @@ impl<'a> Resolver<'a> {
             points: Vec::new(),
             uv_short: FxHashMap::default(),
             names_of_failed_bodies: Vec::new(),
+            failed_body_with_default_names: false,
             pending: 0,
             too_many_pending: false,
             scene: super::Scene::default(),
@@ -188,10 +193,22 @@ impl<'a> Resolver<'a> {
         v
     }
 
+    /// Whether `name` may be a coordinate or speed of a body that could
+    /// not be added (its error says what is wrong).
+    pub fn declared_by_failed_body(&self, name: &str) -> bool {
+        let numbered = |prefix: char| {
+            name.strip_prefix(prefix)
+                .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()))
+        };
+        self.names_of_failed_bodies.iter().any(|n| n == name)
+            || (self.failed_body_with_default_names
+                && (numbered('q') || numbered('u') || name.ends_with("_e0")))
+    }
+
     /// An "unknown name" diagnostic with a suggestion (none for a name a
     /// body declares that failed: that body's error says what is wrong).
     pub fn unknown(&mut self, name: &ast::Name, what: &str) {
-        if self.names_of_failed_bodies.contains(&name.text) {
+        if self.declared_by_failed_body(&name.text) {
             return;
         }
         let known = self.known_names();
@@ -256,7 +273,7 @@ impl<'a> Resolver<'a> {
         fits: fn(&Named) -> bool,
         otherwise: String,
     ) {
-        if self.names_of_failed_bodies.contains(&name.text) {
+        if self.declared_by_failed_body(&name.text) {
             return;
         }
         let mut candidates: Vec<&str> = self

@@ -303,6 +303,42 @@ fn a_failed_body_hides_no_mistake_but_adds_none() {
     }
 }
 
+/// A body that failed with its coordinates and speeds left to the default
+/// names: a use of `u3` or `B_e0` is no second error (a new user's wrong
+/// coordinate count brought "unknown name `u3`"); another name still is.
+#[test]
+fn a_failed_body_with_default_names_adds_no_error_at_them() {
+    let got = resolved(
+        "model M;
+body B { translate: [1, 2, 3], rotate: quaternion, mass: 1, inertia: 0,          initial: [0, 0, 0, 1, 0, 0] }
+         output climb [m/s] = u3 + 0*q7 + 0*B_e0 + kk;
+",
+    );
+    assert_eq!(got.matches("error:").count(), 2, "{got}");
+    assert!(got.contains("error: body `B` has 7 coordinates"), "{got}");
+    assert!(got.contains("error: unknown name `kk`"), "{got}");
+}
+
+/// A quaternion's scalar part is a name expressions use: `<Body>_e0`, or
+/// the first of the body's `q` names.
+#[test]
+fn a_quaternions_scalar_part_is_named_in_expressions() {
+    check(
+        "model M;
+body B { rotate: quaternion, mass: 1, inertia: diag(1, 2, 3) }
+         output norm [1] = B_e0^2 + q1^2 + q2^2 + q3^2;",
+        "OK
+",
+    );
+    check(
+        "model M;
+body B { rotate: quaternion, q: [e0, e1, e2, e3], u: [w1, w2, w3], mass: 1, inertia: diag(1, 2, 3) }
+         output norm [1] = e0^2 + e1^2 + e2^2 + e3^2;",
+        "OK
+",
+    );
+}
+
 /// Constants name what varies; gravity's hint is a gravity.
 #[test]
 fn constant_options_name_what_varies() {

@@ -160,7 +160,7 @@ impl<'a> Resolver<'a> {
                     }
                 }
                 // A quaternion's scalar part `e0`, a state the body adds.
-                for state in self.sys.states()[states_before..].to_vec() {
+                for state in &self.sys.states()[states_before..] {
                     let name = self.sys.arena.symbol(state.sym).name.clone();
                     self.names
                         .insert(name, (Named::Symbol(state.sym), b.name.span));

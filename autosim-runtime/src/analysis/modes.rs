@@ -186,15 +186,11 @@ impl LinearSystem {
     /// (the generalized eigenvectors) independent of it; each scaled so its
     /// largest entry is 1.
     fn eigenspace(&self, l: Complex<f64>, k: usize, scale: f64) -> Vec<Vec<Complex<f64>>> {
-        let n = self.a.nrows();
-        let m: DMatrix<Complex<f64>> = DMatrix::from_fn(n, n, |i, j| {
-            let a =
-                Complex::new(self.a[(i, j)], 0.0) - if i == j { l } else { Complex::new(0.0, 0.0) };
-            a / Complex::new(scale, 0.0)
-        });
+        let m = self.shifted(l) / Complex::new(scale, 0.0);
         let mut basis = null_space(&m, k, Some(1e-6));
         if basis.is_empty() {
-            basis.push(DVector::from_vec(self.eigenvector(l)));
+            // Orthonormal, as the projections of `independent_of` need.
+            basis.push(DVector::from_vec(self.eigenvector(l)).normalize());
         }
         if basis.len() < k {
             let mut power = m.clone();
@@ -210,16 +206,22 @@ impl LinearSystem {
             .collect()
     }
 
+    /// `A − λI`, complex.
+    fn shifted(&self, l: Complex<f64>) -> DMatrix<Complex<f64>> {
+        let n = self.a.nrows();
+        DMatrix::from_fn(n, n, |i, j| {
+            let a = Complex::new(self.a[(i, j)], 0.0);
+            if i == j { a - l } else { a }
+        })
+    }
+
     /// An eigenvector for `λ` by two steps of inverse iteration, scaled so
     /// its largest entry is 1.
     fn eigenvector(&self, l: Complex<f64>) -> Vec<Complex<f64>> {
         let n = self.a.nrows();
-        let shift = l + Complex::new(1e-10 * (1.0 + l.norm()), 0.0);
-        let m: DMatrix<Complex<f64>> = DMatrix::from_fn(n, n, |i, j| {
-            let a = Complex::new(self.a[(i, j)], 0.0);
-            if i == j { a - shift } else { a }
-        });
-        let lu = m.lu();
+        let lu = self
+            .shifted(l + Complex::new(1e-10 * (1.0 + l.norm()), 0.0))
+            .lu();
         let mut v = DVector::from_element(n, Complex::new(1.0, 0.0));
         for _ in 0..3 {
             match lu.solve(&v) {
@@ -317,9 +319,7 @@ fn null_space(m: &DMatrix<Complex<f64>>, k: usize, tol: Option<f64>) -> Vec<DVec
         return Vec::new();
     };
     let sv = &svd.singular_values;
-    let mut order: Vec<usize> = (0..sv.len()).collect();
-    order.sort_by(|&a, &b| sv[a].total_cmp(&sv[b]));
-    order
+    by_singular_value(sv.as_slice())
         .into_iter()
         .take(k)
         .filter(|&i| tol.is_none_or(|t| sv[i] <= t))
@@ -355,12 +355,17 @@ fn independent_of(
     let Some(u) = &svd.u else {
         return Vec::new();
     };
-    let sv = &svd.singular_values;
-    let mut order: Vec<usize> = (0..sv.len()).collect();
-    order.sort_by(|&a, &b| sv[b].total_cmp(&sv[a]));
-    order
+    by_singular_value(svd.singular_values.as_slice())
         .into_iter()
+        .rev()
         .take(count)
         .map(|j| u.column(j).into_owned())
         .collect()
+}
+
+/// The indices of the singular values `sv`, smallest first.
+fn by_singular_value(sv: &[f64]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..sv.len()).collect();
+    order.sort_by(|&a, &b| sv[a].total_cmp(&sv[b]));
+    order
 }

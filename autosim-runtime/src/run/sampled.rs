@@ -70,16 +70,9 @@ where
         0 => settings.start,
         k => settings.output_time(k),
     });
-    let run = Sampled {
-        model,
-        stepper,
-        x,
-        settings,
-        period,
-        controller,
-        observer,
-    };
-    run.reporting_at(every)
+    sampled(
+        model, stepper, x, settings, every, period, controller, observer,
+    )
 }
 
 /// Like [`run_sampled`], reporting at `times` (non-decreasing, within
@@ -108,103 +101,82 @@ where
     O: Observer<M> + ?Sized,
 {
     check_times(settings, times)?;
-    let run = Sampled {
-        model,
-        stepper,
-        x,
-        settings,
-        period,
-        controller,
-        observer,
-    };
-    run.reporting_at(times.iter().copied())
+    let times = times.iter().copied();
+    sampled(
+        model, stepper, x, settings, times, period, controller, observer,
+    )
 }
 
-/// A sampled run's parts, for the one loop both entries share.
-struct Sampled<'a, M: Model, S: ?Sized, C: ?Sized, O: ?Sized> {
-    model: &'a mut M,
-    stepper: &'a mut S,
-    x: &'a mut M::State,
-    settings: &'a RunSettings<M::Float>,
+/// The loop both entries share: samples at the start and every `period`,
+/// reports at each of `outputs` (in order; one at or before the current
+/// time at once), and ends at the stop time or at a terminal event (one
+/// last output at its instant).
+#[allow(clippy::too_many_arguments)]
+fn sampled<M, S, C, O>(
+    model: &mut M,
+    stepper: &mut S,
+    x: &mut M::State,
+    settings: &RunSettings<M::Float>,
+    outputs: impl Iterator<Item = M::Float>,
     period: M::Float,
-    controller: &'a mut C,
-    observer: &'a mut O,
-}
-
-impl<M, S, C, O> Sampled<'_, M, S, C, O>
+    controller: &mut C,
+    observer: &mut O,
+) -> Result<RunSummary<M::Float>, RunError<O::Error>>
 where
     M: Model,
     S: Stepper<M> + ?Sized,
     C: Controller<M> + ?Sized,
     O: Observer<M> + ?Sized,
 {
-    /// Samples at the start and every `period`, reports at each of
-    /// `outputs` (in order; one at or before the current time at once), and
-    /// ends at the stop time or at a terminal event (one last output at its
-    /// instant).
-    fn reporting_at(
-        self,
-        outputs: impl Iterator<Item = M::Float>,
-    ) -> Result<RunSummary<M::Float>, RunError<O::Error>> {
-        let Sampled {
-            model,
-            stepper,
-            x,
-            settings,
-            period,
-            controller,
-            observer,
-        } = self;
-        if !(period > M::Float::ZERO && period.is_finite()) {
-            let reason = "the sample period must be positive and finite";
-            return Err(IntegrationError::InvalidSettings { reason }.into());
-        }
-        let mut driver = Driver::begin(model, stepper, x, settings, observer)?;
-        let mut flow = sample(&mut driver, model, stepper, x, controller, observer)?;
-        let mut outputs = outputs.peekable();
-        let (mut j, mut at_stop) = (1u64, false);
-        loop {
-            if flow == Flow::Stopped {
-                // A terminal event: one last output at its instant.
-                driver.emit(model, x, observer)?;
-                break;
-            }
-            let next = outputs.peek().copied();
-            let until = match next {
-                Some(t_out) => t_out,
-                None if at_stop => break,
-                None => settings.stop,
-            };
-            // A sample instant a rounding from the next output time is that
-            // time (in `f32`, `j · period` of the last sample can round past
-            // the stop).
-            let t_sample = match settings.start + M::Float::from_f64(j as f64) * period {
-                t if (t - until).abs() <= rounding(until.abs().max(t.abs()), period) => until,
-                t => t,
-            };
-            let target = if t_sample < until { t_sample } else { until };
-            if target > driver.time() {
-                flow = driver.advance(model, stepper, x, target, settings.step, observer)?;
-                if flow == Flow::Stopped {
-                    continue;
-                }
-            }
-            if t_sample <= until {
-                flow = sample(&mut driver, model, stepper, x, controller, observer)?;
-                j += 1;
-            }
-            // At `until`: its output (after a terminal event at the sample,
-            // the loop's first line reports it, once), or the stop.
-            if until <= t_sample {
-                if next.is_none() {
-                    at_stop = true;
-                } else if outputs.next().is_some() && flow == Flow::Continue {
-                    driver.emit(model, x, observer)?;
-                }
-            }
-        }
-        Ok(driver.finish(stepper))
+    if !(period > M::Float::ZERO && period.is_finite()) {
+        let reason = "the sample period must be positive and finite";
+        return Err(IntegrationError::InvalidSettings { reason }.into());
     }
+    let mut driver = Driver::begin(model, stepper, x, settings, observer)?;
+    let mut flow = sample(&mut driver, model, stepper, x, controller, observer)?;
+    let mut outputs = outputs.peekable();
+    let (mut j, mut at_stop) = (1u64, false);
+    loop {
+        if flow == Flow::Stopped {
+            // A terminal event: one last output at its instant.
+            driver.emit(model, x, observer)?;
+            break;
+        }
+        let next = outputs.peek().copied();
+        let until = match next {
+            Some(t_out) => t_out,
+            None if at_stop => break,
+            None => settings.stop,
+        };
+        // A sample instant a rounding from the next output time is that
+        // time (in `f32`, `j · period` of the last sample can round past
+        // the stop).
+        let t_sample = match settings.start + M::Float::from_f64(j as f64) * period {
+            t if (t - until).abs() <= rounding(until.abs().max(t.abs()), period) => until,
+            t => t,
+        };
+        let target = if t_sample < until { t_sample } else { until };
+        if target > driver.time() {
+            flow = driver.advance(model, stepper, x, target, settings.step, observer)?;
+            if flow == Flow::Stopped {
+                continue;
+            }
+        }
+        if t_sample <= until {
+            flow = sample(&mut driver, model, stepper, x, controller, observer)?;
+            j += 1;
+        }
+        // At `until`: its output (after a terminal event at the sample,
+        // the loop's first line reports it, once), or the stop.
+        if until <= t_sample {
+            if next.is_none() {
+                at_stop = true;
+            } else if outputs.next().is_some() && flow == Flow::Continue {
+                driver.emit(model, x, observer)?;
+            }
+        }
+    }
+    Ok(driver.finish(stepper))
 }
 
 /// Runs the controller at the driver's time, sets the inputs it chose and

@@ -300,18 +300,27 @@ def _event_log(log: Mapping[str, Any], model: Model) -> EventLog:
 def _check_time_only(function: Any) -> None:
     """A ValueError if ``function`` cannot be called with the time alone
     (``lambda t, x: ...`` is a state feedback, which an input cannot be)."""
-    try:
-        signature = inspect.signature(function)
-    except (TypeError, ValueError):  # a builtin without a signature
-        return
-    try:
-        signature.bind(0.0)
-    except TypeError:
+    signature = _refused_signature(function, (0.0,))
+    if signature is not None:
         raise ValueError(
             f"the inputs callable must take the time alone, u(t); its signature is {signature}. "
             "A feedback of the state belongs in the model (the gains as parameters), or in "
             "a sampled controller: simulate(..., controller=f, period=dt) with f(t, x, y)"
-        ) from None
+        )
+
+
+def _refused_signature(function: Any, args: tuple[Any, ...]) -> str | None:
+    """The signature of ``function`` if it cannot be called with ``args``
+    (``None`` if it can, or has no signature to read, as some builtins)."""
+    try:
+        signature = inspect.signature(function)
+    except (TypeError, ValueError):
+        return None
+    try:
+        signature.bind(*args)
+    except TypeError:
+        return str(signature)
+    return None
 
 
 def _sampled(controller: Any, period: float | None, inputs: Any) -> tuple[Any, float] | None:
@@ -327,13 +336,10 @@ def _sampled(controller: Any, period: float | None, inputs: Any) -> tuple[Any, f
         raise ValueError(f"a controller needs its sample period: period= positive and finite, not {period}")
     if inputs is not None:
         raise ValueError("a controller sets the inputs from the start: leave inputs= out")
-    try:
-        inspect.signature(controller).bind(0.0, None, None)
-    except TypeError:
+    signature = _refused_signature(controller, (0.0, None, None))
+    if signature is not None:
         raise ValueError(
-            f"the controller must take (t, x, y): the time, the state and the outputs; "
-            f"its signature is {inspect.signature(controller)}"
-        ) from None
-    except ValueError:  # a builtin without a signature
-        pass
+            "the controller must take (t, x, y): the time, the state and the outputs; "
+            f"its signature is {signature}"
+        )
     return controller, float(period)
